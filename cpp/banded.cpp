@@ -1,0 +1,96 @@
+#include "banded.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace trackwheel {
+
+void BandMatrix::resize(int n, int half_bandwidth) {
+  n_ = n;
+  b_ = half_bandwidth;
+  data_ = Eigen::MatrixXd::Zero(2 * b_ + 1, n_);
+}
+
+void BandMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y = Eigen::VectorXd::Zero(n_);
+  for (int j = 0; j < n_; ++j) {
+    const int i0 = std::max(0, j - b_), i1 = std::min(n_ - 1, j + b_);
+    for (int i = i0; i <= i1; ++i) y(i) += at(i, j) * x(j);
+  }
+}
+
+Eigen::MatrixXd BandMatrix::dense() const {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_, n_);
+  for (int j = 0; j < n_; ++j) {
+    const int i0 = std::max(0, j - b_), i1 = std::min(n_ - 1, j + b_);
+    for (int i = i0; i <= i1; ++i) A(i, j) = at(i, j);
+  }
+  return A;
+}
+
+bool BandMatrix::factorize() {
+  for (int k = 0; k < n_; ++k) {
+    const double piv = at(k, k);
+    if (!(std::abs(piv) > 0.0) || !std::isfinite(piv)) return false;
+    const int iend = std::min(n_ - 1, k + b_);
+    for (int i = k + 1; i <= iend; ++i) {
+      const double l = at(i, k) / piv;
+      at(i, k) = l;
+      if (l == 0.0) continue;
+      for (int j = k + 1; j <= iend; ++j) at(i, j) -= l * at(k, j);
+    }
+  }
+  return true;
+}
+
+void BandMatrix::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
+  for (int i = 0; i < n_; ++i) {  // L y = x (unit lower)
+    const int j0 = std::max(0, i - b_);
+    double s = x(i);
+    for (int j = j0; j < i; ++j) s -= at(i, j) * x(j);
+    x(i) = s;
+  }
+  for (int i = n_ - 1; i >= 0; --i) {  // U x = y
+    const int j1 = std::min(n_ - 1, i + b_);
+    double s = x(i);
+    for (int j = i + 1; j <= j1; ++j) s -= at(i, j) * x(j);
+    x(i) = s / at(i, i);
+  }
+}
+
+void BandMatrix::set_linear_combination(double a, const BandMatrix& A, double b,
+                                        const BandMatrix& B) {
+  data_ = a * A.data_ + b * B.data_;
+}
+
+void BandMatrix::add_scaled(double a, const BandMatrix& A) { data_ += a * A.data_; }
+
+bool BorderedSolver::factorize(BandMatrix& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
+                               const Eigen::MatrixXd& D) {
+  if (!A.factorize()) return false;
+  A_ = &A;
+  m_ = static_cast<int>(D.rows());
+  if (m_ == 0) return true;
+  Z_ = B;
+  for (int k = 0; k < m_; ++k) A.solve_in_place(Z_.col(k));
+  C_ = C;
+  const Eigen::MatrixXd S = D - C * Z_;
+  if (!S.allFinite()) return false;
+  schur_.compute(S);
+  const double det = schur_.determinant();
+  return std::isfinite(det) && det != 0.0;
+}
+
+void BorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
+                           Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
+  x1 = r1;
+  A_->solve_in_place(x1);
+  if (m_ == 0) {
+    x2.resize(0);
+    return;
+  }
+  x2 = schur_.solve(r2 - C_ * x1);
+  x1 -= Z_ * x2;
+}
+
+}  // namespace trackwheel

@@ -1,0 +1,105 @@
+#include "contact.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace trackwheel {
+
+ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
+                                const Eigen::Vector2d& RA, double s_guess) {
+  ContactPoint pt;
+  const double L = rail.params().length;
+  double s = std::min(std::max(s_guess, 0.0), L);
+  const double tol = 1e-13 * L;
+  for (int it = 0; it < 50; ++it) {
+    pt.mp = rail.locate(s);
+    pt.r = rail.position(e, pt.mp);
+    pt.rs = rail.slope(e, pt.mp);
+    pt.rss = rail.curvature_vector(e, pt.mp);
+    const Eigen::Vector2d d = RA - pt.r;
+    const double f = d.dot(pt.rs);
+    const double fs = -pt.rs.squaredNorm() + d.dot(pt.rss);
+    pt.iterations = it + 1;
+    if (!(fs < 0.0) || !std::isfinite(f)) break;  // not a minimum of the distance
+    const double ds = -f / fs;
+    const double s_new = std::min(std::max(s + ds, 0.0), L);
+    const bool done = std::abs(s_new - s) <= tol;
+    s = s_new;
+    if (done) {
+      pt.converged = true;
+      break;
+    }
+  }
+  if (!pt.converged) {
+    std::ostringstream msg;
+    msg << "contact-point search did not converge (wheel centre at X = " << RA.x()
+        << " m, Y = " << RA.y() << " m)";
+    throw std::runtime_error(msg.str());
+  }
+  pt.s = s;
+  pt.mp = rail.locate(s);
+  pt.r = rail.position(e, pt.mp);
+  pt.rs = rail.slope(e, pt.mp);
+  pt.rss = rail.curvature_vector(e, pt.mp);
+  const Eigen::Vector2d d = RA - pt.r;
+  pt.rho = d.norm();
+  pt.n = d / pt.rho;
+  pt.t = pt.rs.normalized();
+  pt.phi = std::atan2(pt.rs.y(), pt.rs.x());
+  return pt;
+}
+
+void distance_derivatives(const ContactPoint& pt, Vec10& grad, Mat10* hess) {
+  // G = [I2, -S(s*)] (2 x 10)
+  Eigen::Matrix<double, 2, 10> G = Eigen::Matrix<double, 2, 10>::Zero();
+  G(0, 0) = 1.0;
+  G(1, 1) = 1.0;
+  for (int a = 0; a < 4; ++a) {
+    G(0, 2 + 2 * a) = -pt.mp.h.n[a];
+    G(1, 2 + 2 * a + 1) = -pt.mp.h.n[a];
+  }
+  grad = G.transpose() * pt.n;
+  if (!hess) return;
+  const Eigen::Vector2d d = pt.rho * pt.n;
+  const double fs = -pt.rs.squaredNorm() + d.dot(pt.rss);
+  Vec10 w = G.transpose() * pt.rs / pt.rho;
+  for (int a = 0; a < 4; ++a) w.segment<2>(2 + 2 * a) += pt.mp.h.ns[a] * pt.n;
+  const Eigen::Matrix2d P = Eigen::Matrix2d::Identity() - pt.n * pt.n.transpose();
+  *hess = G.transpose() * P * G / pt.rho + (pt.rho / fs) * w * w.transpose();
+}
+
+ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, const Vec10& qdot,
+                           bool want_jacobian) {
+  ContactForce out;
+  Mat10 H;
+  distance_derivatives(pt, out.grad_rho, want_jacobian ? &H : nullptr);
+  out.delta = cp.radius - pt.rho;
+  out.F.setZero();
+  out.K.setZero();
+  out.C.setZero();
+  if (out.delta <= 0.0) return out;
+  double Ne, dNe;  // elastic force and its derivative with respect to delta
+  if (cp.law == ContactLaw::Linear) {
+    Ne = cp.stiffness * out.delta;
+    dNe = cp.stiffness;
+  } else {
+    const double sq = std::sqrt(out.delta);
+    Ne = cp.stiffness * out.delta * sq;
+    dNe = 1.5 * cp.stiffness * sq;
+  }
+  const double delta_dot = -out.grad_rho.dot(qdot);
+  const double N = Ne + cp.damping * delta_dot;
+  if (N <= 0.0) return out;  // a damper cannot pull
+  out.N = N;
+  out.active = true;
+  out.F = N * out.grad_rho;
+  if (want_jacobian) {
+    // dF/dq = N H + grad (dN/dq), dN/dq = -dNe grad^T
+    out.K = -(N * H) + dNe * out.grad_rho * out.grad_rho.transpose();
+    out.C = cp.damping * out.grad_rho * out.grad_rho.transpose();
+  }
+  return out;
+}
+
+}  // namespace trackwheel

@@ -1,0 +1,68 @@
+// Wheel/rail contact (MODEL.md §4).
+//
+// The contact point on the rail is the foot of the normal from the wheel centre R_A:
+//   f(s) = (R_A - r(s)) . r_s(s) = 0, solved by Newton from the last s (warm start), moving
+// across element boundaries. rho = |R_A - r(s*)|, n = (R_A - r(s*))/rho, penetration
+// delta = rho0 - rho, normal force N = k delta (linear contact rigidity, the paper's eq. 22)
+// or N = C_H delta^1.5 (Hertz), plus optional damping c * d(delta)/dt, and N = 0 when
+// delta <= 0 (unilateral). Forces: +N n on the wheel centre, -S(s*)^T N n on the rail.
+//
+// Because rho(q) is the distance from R_A to the rail curve, the elastic part of the contact
+// force is the gradient of the potential V(rho(q)) and its Jacobian is symmetric:
+//   grad rho = G^T n,  G = [I, -S(s*)]  (q = [X_A, Y_A, e_el(8)]),
+//   hess rho = G^T (I - n n^T) G / rho + rho w w^T / f_s,
+//   w = G^T r_s / rho + [0; S_s^T n],  f_s = -r_s.r_s + (R_A - r).r_ss.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "rail.hpp"
+
+namespace trackwheel {
+
+using Vec10 = Eigen::Matrix<double, 10, 1>;
+using Mat10 = Eigen::Matrix<double, 10, 10>;
+
+enum class ContactLaw { Linear = 0, Hertz = 1 };
+
+struct ContactParams {
+  ContactLaw law = ContactLaw::Linear;
+  double stiffness = 0.0;  // k [N/m] (linear) or C_H [N/m^1.5] (Hertz)
+  double damping = 0.0;    // contact damping c [N s/m]
+  double radius = 0.1;     // undeformed wheel radius rho0 [m]
+};
+
+struct ContactPoint {
+  double s = 0.0;          // contact parameter s* on the rail [m]
+  MeshPoint mp;            // its element and shape functions
+  Eigen::Vector2d r, rs, rss;  // r(s*), r_s, r_ss
+  double rho = 0.0;        // |R_A - r(s*)| [m]
+  Eigen::Vector2d n;       // unit normal, rail -> wheel centre
+  Eigen::Vector2d t;       // unit tangent r_s/|r_s|
+  double phi = 0.0;        // obliquity atan2(y_s, x_s) [rad]
+  int iterations = 0;      // Newton iterations of the search
+  bool converged = false;
+};
+
+// Newton search for s*, starting from s_guess. Throws std::runtime_error if it fails.
+ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
+                                const Eigen::Vector2d& RA, double s_guess);
+
+struct ContactForce {
+  double delta = 0.0;       // penetration rho0 - rho [m]
+  double N = 0.0;           // normal force [N] (>= 0)
+  bool active = false;      // N > 0
+  Vec10 grad_rho;           // d rho / dq
+  Vec10 F;                  // generalised contact force on q = [X_A, Y_A, e_el] [N]
+  Mat10 K;                  // -dF/dq [N/m] (damping's own q-dependence neglected)
+  Mat10 C;                  // -dF/dqdot [N s/m]
+};
+
+// Evaluate the contact force at a found contact point; qdot = [V_A; edot_el] (for damping).
+ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, const Vec10& qdot,
+                           bool want_jacobian);
+
+// d rho/dq and the Hessian of rho (exposed for tests).
+void distance_derivatives(const ContactPoint& pt, Vec10& grad, Mat10* hess);
+
+}  // namespace trackwheel

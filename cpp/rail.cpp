@@ -1,0 +1,204 @@
+#include "rail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace trackwheel {
+
+namespace {
+void require(bool ok, const std::string& msg) {
+  if (!ok) throw std::invalid_argument(msg);
+}
+}  // namespace
+
+RailModel::RailModel(const RailParams& rail, const SupportParams& supports)
+    : p_(rail), sup_(supports) {
+  require(std::isfinite(p_.length) && p_.length > 0, "rail length must be > 0 m");
+  require(p_.n_elements >= 1 && p_.n_elements <= 100000, "n_elements must be in [1, 100000]");
+  require(std::isfinite(p_.EA) && p_.EA > 0, "EA must be > 0 N");
+  require(std::isfinite(p_.EI) && p_.EI > 0, "EI must be > 0 N m^2");
+  require(std::isfinite(p_.rhoA) && p_.rhoA > 0, "rho A must be > 0 kg/m");
+  require(p_.n_gauss >= 1 && p_.n_gauss <= 10, "n_gauss must be in [1, 10]");
+  require(std::isfinite(p_.gravity), "gravity must be finite");
+  const size_t ns = sup_.position.size();
+  require(sup_.stiffness.size() == ns && sup_.damping.size() == ns,
+          "support position, stiffness and damping must have the same length");
+  for (size_t j = 0; j < ns; ++j) {
+    require(std::isfinite(sup_.position[j]) && sup_.position[j] >= 0 &&
+                sup_.position[j] <= p_.length,
+            "support positions must lie in [0, L]");
+    require(std::isfinite(sup_.stiffness[j]) && sup_.stiffness[j] >= 0,
+            "support stiffness must be >= 0 N/m");
+    require(std::isfinite(sup_.damping[j]) && sup_.damping[j] >= 0,
+            "support damping must be >= 0 N s/m");
+  }
+
+  sec_.length = p_.length / p_.n_elements;
+  sec_.EA = p_.EA;
+  sec_.EI = p_.EI;
+  sec_.rhoA = p_.rhoA;
+  sec_.exact_curvature = p_.exact_curvature;
+  sec_.n_gauss = p_.n_gauss;
+  Me_ = cable_mass(sec_);
+
+  // boundary conditions
+  const int nd = n_dof();
+  full_to_free_.assign(nd, 0);
+  full_to_free_[0] = -1;               // x(0) = 0
+  full_to_free_[1] = -1;               // y(0) = 0
+  full_to_free_[nd - 4 + 1] = -1;      // y(L) = 0
+  if (p_.pin_far_end) full_to_free_[nd - 4] = -1;
+  for (int i = 0; i < nd; ++i) {
+    if (full_to_free_[i] == 0) {
+      full_to_free_[i] = static_cast<int>(free_to_full_.size());
+      free_to_full_.push_back(i);
+    }
+  }
+
+  // mass
+  M_.resize(n_free(), kHalfBandwidth);
+  for (int el = 0; el < p_.n_elements; ++el) add_element_block(el, Me_, 1.0, M_);
+
+  // supports: k_s S_y^T S_y at X_j (on or between nodes)
+  Ks_.resize(n_free(), kHalfBandwidth);
+  Cs_.resize(n_free(), kHalfBandwidth);
+  for (size_t j = 0; j < ns; ++j) {
+    const MeshPoint mp = locate(sup_.position[j]);
+    support_points_.push_back(mp);
+    Mat8 Sy = Mat8::Zero();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) Sy(2 * a + 1, 2 * b + 1) = mp.h.n[a] * mp.h.n[b];
+    add_element_block(mp.element, Sy, sup_.stiffness[j], Ks_);
+    add_element_block(mp.element, Sy, sup_.damping[j], Cs_);
+  }
+
+  // consistent gravity load -int rhoA g S_y^T ds
+  Qg_ = Eigen::VectorXd::Zero(nd);
+  const double l = sec_.length;
+  const double nint[4] = {0.5 * l, l * l / 12.0, 0.5 * l, -l * l / 12.0};
+  for (int el = 0; el < p_.n_elements; ++el)
+    for (int a = 0; a < 4; ++a) Qg_(4 * el + 2 * a + 1) -= p_.rhoA * p_.gravity * nint[a];
+}
+
+Eigen::VectorXd RailModel::reference() const {
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(n_dof());
+  for (int i = 0; i < n_nodes(); ++i) {
+    e(4 * i) = i * sec_.length;
+    e(4 * i + 2) = 1.0;
+  }
+  return e;
+}
+
+MeshPoint RailModel::locate(double s) const {
+  MeshPoint mp;
+  s = std::min(std::max(s, 0.0), p_.length);
+  int el = static_cast<int>(std::floor(s / sec_.length));
+  el = std::min(std::max(el, 0), p_.n_elements - 1);
+  mp.element = el;
+  mp.xi = std::min(std::max((s - el * sec_.length) / sec_.length, 0.0), 1.0);
+  mp.h = hermite(mp.xi, sec_.length);
+  return mp;
+}
+
+Eigen::Vector2d RailModel::position(const Eigen::VectorXd& e, const MeshPoint& p) const {
+  Eigen::Vector2d r = Eigen::Vector2d::Zero();
+  for (int a = 0; a < 4; ++a) r += p.h.n[a] * e.segment<2>(p.dof0() + 2 * a);
+  return r;
+}
+Eigen::Vector2d RailModel::slope(const Eigen::VectorXd& e, const MeshPoint& p) const {
+  Eigen::Vector2d r = Eigen::Vector2d::Zero();
+  for (int a = 0; a < 4; ++a) r += p.h.ns[a] * e.segment<2>(p.dof0() + 2 * a);
+  return r;
+}
+Eigen::Vector2d RailModel::curvature_vector(const Eigen::VectorXd& e, const MeshPoint& p) const {
+  Eigen::Vector2d r = Eigen::Vector2d::Zero();
+  for (int a = 0; a < 4; ++a) r += p.h.nss[a] * e.segment<2>(p.dof0() + 2 * a);
+  return r;
+}
+
+void RailModel::add_element_block(int el, const Mat8& Ke, double scale, BandMatrix& K) const {
+  if (scale == 0.0) return;
+  for (int a = 0; a < 8; ++a) {
+    const int i = full_to_free_[4 * el + a];
+    if (i < 0) continue;
+    for (int b = 0; b < 8; ++b) {
+      const int j = full_to_free_[4 * el + b];
+      if (j < 0) continue;
+      K.add(i, j, scale * Ke(a, b));
+    }
+  }
+}
+
+void RailModel::internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* edot,
+                               Eigen::VectorXd& Q, double* energy) const {
+  Q = Eigen::VectorXd::Zero(n_dof());
+  double U = 0.0;
+  Vec8 Qe;
+  for (int el = 0; el < p_.n_elements; ++el) {
+    double Ue = 0.0;
+    const Vec8 ee = e.segment<8>(4 * el);
+    cable_elastic(sec_, ee, &Qe, nullptr, energy ? &Ue : nullptr);
+    Q.segment<8>(4 * el) += Qe;
+    U += Ue;
+  }
+  for (size_t j = 0; j < support_points_.size(); ++j) {
+    const MeshPoint& mp = support_points_[j];
+    double y = 0.0, ydot = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      y += mp.h.n[a] * e(mp.dof0() + 2 * a + 1);
+      if (edot) ydot += mp.h.n[a] * (*edot)(mp.dof0() + 2 * a + 1);
+    }
+    const double f = sup_.stiffness[j] * y + sup_.damping[j] * ydot;
+    for (int a = 0; a < 4; ++a) Q(mp.dof0() + 2 * a + 1) += mp.h.n[a] * f;
+    U += 0.5 * sup_.stiffness[j] * y * y;
+  }
+  if (energy) *energy = U;
+}
+
+void RailModel::add_tangent(const Eigen::VectorXd& e, double scale, BandMatrix& K) const {
+  Mat8 Ke;
+  for (int el = 0; el < p_.n_elements; ++el) {
+    const Vec8 ee = e.segment<8>(4 * el);
+    cable_elastic(sec_, ee, nullptr, &Ke, nullptr);
+    add_element_block(el, Ke, scale, K);
+  }
+  K.add_scaled(scale, Ks_);
+}
+
+Eigen::MatrixXd RailModel::tangent_dense(const Eigen::VectorXd& e) const {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n_dof(), n_dof());
+  Mat8 Ke;
+  for (int el = 0; el < p_.n_elements; ++el) {
+    const Vec8 ee = e.segment<8>(4 * el);
+    cable_elastic(sec_, ee, nullptr, &Ke, nullptr);
+    K.block<8, 8>(4 * el, 4 * el) += Ke;
+  }
+  for (size_t j = 0; j < support_points_.size(); ++j) {
+    const MeshPoint& mp = support_points_[j];
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        K(mp.dof0() + 2 * a + 1, mp.dof0() + 2 * b + 1) +=
+            sup_.stiffness[j] * mp.h.n[a] * mp.h.n[b];
+  }
+  return K;
+}
+
+Eigen::MatrixXd RailModel::mass_dense() const {
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n_dof(), n_dof());
+  for (int el = 0; el < p_.n_elements; ++el) M.block<8, 8>(4 * el, 4 * el) += Me_;
+  return M;
+}
+
+Eigen::VectorXd RailModel::to_free(const Eigen::VectorXd& full) const {
+  Eigen::VectorXd f(n_free());
+  for (int i = 0; i < n_free(); ++i) f(i) = full(free_to_full_[i]);
+  return f;
+}
+
+void RailModel::add_from_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const {
+  for (int i = 0; i < n_free(); ++i) full(free_to_full_[i]) += free(i);
+}
+
+}  // namespace trackwheel

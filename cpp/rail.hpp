@@ -1,0 +1,103 @@
+// The rail: planar ANCF cable elements on discrete elastic supports (MODEL.md §1-§2).
+//
+// RailModel is immutable after construction (mesh, section, constant mass matrix, supports,
+// gravity load, boundary conditions). Algorithms take it by const reference together with
+// state vectors; mutable buffers live in the caller's workspace.
+//
+// Coordinates: full vector e (n_dof = 4 (n_elements + 1)), node-major [x, y, x_s, y_s].
+// Boundary conditions (simply supported ends): x = 0 and y = 0 at s = 0, y = 0 at s = L; the far
+// end is a roller in x unless pin_far_end. Fixed coordinates keep their reference values; all
+// matrices used in solves are over the free coordinates (numbered in the same order, so an
+// element still couples indices within a half bandwidth of 7).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "ancf_cable.hpp"
+#include "banded.hpp"
+
+namespace trackwheel {
+
+struct RailParams {
+  double length = 5.0;          // L [m]
+  double EA = 0.0;              // axial stiffness E A [N]
+  double EI = 0.0;              // bending stiffness E I [N m^2]
+  double rhoA = 0.0;            // mass per length rho A [kg/m]
+  int n_elements = 20;          // number of ANCF elements [-]
+  bool exact_curvature = true;  // kappa = (r_s x r_ss)/|r_s|^3 (true) or r_s x r_ss (false)
+  int n_gauss = 5;              // Gauss points per element for the elastic forces [-]
+  double gravity = 9.8;         // g acting on the rail [m/s^2] (0 switches rail weight off)
+  bool pin_far_end = false;     // fix x at s = L too
+};
+
+struct SupportParams {
+  std::vector<double> position;   // X_j along the undeformed rail [m]
+  std::vector<double> stiffness;  // k_s per support [N/m]
+  std::vector<double> damping;    // c_s per support [N s/m]
+};
+
+// Where a material point s lies in the mesh.
+struct MeshPoint {
+  int element = 0;  // element index
+  double xi = 0.0;  // local coordinate in [0, 1]
+  HermiteValues h;  // shape functions at xi
+  int dof0() const { return 4 * element; }
+};
+
+constexpr int kHalfBandwidth = 7;
+
+class RailModel {
+ public:
+  RailModel(const RailParams& rail, const SupportParams& supports);
+
+  const RailParams& params() const { return p_; }
+  const SupportParams& supports() const { return sup_; }
+  const CableSection& section() const { return sec_; }
+  int n_nodes() const { return p_.n_elements + 1; }
+  int n_dof() const { return 4 * n_nodes(); }
+  int n_free() const { return static_cast<int>(free_to_full_.size()); }
+  double element_length() const { return sec_.length; }
+  const std::vector<int>& full_to_free() const { return full_to_free_; }  // -1 if fixed
+  const std::vector<int>& free_to_full() const { return free_to_full_; }
+
+  Eigen::VectorXd reference() const;  // straight, undeformed rail [m, m, -, -]
+  MeshPoint locate(double s) const;   // s clamped to [0, L]
+  Eigen::Vector2d position(const Eigen::VectorXd& e, const MeshPoint& p) const;  // r [m]
+  Eigen::Vector2d slope(const Eigen::VectorXd& e, const MeshPoint& p) const;     // r_s [-]
+  Eigen::Vector2d curvature_vector(const Eigen::VectorXd& e, const MeshPoint& p) const;  // r_ss
+
+  const Mat8& element_mass() const { return Me_; }
+  const BandMatrix& mass() const { return M_; }                       // free x free [kg]
+  const BandMatrix& support_stiffness() const { return Ks_; }         // free x free [N/m]
+  const BandMatrix& support_damping() const { return Cs_; }           // free x free [N s/m]
+  const Eigen::VectorXd& gravity_force() const { return Qg_; }        // full [N]
+  double total_mass() const { return p_.rhoA * p_.length; }
+
+  // Elastic (axial + bending) + support spring (+ support damper if edot) forces, full
+  // coordinates [N]; energy [J] = elastic + support spring energy (optional).
+  void internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* edot, Eigen::VectorXd& Q,
+                      double* energy = nullptr) const;
+  // K += scale * d(elastic + support force)/de over the free coordinates.
+  void add_tangent(const Eigen::VectorXd& e, double scale, BandMatrix& K) const;
+  // Dense full-coordinate tangent (tests and linear analysis).
+  Eigen::MatrixXd tangent_dense(const Eigen::VectorXd& e) const;
+  Eigen::MatrixXd mass_dense() const;  // full coordinates
+
+  // Gather/scatter between full and free vectors.
+  Eigen::VectorXd to_free(const Eigen::VectorXd& full) const;
+  void add_from_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const;
+
+ private:
+  RailParams p_;
+  SupportParams sup_;
+  CableSection sec_;
+  Mat8 Me_;
+  std::vector<int> full_to_free_, free_to_full_;
+  std::vector<MeshPoint> support_points_;
+  BandMatrix M_, Ks_, Cs_;
+  Eigen::VectorXd Qg_;
+  void add_element_block(int el, const Mat8& Ke, double scale, BandMatrix& K) const;
+};
+
+}  // namespace trackwheel

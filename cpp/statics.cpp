@@ -1,0 +1,137 @@
+#include "statics.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace trackwheel {
+
+namespace {
+
+// Newton over the free rail coordinates and (optionally) Y_A.
+StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
+                           const ContactParams* contact, double x_wheel, Eigen::VectorXd e,
+                           double y_wheel) {
+  const int nf = rail.n_free();
+  const int m = wheel ? 1 : 0;
+  const double P = wheel ? wheel->total_load() : 0.0;
+  BandMatrix K(nf, kHalfBandwidth);
+  Eigen::MatrixXd B(nf, m), C(m, nf), D(m, m);
+  BorderedSolver solver;
+  Eigen::VectorXd Q, r1(nf), r2(m), dx1, dx2;
+  const Eigen::VectorXd& Qg = rail.gravity_force();
+  const auto& f2f = rail.full_to_free();
+  double s_guess = x_wheel;
+  StaticResult res;
+  const double scale_e = rail.params().length;
+  for (int it = 0; it < 60; ++it) {
+    rail.internal_force(e, nullptr, Q);
+    Eigen::VectorXd R = Q - Qg;  // full residual of the rail
+    K.set_zero();
+    rail.add_tangent(e, 1.0, K);
+    B.setZero();
+    C.setZero();
+    D.setZero();
+    r2.setZero();
+    if (wheel) {
+      const Eigen::Vector2d RA(x_wheel, y_wheel);
+      const ContactPoint pt = find_contact_point(rail, e, RA, s_guess);
+      s_guess = pt.s;
+      const ContactForce cf = contact_force(*contact, pt, Vec10::Zero(), true);
+      const int d0 = pt.mp.dof0();
+      R.segment<8>(d0) -= cf.F.segment<8>(2);
+      r2(0) = -(P - cf.F(1));
+      // Jacobian of residual: rail rows += K_c, wheel row: d(P - F_y)/dq = K_c(1, .)
+      for (int a = 0; a < 8; ++a) {
+        const int i = f2f[d0 + a];
+        if (i < 0) continue;
+        for (int b = 0; b < 8; ++b) {
+          const int j = f2f[d0 + b];
+          if (j >= 0) K.add(i, j, cf.K(2 + a, 2 + b));
+        }
+        B(i, 0) = cf.K(2 + a, 1);
+        C(0, i) = cf.K(1, 2 + a);
+      }
+      D(0, 0) = cf.K(1, 1);
+      if (!cf.active)
+        throw std::runtime_error("static solve: the wheel lost contact with the rail");
+      res.contact_s = pt.s;
+      res.normal_force = cf.N;
+      res.horizontal_reaction = -cf.F(0);
+    }
+    for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
+    if (!r1.allFinite() || !r2.allFinite()) throw std::runtime_error("static solve: non-finite residual");
+    if (!solver.factorize(K, B, C, D))
+      throw std::runtime_error("static solve: singular stiffness (is the wheel off the rail?)");
+    solver.solve(r1, r2, dx1, dx2);
+    rail.add_from_free(dx1, e);
+    double step = dx1.lpNorm<Eigen::Infinity>();
+    if (wheel) {
+      y_wheel += dx2(0);
+      step = std::max(step, std::abs(dx2(0)));
+    }
+    res.iterations = it + 1;
+    if (step <= 1e-13 * scale_e) {
+      res.e = e;
+      res.x_wheel = x_wheel;
+      res.y_wheel = y_wheel;
+      if (wheel) {
+        const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_wheel),
+                                                   s_guess);
+        res.contact_s = pt.s;
+        res.y_contact = pt.r.y();
+        const ContactForce cf = contact_force(*contact, pt, Vec10::Zero(), false);
+        res.normal_force = cf.N;
+        res.horizontal_reaction = -cf.F(0);
+      }
+      return res;
+    }
+  }
+  std::ostringstream msg;
+  msg << "static solve did not converge in 60 Newton iterations (x_wheel = " << x_wheel << " m)";
+  throw std::runtime_error(msg.str());
+}
+
+}  // namespace
+
+StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
+                          const ContactParams& contact, double x_wheel,
+                          const Eigen::VectorXd& e_guess, double y_guess) {
+  const double L = rail.params().length;
+  if (!(x_wheel >= 0.0 && x_wheel <= L)) {
+    std::ostringstream msg;
+    msg << "x_wheel = " << x_wheel << " m is outside the rail [0, " << L << "] m";
+    throw std::invalid_argument(msg.str());
+  }
+  Eigen::VectorXd e = e_guess.size() == rail.n_dof() ? e_guess : rail.reference();
+  double y = y_guess;
+  if (!std::isfinite(y)) {
+    // just touching the rail below, pressed in by the static load of a linear contact
+    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, 1.0), x_wheel);
+    double delta = contact.law == ContactLaw::Linear
+                       ? wheel.total_load() / contact.stiffness
+                       : std::pow(wheel.total_load() / contact.stiffness, 2.0 / 3.0);
+    y = pt.r.y() + wheel.radius - delta;
+  }
+  return newton_static(rail, &wheel, &contact, x_wheel, e, y);
+}
+
+Eigen::VectorXd solve_rail_static(const RailModel& rail) {
+  return newton_static(rail, nullptr, nullptr, 0.0, rail.reference(), 0.0).e;
+}
+
+std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,
+                                             const ContactParams& contact,
+                                             const std::vector<double>& positions) {
+  std::vector<StaticResult> out;
+  out.reserve(positions.size());
+  Eigen::VectorXd e;
+  for (double x : positions) {
+    // warm start from the previous rail shape; the wheel height is re-seeded from the rail
+    out.push_back(solve_static(rail, wheel, contact, x, e, NAN));
+    e = out.back().e;
+  }
+  return out;
+}
+
+}  // namespace trackwheel

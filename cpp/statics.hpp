@@ -1,0 +1,42 @@
+// Static equilibrium of the rail + wheel on its contact spring (MODEL.md §8, quasi-static line).
+//
+// Unknowns: the free rail coordinates and the wheel height Y_A; the wheel centre is held at
+// X_A = x_wheel. Equations: rail  Q_elastic(e) + Q_support(e) - Q_gravity - Q_contact = 0,
+// wheel  N n_y - (F + M g) = 0. Newton on the analytic Jacobian with the bordered banded solver.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "contact.hpp"
+#include "rail.hpp"
+#include "wheel.hpp"
+
+namespace trackwheel {
+
+struct StaticResult {
+  Eigen::VectorXd e;       // rail coordinates, full [m, m, -, -]
+  double x_wheel = 0.0;    // X_A [m]
+  double y_wheel = 0.0;    // Y_A [m]
+  double contact_s = 0.0;  // s* [m]
+  double y_contact = 0.0;  // y(s*), the contact-point displacement y_B [m]
+  double normal_force = 0.0;  // N [N]
+  double horizontal_reaction = 0.0;  // force holding X_A [N]
+  int iterations = 0;
+};
+
+// e_guess may be empty (starts from the straight rail).
+StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
+                          const ContactParams& contact, double x_wheel,
+                          const Eigen::VectorXd& e_guess = Eigen::VectorXd(),
+                          double y_guess = NAN);
+
+// Static equilibrium of the rail alone under gravity (no wheel).
+Eigen::VectorXd solve_rail_static(const RailModel& rail);
+
+// y_qs(X) at each position, warm-starting each solve from the previous one.
+std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,
+                                             const ContactParams& contact,
+                                             const std::vector<double>& positions);
+
+}  // namespace trackwheel

@@ -1,0 +1,26 @@
+"""trackwheel: a railway wheel rolling at high speed over a flexible rail on elastic supports.
+
+SI units everywhere (m, s, kg, N, Pa, Hz); speeds in m/s -- :func:`kmh` converts from km/h.
+The physics is specified in MODEL.md and follows Kato et al. (2005).
+"""
+
+from ._version import __version__
+from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
+from .statics import QuasiStatic, StaticResult, quasi_static, static
+from .eigen import EigenResult, eigen
+
+__all__ = [
+    "Contact",
+    "EigenResult",
+    "QuasiStatic",
+    "Rail",
+    "Scene",
+    "StaticResult",
+    "Supports",
+    "Wheel",
+    "__version__",
+    "eigen",
+    "kmh",
+    "quasi_static",
+    "static",
+]

@@ -1,0 +1,58 @@
+"""Translate a :class:`~trackwheel.scene.Scene` into the C++ kernel's parameter structs.
+
+The kernel's ``RailModel`` is immutable; it is built once per (scene, mesh) and cached.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from . import _core
+from .scene import Scene
+
+
+@lru_cache(maxsize=64)
+def rail_model(scene: Scene, n_elements: int | None = None) -> "_core.RailModel":
+    r = scene.rail
+    p = _core.RailParams()
+    p.length = r.length
+    p.EA = r.axial_stiffness
+    p.EI = r.bending_stiffness
+    p.rhoA = r.mass_per_length
+    p.n_elements = r.n_elements if n_elements is None else int(n_elements)
+    p.exact_curvature = r.curvature == "exact"
+    p.n_gauss = r.n_gauss
+    p.gravity = scene.gravity if scene.rail_gravity else 0.0
+    p.pin_far_end = r.far_end == "pinned"
+    s = _core.SupportParams()
+    pos = scene.support_positions
+    s.position = list(pos)
+    s.stiffness = [scene.supports.stiffness] * len(pos)
+    s.damping = [scene.supports.damping] * len(pos)
+    return _core.RailModel(p, s)
+
+
+def wheel_params(scene: Scene) -> "_core.WheelParams":
+    w = scene.wheel
+    p = _core.WheelParams()
+    p.mass = w.mass
+    p.inertia = w.polar_inertia
+    p.radius = w.radius
+    p.load = w.load
+    p.torque = w.torque
+    p.gravity = scene.gravity
+    return p
+
+
+def contact_params(scene: Scene) -> "_core.ContactParams":
+    c = scene.contact
+    p = _core.ContactParams()
+    if c.law == "linear":
+        p.law = _core.ContactLaw.linear
+        p.stiffness = scene.contact_stiffness
+    else:
+        p.law = _core.ContactLaw.hertz
+        p.stiffness = c.stiffness if c.stiffness is not None else scene.hertz_constant
+    p.damping = c.damping
+    p.radius = scene.wheel.radius
+    return p

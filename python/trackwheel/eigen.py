@@ -1,0 +1,81 @@
+"""Natural frequencies of the coupled wheel/rail/support system (paper §3, MODEL.md §7).
+
+The rail is the ANCF rail linearised about the straight reference, which is exactly an
+Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
+``axial_frequencies``). The wheel is the mass M on the contact spring k (linearised Hertz),
+attached to the rail at the wheel position X through the element shape functions, so X need not
+be a node. ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
+(Eigen, in the C++ kernel) for each position.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core, _kernel
+from . import _validate as v
+from .scene import Scene
+
+
+@dataclass(frozen=True)
+class EigenResult:
+    """Vertical modes against wheel position."""
+
+    scene: Scene
+    positions: np.ndarray  #: wheel positions X, (n_pos,) [m]
+    frequencies: np.ndarray  #: (n_pos, n_modes) [Hz], ascending in each row
+    shapes: np.ndarray  #: (n_pos, n_dof + 1, n_modes): rail ANCF coords then wheel Y [-]
+    axial_frequencies: np.ndarray  #: lowest axial (x) modes of the rail, (n_axial,) [Hz]
+    n_elements: int  #: mesh used
+
+    def rail_mode_shape(self, i_pos: int, mode: int, n_points: int = 201):
+        """Vertical mode shape along the rail: (s [m], y(s) [-], wheel Y [-]), scaled so that the
+        largest |value| over rail and wheel is 1 and the wheel (or rail maximum) is positive."""
+        model = _kernel.rail_model(self.scene, self.n_elements)
+        vec = np.asarray(self.shapes[i_pos, :, mode])
+        s = np.linspace(0.0, self.scene.rail.length, n_points)
+        y = model.positions(vec[:-1], s)[:, 1]
+        wheel = vec[-1]
+        scale = max(np.max(np.abs(y)), abs(wheel))
+        ref = wheel if abs(wheel) > 1e-3 * scale else y[np.argmax(np.abs(y))]
+        scale *= np.sign(ref) or 1.0
+        return s, y / scale, wheel / scale
+
+
+def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None = None,
+          n_axial: int = 3) -> EigenResult:
+    """Lowest ``n_modes`` vertical natural frequencies [Hz] with the wheel at each of
+    ``positions`` [m] (0 <= X <= L).
+
+    >>> r = eigen(Scene.kato2005(), [2.5])
+    >>> r.frequencies.shape
+    (1, 6)
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    x = v.positions("positions", positions, 0.0, scene.rail.length)
+    ne = scene.rail.n_elements if n_elements is None else v.integer(
+        "n_elements", n_elements, low=1, high=5000)
+    model = _kernel.rail_model(scene, ne)
+    n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1)
+    n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
+    n_axial = v.integer("n_axial", n_axial, low=0, high=n_x)
+    freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
+                                         x.tolist(), n_modes)
+    axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial
+             else np.empty(0))
+    return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
+                       shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne)
+
+
+def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None
+                     ) -> np.ndarray:
+    """Vertical natural frequencies of the rail on its supports without the wheel [Hz]."""
+    ne = scene.rail.n_elements if n_elements is None else v.integer(
+        "n_elements", n_elements, low=1, high=5000)
+    model = _kernel.rail_model(scene, ne)
+    freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], v.integer("n_modes", n_modes, low=1))
+    return np.asarray(freqs).ravel()

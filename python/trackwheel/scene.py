@@ -1,0 +1,225 @@
+"""Scene description: frozen dataclasses in SI units (MODEL.md §1).
+
+Every field carries its unit; every value is validated on construction, so a scene that
+exists is a scene the kernel can run. Variations are made with :func:`dataclasses.replace`::
+
+    scene = Scene.kato2005()
+    soft = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports, stiffness=40e6))
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+
+from . import _validate as v
+
+#: Standard gravity used by the paper's scene [m/s^2]: F = 47040 N is 4800 kg x 9.8 m/s^2.
+GRAVITY = 9.8
+
+
+def kmh(speed_kmh: float) -> float:
+    """Convert a speed from km/h to m/s (``kmh(300)`` -> 83.33 m/s)."""
+    return v.number("speed_kmh", speed_kmh, unit="km/h") / 3.6
+
+
+@dataclass(frozen=True)
+class Rail:
+    """The rail: a planar ANCF beam simply supported at both ends (MODEL.md §2).
+
+    Defaults are the paper's rail (Kato et al. 2005, Table 1, made consistent in MODEL.md §1).
+    """
+
+    length: float = 5.0  #: L, rail length between the end supports [m]
+    youngs_modulus: float = 2.058e11  #: E [Pa]
+    poisson_ratio: float = 0.30  #: nu [-] (used by the Hertz contact constant)
+    density: float = 7850.0  #: rho [kg/m^3]
+    area: float = 6.936e-3  #: A, section area [m^2]
+    second_moment: float = 3.08961e-5  #: I, second moment of area [m^4]
+    n_elements: int = 20  #: n_e, number of ANCF elements [-]
+    curvature: str = "exact"  #: "exact" kappa = r_s x r_ss/|r_s|^3, or "simplified" r_s x r_ss
+    far_end: str = "roller"  #: "roller" (x free at s = L) or "pinned"
+    n_gauss: int = 5  #: Gauss points per element for the elastic forces [-]
+
+    def __post_init__(self):
+        v.positive("Rail.length", self.length, "m")
+        v.positive("Rail.youngs_modulus", self.youngs_modulus, "Pa")
+        v.number("Rail.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
+        v.positive("Rail.density", self.density, "kg/m^3")
+        v.positive("Rail.area", self.area, "m^2")
+        v.positive("Rail.second_moment", self.second_moment, "m^4")
+        v.integer("Rail.n_elements", self.n_elements, low=1, high=5000)
+        v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
+        v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
+        v.integer("Rail.n_gauss", self.n_gauss, low=1, high=10)
+
+    @property
+    def mass_per_length(self) -> float:
+        """m = rho A [kg/m]."""
+        return self.density * self.area
+
+    @property
+    def bending_stiffness(self) -> float:
+        """EI [N m^2]."""
+        return self.youngs_modulus * self.second_moment
+
+    @property
+    def axial_stiffness(self) -> float:
+        """EA [N]."""
+        return self.youngs_modulus * self.area
+
+
+@dataclass(frozen=True)
+class Supports:
+    """Discrete elastic supports (rail pads/sleepers) under the rail (MODEL.md §1-§2).
+
+    By default ``n = round(L / spacing) - 1`` equal supports at ``spacing, 2 spacing, ...,
+    L - spacing`` (nine for the paper's scene), between the two rigid end supports. Give
+    ``positions`` to place them anywhere inside the rail, on or between nodes.
+    """
+
+    stiffness: float = 140e6  #: k_s, vertical stiffness of each support [N/m]
+    spacing: float = 0.5  #: d_s, support interval [m]
+    damping: float = 0.0  #: c_s, viscous damping of each support [N s/m]
+    positions: tuple[float, ...] | None = None  #: explicit positions X_j [m], or None
+
+    def __post_init__(self):
+        v.positive("Supports.stiffness", self.stiffness, "N/m")
+        v.positive("Supports.spacing", self.spacing, "m")
+        v.number("Supports.damping", self.damping, low=0.0, unit="N s/m")
+        if self.positions is not None:
+            pos = tuple(float(x) for x in v.positions("Supports.positions", self.positions,
+                                                      -math.inf, math.inf))
+            object.__setattr__(self, "positions", pos)
+
+    def resolve(self, length: float) -> tuple[float, ...]:
+        """Support positions [m] on a rail of ``length`` [m]; checks they lie inside it."""
+        if self.positions is not None:
+            pos = self.positions
+        else:
+            n = int(round(length / self.spacing))
+            pos = tuple(self.spacing * j for j in range(1, n))
+        for x in pos:
+            if not 0.0 < x < length:
+                raise ValueError(
+                    f"Supports.positions: support at {x} m is outside the rail; "
+                    f"allowed range (0, {length}) m")
+        return pos
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """The wheel: a rigid disc loaded by the car body (MODEL.md §3)."""
+
+    mass: float = 10.0  #: M [kg]
+    radius: float = 0.1  #: rho0, undeformed radius [m]
+    load: float = 47040.0  #: F, vertical load on the centre (car body weight) [N]; M g is added
+    inertia: float | None = None  #: J, polar moment of inertia [kg m^2]; None: M rho0^2 / 2
+    youngs_modulus: float = 2.058e11  #: E of the wheel [Pa] (Hertz constant)
+    poisson_ratio: float = 0.30  #: nu of the wheel [-]
+    torque: float = 0.0  #: external torque on the wheel, positive in the rolling direction [N m]
+
+    def __post_init__(self):
+        v.positive("Wheel.mass", self.mass, "kg")
+        v.positive("Wheel.radius", self.radius, "m")
+        v.number("Wheel.load", self.load, low=0.0, unit="N")
+        if self.inertia is not None:
+            v.positive("Wheel.inertia", self.inertia, "kg m^2")
+        v.positive("Wheel.youngs_modulus", self.youngs_modulus, "Pa")
+        v.number("Wheel.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
+        v.number("Wheel.torque", self.torque, unit="N m")
+
+    @property
+    def polar_inertia(self) -> float:
+        """J [kg m^2]: the given value, or a uniform disc M rho0^2 / 2."""
+        return self.inertia if self.inertia is not None else 0.5 * self.mass * self.radius**2
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Wheel/rail contact (MODEL.md §4-§5).
+
+    ``law="linear"``: N = k (rho0 - rho) (the paper's eq. 22); ``law="hertz"``:
+    N = C_H (rho0 - rho)^1.5. ``stiffness=None`` takes the Hertz constant for the wheel on a flat
+    rail, C_H = 4/3 E* sqrt(rho0) with 1/E* = (1 - nu_w^2)/E_w + (1 - nu_r^2)/E_r, and for the
+    linear law its linearisation at the static load P = F + M g, k = 1.5 C_H^(2/3) P^(1/3)
+    (about 7.1e8 N/m for the paper's scene).
+    """
+
+    law: str = "linear"  #: "linear" or "hertz"
+    stiffness: float | None = None  #: k [N/m] (linear) or C_H [N/m^1.5] (hertz); None: Hertz
+    damping: float = 0.0  #: contact damping [N s/m]
+    friction: float = 0.3  #: mu, friction coefficient for the slip judgement [-]
+
+    def __post_init__(self):
+        v.choice("Contact.law", self.law, {"linear", "hertz"})
+        if self.stiffness is not None:
+            v.positive("Contact.stiffness", self.stiffness,
+                       "N/m" if self.law == "linear" else "N/m^1.5")
+        v.number("Contact.damping", self.damping, low=0.0, unit="N s/m")
+        v.number("Contact.friction", self.friction, low=0.0, unit="-")
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A wheel on a rail on supports: everything the kernel needs, in SI units."""
+
+    rail: Rail = field(default_factory=Rail)
+    supports: Supports = field(default_factory=Supports)
+    wheel: Wheel = field(default_factory=Wheel)
+    contact: Contact = field(default_factory=Contact)
+    gravity: float = GRAVITY  #: g on rail and wheel [m/s^2]; the rail's weight pre-loads supports
+    rail_gravity: bool = True  #: apply the rail's own weight
+
+    def __post_init__(self):
+        for f in fields(self)[:4]:
+            value = getattr(self, f.name)
+            if not isinstance(value, f.default_factory):
+                raise TypeError(f"Scene.{f.name} must be a {f.default_factory.__name__}, "
+                                f"got {type(value).__name__}")
+        v.number("Scene.gravity", self.gravity, low=0.0, unit="m/s^2")
+        self.supports.resolve(self.rail.length)  # supports must lie on the rail
+
+    @classmethod
+    def kato2005(cls) -> "Scene":
+        """The paper's scene exactly as MODEL.md §1 fixes it (L = 5 m, nine supports of
+        140 MN/m every 0.5 m, 10 kg wheel of radius 0.1 m under 47040 N, 20 elements)."""
+        return cls()
+
+    # derived quantities -------------------------------------------------------------------
+    @property
+    def support_positions(self) -> tuple[float, ...]:
+        """X_j [m]."""
+        return self.supports.resolve(self.rail.length)
+
+    @property
+    def static_load(self) -> float:
+        """P = F + M g on the contact [N]."""
+        return self.wheel.load + self.wheel.mass * self.gravity
+
+    @property
+    def effective_modulus(self) -> float:
+        """E* with 1/E* = (1 - nu_w^2)/E_w + (1 - nu_r^2)/E_r [Pa]."""
+        w, r = self.wheel, self.rail
+        return 1.0 / ((1 - w.poisson_ratio**2) / w.youngs_modulus
+                      + (1 - r.poisson_ratio**2) / r.youngs_modulus)
+
+    @property
+    def hertz_constant(self) -> float:
+        """C_H = 4/3 E* sqrt(rho0) [N/m^1.5] (MODEL.md §4)."""
+        return 4.0 / 3.0 * self.effective_modulus * math.sqrt(self.wheel.radius)
+
+    @property
+    def contact_stiffness(self) -> float:
+        """Linear contact rigidity k [N/m]: the given one, or Hertz linearised at P
+        (k = 1.5 C_H^(2/3) P^(1/3)). For ``law="hertz"`` this is always the linearisation."""
+        c = self.contact
+        if c.law == "linear" and c.stiffness is not None:
+            return c.stiffness
+        ch = c.stiffness if (c.law == "hertz" and c.stiffness is not None) else self.hertz_constant
+        return 1.5 * ch ** (2.0 / 3.0) * max(self.static_load, 1e-300) ** (1.0 / 3.0)
+
+    @property
+    def winkler_modulus(self) -> float:
+        """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (MODEL.md §9)."""
+        return self.supports.stiffness / self.supports.spacing

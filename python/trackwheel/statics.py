@@ -1,0 +1,88 @@
+"""Static equilibrium and the quasi-static contact line (MODEL.md §8).
+
+``static`` solves the nonlinear ANCF rail on its supports, under its own weight, with the wheel
+held at ``x_wheel`` and pressed down by P = F + M g through the contact law (Newton on the
+analytic Jacobian, in the C++ kernel). ``quasi_static`` repeats it along the track and returns
+y_qs(X), the line the dynamic contact-point displacement is measured from.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core, _kernel
+from . import _validate as v
+from .scene import Scene
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """The static state with the wheel resting at ``x_wheel``."""
+
+    scene: Scene
+    x_wheel: float  #: X_A [m]
+    y_wheel: float  #: Y_A, wheel-centre height [m]
+    contact_s: float  #: s*, rail coordinate of the contact point [m]
+    y_contact: float  #: y_B = y(s*), rail displacement under the wheel [m] (negative = down)
+    normal_force: float  #: N [N] (equals F + M g)
+    rail_coordinates: np.ndarray  #: ANCF coordinates e, (4 (n_e + 1),) [m, m, -, -]
+    n_elements: int  #: mesh used
+    iterations: int  #: Newton iterations
+
+    def rail_shape(self, n_points: int = 201) -> tuple[np.ndarray, np.ndarray]:
+        """(x, y) of the deflected rail at ``n_points`` material points [m]."""
+        model = _kernel.rail_model(self.scene, self.n_elements)
+        s = np.linspace(0.0, self.scene.rail.length, n_points)
+        r = model.positions(self.rail_coordinates, s)
+        return r[:, 0], r[:, 1]
+
+
+@dataclass(frozen=True)
+class QuasiStatic:
+    """y_qs(X): static contact-point displacement with the wheel resting at each X."""
+
+    positions: np.ndarray  #: X, (n,) [m]
+    y_contact: np.ndarray  #: y_qs, (n,) [m]
+    y_wheel: np.ndarray  #: wheel-centre height, (n,) [m]
+    contact_s: np.ndarray  #: s*, (n,) [m]
+    normal_force: np.ndarray  #: N, (n,) [N]
+
+
+def _mesh(scene: Scene, n_elements) -> int:
+    if n_elements is None:
+        return scene.rail.n_elements
+    return v.integer("n_elements", n_elements, low=1, high=5000)
+
+
+def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> StaticResult:
+    """Static equilibrium with the wheel centre held at ``x_wheel`` [m] (0 <= x_wheel <= L).
+
+    Returns the deflected rail and the contact-point displacement y_B [m].
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    x = v.number("x_wheel", x_wheel, low=0.0, high=scene.rail.length, unit="m")
+    ne = _mesh(scene, n_elements)
+    model = _kernel.rail_model(scene, ne)
+    d = _core.static_solve(model, _kernel.wheel_params(scene), _kernel.contact_params(scene), x)
+    return StaticResult(scene=scene, x_wheel=x, y_wheel=d["y_wheel"], contact_s=d["contact_s"],
+                        y_contact=d["y_contact"], normal_force=d["normal_force"],
+                        rail_coordinates=np.asarray(d["e"]), n_elements=ne,
+                        iterations=d["iterations"])
+
+
+def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> QuasiStatic:
+    """The quasi-static line y_qs(X) [m] at each wheel position X [m] (vectorised; each solve
+    warm-starts from the previous one)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    x = v.positions("positions", positions, 0.0, scene.rail.length)
+    ne = _mesh(scene, n_elements)
+    model = _kernel.rail_model(scene, ne)
+    d = _core.quasi_static(model, _kernel.wheel_params(scene), _kernel.contact_params(scene),
+                           x.tolist())
+    return QuasiStatic(positions=x, y_contact=np.asarray(d["y_contact"]),
+                       y_wheel=np.asarray(d["y_wheel"]), contact_s=np.asarray(d["contact_s"]),
+                       normal_force=np.asarray(d["normal_force"]))
