@@ -68,6 +68,11 @@ void BandMatrix::add_scaled(double a, const BandMatrix& A) { data_ += a * A.data
 bool BorderedSolver::factorize(BandMatrix& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                                const Eigen::MatrixXd& D) {
   if (!A.factorize()) return false;
+  return factorize_border(A, B, C, D);
+}
+
+bool BorderedSolver::factorize_border(const BandMatrix& A, const Eigen::MatrixXd& B,
+                                      const Eigen::MatrixXd& C, const Eigen::MatrixXd& D) {
   A_ = &A;
   m_ = static_cast<int>(D.rows());
   if (m_ == 0) return true;

@@ -47,6 +47,9 @@ class BorderedSolver {
   // Factorises; A is overwritten by its LU. Returns false if singular.
   bool factorize(BandMatrix& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                  const Eigen::MatrixXd& D);
+  // Same with A already factorised (A.factorize() called by the owner, e.g. a constant mass).
+  bool factorize_border(const BandMatrix& A_factored, const Eigen::MatrixXd& B,
+                        const Eigen::MatrixXd& C, const Eigen::MatrixXd& D);
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
              Eigen::VectorXd& x2) const;
 

@@ -6,7 +6,9 @@
 
 #include "ancf_cable.hpp"
 #include "contact.hpp"
+#include "dynamics.hpp"
 #include "eigen_analysis.hpp"
+#include "rolling.hpp"
 #include "rail.hpp"
 #include "statics.hpp"
 #include "wheel.hpp"
@@ -38,6 +40,10 @@ py::tuple modal_to_tuple(const ModalResult& r) {
     for (py::ssize_t i = 0; i < nd; ++i)
       for (py::ssize_t k = 0; k < nm; ++k) s(p, i, k) = r.shapes[p](i, k);
   return py::make_tuple(r.frequencies, shapes);
+}
+
+py::array_t<double> as_array(const std::vector<double>& v) {
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
 }  // namespace
@@ -184,4 +190,115 @@ PYBIND11_MODULE(_core, m) {
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
+
+  // ---------------------------------------------------------------- dynamics
+  py::enum_<Integrator>(m, "Integrator")
+      .value("generalized_alpha", Integrator::GeneralizedAlpha)
+      .value("explicit", Integrator::ExplicitRK4);
+  py::enum_<SlipState>(m, "SlipState")
+      .value("free", SlipState::Free)
+      .value("stick", SlipState::Stick)
+      .value("slip", SlipState::Slip);
+  py::class_<SimSettings>(m, "SimSettings")
+      .def(py::init<>())
+      .def_readwrite("integrator", &SimSettings::integrator)
+      .def_readwrite("speed", &SimSettings::speed)
+      .def_readwrite("x_start", &SimSettings::x_start)
+      .def_readwrite("t_end", &SimSettings::t_end)
+      .def_readwrite("dt", &SimSettings::dt)
+      .def_readwrite("rho_inf", &SimSettings::rho_inf)
+      .def_readwrite("baumgarte", &SimSettings::baumgarte)
+      .def_readwrite("friction", &SimSettings::friction)
+      .def_readwrite("rolling", &SimSettings::rolling)
+      .def_readwrite("output_every", &SimSettings::output_every)
+      .def_readwrite("max_newton", &SimSettings::max_newton)
+      .def_readwrite("newton_tol", &SimSettings::newton_tol)
+      .def_readwrite("progress_every", &SimSettings::progress_every);
+  py::class_<SimState>(m, "SimState")
+      .def(py::init<>())
+      .def_readwrite("e", &SimState::e)
+      .def_readwrite("edot", &SimState::edot)
+      .def_readwrite("y", &SimState::y)
+      .def_readwrite("ydot", &SimState::ydot)
+      .def_readwrite("theta", &SimState::theta)
+      .def_readwrite("thetadot", &SimState::thetadot)
+      .def_readwrite("s", &SimState::s)
+      .def_readwrite("state", &SimState::state)
+      .def_readwrite("sigma", &SimState::sigma);
+
+  static py::exception<DivergenceError> div_exc(m, "KernelDivergenceError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const DivergenceError& e) {
+      // raise trackwheel.DivergenceError(message, time=, step=, cause=)
+      py::object cls = py::module_::import("trackwheel._errors").attr("DivergenceError");
+      py::object exc = cls(e.what(), e.time, e.step, e.cause);
+      PyErr_SetObject(cls.ptr(), exc.ptr());
+    }
+  });
+
+  m.def("simulate", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
+                       const SimSettings& s, const SimState& init, py::object progress) {
+    ProgressFn fn;
+    if (!progress.is_none()) {
+      fn = [progress](long step, long n) {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        progress(step, n);
+      };
+    }
+    SimOutput o;
+    {
+      py::gil_scoped_release nogil;
+      o = simulate(rail, w, c, s, init, fn);
+    }
+    py::dict d;
+    d["t"] = as_array(o.t);
+    d["x_wheel"] = as_array(o.x_wheel);
+    d["y_wheel"] = as_array(o.y_wheel);
+    d["ydot_wheel"] = as_array(o.ydot_wheel);
+    d["theta"] = as_array(o.theta);
+    d["thetadot"] = as_array(o.thetadot);
+    d["contact_s"] = as_array(o.contact_s);
+    d["y_contact"] = as_array(o.y_contact);
+    d["normal_force"] = as_array(o.normal_force);
+    d["tangential_force"] = as_array(o.tangential_force);
+    d["slip"] = as_array(o.slip);
+    d["v_error"] = as_array(o.v_error);
+    d["phi"] = as_array(o.phi);
+    d["acc_contact"] = as_array(o.acc_contact);
+    d["acc_A"] = as_array(o.acc_A);
+    d["acc_B"] = as_array(o.acc_B);
+    d["acc_C"] = as_array(o.acc_C);
+    d["acc_D"] = as_array(o.acc_D);
+    d["acc_E"] = as_array(o.acc_E);
+    d["reaction"] = as_array(o.reaction);
+    d["penetration"] = as_array(o.penetration);
+    d["state"] = py::array_t<int>(static_cast<py::ssize_t>(o.state.size()), o.state.data());
+    d["steps"] = o.steps;
+    d["newton_iterations"] = o.newton_iterations;
+    d["state_changes"] = o.state_changes;
+    d["final_state"] = o.final_state;
+    d["stability_limit"] = o.stability_limit;
+    return d;
+  }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
+     py::arg("initial"), py::arg("progress") = py::none(),
+     "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
+     "settings.progress_every steps with the GIL held, which also checks for Ctrl-C)");
+  m.def("highest_frequency", &highest_frequency,
+        "omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system");
+  m.def("explicit_stability_limit", &explicit_stability_limit);
+  m.def("rolling_eval", [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya,
+                           double s_guess, const Vec10& qdot, double thetadot) {
+    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
+    Vec10 grad;
+    distance_derivatives(pt, grad, nullptr);
+    const RollingKinematics k = rolling_kinematics(pt, grad, qdot, thetadot, true);
+    py::dict d;
+    d["g"] = k.g; d["b"] = Vec11(k.b); d["dg_dq"] = Vec10(k.dg_dq);
+    d["db_dq"] = Mat11x10(k.db_dq); d["ds_dq"] = Vec10(k.ds_dq); d["s"] = pt.s;
+    d["s_dot"] = k.s_dot;
+    return d;
+  }, "Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]");
 }

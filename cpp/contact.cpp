@@ -93,6 +93,7 @@ ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, cons
   if (N <= 0.0) return out;  // a damper cannot pull
   out.N = N;
   out.active = true;
+  out.dN_ddelta = dNe;
   out.F = N * out.grad_rho;
   if (want_jacobian) {
     // dF/dq = N H + grad (dN/dq), dN/dq = -dNe grad^T

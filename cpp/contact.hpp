@@ -52,6 +52,7 @@ struct ContactForce {
   double delta = 0.0;       // penetration rho0 - rho [m]
   double N = 0.0;           // normal force [N] (>= 0)
   bool active = false;      // N > 0
+  double dN_ddelta = 0.0;   // elastic contact stiffness dN/d(delta) at this penetration [N/m]
   Vec10 grad_rho;           // d rho / dq
   Vec10 F;                  // generalised contact force on q = [X_A, Y_A, e_el] [N]
   Mat10 K;                  // -dF/dq [N/m] (damping's own q-dependence neglected)

@@ -8,9 +8,14 @@ from ._version import __version__
 from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
 from .statics import QuasiStatic, StaticResult, quasi_static, static
 from .eigen import EigenResult, eigen
+from ._errors import DivergenceError
+from .simulate import Result, simulate
 
 __all__ = [
     "Contact",
+    "DivergenceError",
+    "Result",
+    "simulate",
     "EigenResult",
     "QuasiStatic",
     "Rail",
