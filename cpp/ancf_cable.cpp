@@ -75,6 +75,15 @@ void gauss_points(int n, double* xi, double* w) {
   }
 }
 
+CableQuadrature make_quadrature(const CableSection& c) {
+  CableQuadrature q;
+  q.n = c.n_gauss;
+  double xi[10];
+  gauss_points(c.n_gauss, xi, q.w);
+  for (int g = 0; g < q.n; ++g) q.h[g] = hermite(xi[g], c.length);
+  return q;
+}
+
 Mat8 cable_mass(const CableSection& c) {
   double xi[10], w[10];
   gauss_points(4, xi, w);  // integrand of degree 6: 4 points are exact
@@ -109,15 +118,17 @@ inline Vec8 spread(const double n[4], const Eigen::Vector2d& v) {
 
 }  // namespace
 
-void cable_axial(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U) {
-  double xi[10], w[10];
-  gauss_points(c.n_gauss, xi, w);
+void cable_axial(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
+                 const CableQuadrature* quad) {
+  const CableQuadrature qq = quad ? CableQuadrature() : make_quadrature(c);
+  const CableQuadrature& q = quad ? *quad : qq;
+  const double* w = q.w;
   if (Q) Q->setZero();
   if (K) K->setZero();
   if (U) *U = 0.0;
   Eigen::Vector2d rs, rss;
   for (int g = 0; g < c.n_gauss; ++g) {
-    const HermiteValues h = hermite(xi[g], c.length);
+    const HermiteValues& h = q.h[g];
     derivatives(h, e, rs, rss);
     const double eps = 0.5 * (rs.squaredNorm() - 1.0);
     const double wl = w[g] * c.length * c.EA;
@@ -137,15 +148,17 @@ void cable_axial(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double*
   }
 }
 
-void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U) {
-  double xi[10], w[10];
-  gauss_points(c.n_gauss, xi, w);
+void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
+                   const CableQuadrature* quad) {
+  const CableQuadrature qq = quad ? CableQuadrature() : make_quadrature(c);
+  const CableQuadrature& q = quad ? *quad : qq;
+  const double* w = q.w;
   if (Q) Q->setZero();
   if (K) K->setZero();
   if (U) *U = 0.0;
   Eigen::Vector2d rs, rss;
   for (int g = 0; g < c.n_gauss; ++g) {
-    const HermiteValues h = hermite(xi[g], c.length);
+    const HermiteValues& h = q.h[g];
     derivatives(h, e, rs, rss);
     // c = r_s x r_ss = r_s^T J r_ss with J = [[0, 1], [-1, 0]]
     const double cr = rs.x() * rss.y() - rs.y() * rss.x();
@@ -167,7 +180,7 @@ void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
     Mat8 d2k;
     if (c.exact_curvature) {
       const double gg = rs.squaredNorm();
-      const double g32 = std::pow(gg, -1.5), g52 = g32 / gg, g72 = g52 / gg;
+      const double g32 = 1.0 / (gg * std::sqrt(gg)), g52 = g32 / gg, g72 = g52 / gg;
       const Vec8 dg = 2.0 * spread(h.ns, rs);
       kappa = cr * g32;
       dk = g32 * dc - 1.5 * cr * g52 * dg;
@@ -193,12 +206,15 @@ void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
   }
 }
 
-void cable_elastic(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U) {
+void cable_elastic(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
+                   const CableQuadrature* quad) {
   Vec8 Qa, Qb;
   Mat8 Ka, Kb;
   double Ua = 0.0, Ub = 0.0;
-  cable_axial(c, e, Q ? &Qa : nullptr, K ? &Ka : nullptr, U ? &Ua : nullptr);
-  cable_bending(c, e, Q ? &Qb : nullptr, K ? &Kb : nullptr, U ? &Ub : nullptr);
+  const CableQuadrature qq = quad ? CableQuadrature() : make_quadrature(c);
+  const CableQuadrature& q = quad ? *quad : qq;
+  cable_axial(c, e, Q ? &Qa : nullptr, K ? &Ka : nullptr, U ? &Ua : nullptr, &q);
+  cable_bending(c, e, Q ? &Qb : nullptr, K ? &Kb : nullptr, U ? &Ub : nullptr, &q);
   if (Q) *Q = Qa + Qb;
   if (K) *K = Ka + Kb;
   if (U) *U = Ua + Ub;

@@ -42,15 +42,27 @@ struct CableSection {
   int n_gauss = 5;     // Gauss points per element
 };
 
+// Gauss points and shape functions for one element length, computed once and reused.
+struct CableQuadrature {
+  int n = 0;
+  double w[10];
+  HermiteValues h[10];
+};
+CableQuadrature make_quadrature(const CableSection& c);
+
 // Constant consistent mass matrix M = int rhoA S^T S ds [kg].
 Mat8 cable_mass(const CableSection& c);
 
 // Elastic force Q = dU/de [N], its Jacobian K = dQ/de [N/m] and the strain energy U [J].
 // Any of the outputs may be null.
-void cable_elastic(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U);
+// quad: optional precomputed quadrature for c (computed on the fly if null).
+void cable_elastic(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
+                   const CableQuadrature* quad = nullptr);
 
 // Separate axial and bending parts (for tests and diagnostics).
-void cable_axial(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U);
-void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U);
+void cable_axial(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
+                 const CableQuadrature* quad = nullptr);
+void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
+                   const CableQuadrature* quad = nullptr);
 
 }  // namespace trackwheel

@@ -213,6 +213,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("output_every", &SimSettings::output_every)
       .def_readwrite("max_newton", &SimSettings::max_newton)
       .def_readwrite("newton_tol", &SimSettings::newton_tol)
+      .def_readwrite("reuse_jacobian", &SimSettings::reuse_jacobian)
+      .def_readwrite("record_energy", &SimSettings::record_energy)
       .def_readwrite("progress_every", &SimSettings::progress_every);
   py::class_<SimState>(m, "SimState")
       .def(py::init<>())
@@ -275,9 +277,11 @@ PYBIND11_MODULE(_core, m) {
     d["acc_E"] = as_array(o.acc_E);
     d["reaction"] = as_array(o.reaction);
     d["penetration"] = as_array(o.penetration);
+    d["energy"] = as_array(o.energy);
     d["state"] = py::array_t<int>(static_cast<py::ssize_t>(o.state.size()), o.state.data());
     d["steps"] = o.steps;
     d["newton_iterations"] = o.newton_iterations;
+    d["factorizations"] = o.factorizations;
     d["state_changes"] = o.state_changes;
     d["final_state"] = o.final_state;
     d["stability_limit"] = o.stability_limit;

@@ -129,28 +129,34 @@ class System {
     lambda = x2(kLambda);
   }
 
-  // Newton iteration matrix and residual for generalized-alpha; returns false if singular.
-  // cq = beta' h^2, cv = gamma' h.
-  bool newton_system(const SimState& st, const Eval& ev, const Eigen::VectorXd& edd, double ydd,
-                     double thdd, double lambda, double cq, double cv, Eigen::VectorXd& r1,
-                     Eigen::VectorXd& r2) {
+  // Generalized-alpha residual (right-hand side -r of J dx = -r) at an iterate.
+  // cv = gamma' h scales the velocity-level constraint row.
+  void residual(const SimState& st, const Eval& ev, const Eigen::VectorXd& edd, double ydd,
+                double thdd, double lambda, double cv, Eigen::VectorXd& r1, Eigen::VectorXd& r2) {
     const double lam_p = prescribed_lambda(st, ev);
     const bool stick = std::isnan(lam_p);
-    Eigen::VectorXd fr;
-    double fy, fth;
-    forces(ev, lambda, fr, fy, fth);
-    // residuals r = M qdd - f (sign: we solve J dx = -r)
-    Eigen::VectorXd Medd;
-    rail_.mass().multiply(rail_.to_free(edd), Medd);
-    r1 = -(Medd - rail_.to_free(fr));
+    forces(ev, lambda, fr_, fy_, fth_);
+    rail_.mass().multiply(rail_.to_free(edd), Medd_);
+    r1 = rail_.to_free(fr_) - Medd_;
     r2.resize(kBorder);
-    r2(kY) = -(wheel_.mass * ydd - fy);
-    r2(kTheta) = -(wheel_.inertia * thdd - fth);
+    r2(kY) = -(wheel_.mass * ydd - fy_);
+    r2(kTheta) = -(wheel_.inertia * thdd - fth_);
     r2(kLambda) = stick ? -ev.rk.g / cv : -(lambda - lam_p);
+  }
 
-    // Jacobian
-    J_.set_linear_combination(1.0, rail_.mass(), cv, rail_.support_damping());
-    rail_.add_tangent(st.e, cq, J_);
+  // Newton iteration matrix dr/d(qdd, lambda), factorised; false if singular.
+  // cq = beta' h^2, cv = gamma' h.
+  // The rail part M + cv C_s + cq K_t(e) is cached and rebuilt only when refresh_rail is set
+  // (the rail is nearly linear; the contact and constraint parts are rebuilt every time).
+  bool jacobian(const SimState& st, const Eval& ev, double lambda, double cq, double cv,
+                bool refresh_rail) {
+    const bool stick = sticking(st, ev);
+    if (refresh_rail || Jrail_.size() != nf_) {
+      Jrail_.resize(nf_, kHalfBandwidth);
+      Jrail_.set_linear_combination(1.0, rail_.mass(), cv, rail_.support_damping());
+      rail_.add_tangent(st.e, cq, Jrail_);
+    }
+    J_ = Jrail_;
     Bb_.setZero();
     Cb_.setZero();
     Db_.setZero();
@@ -215,8 +221,10 @@ class System {
   const SimSettings& set_;
   int nf_;
   double P_;
-  BandMatrix Mfac_, J_;
+  BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
+  Eigen::VectorXd fr_, Medd_;
+  double fy_ = 0.0, fth_ = 0.0;
   BorderedSolver solver_;
 };
 
@@ -247,10 +255,30 @@ bool update_state(const SimSettings& set, SimState& st, const Eval& ev, double l
   return st.state != old || st.sigma != old_sigma;
 }
 
+// Total mechanical energy [J]: kinetic + elastic + support springs + contact potential
+// + potentials of gravity on the rail, of the wheel load P Y_A and of the torque -T theta.
+double total_energy(const RailModel& rail, const WheelParams& wheel, const ContactParams& cp,
+                    const SimState& st, const Eval& ev) {
+  const Eigen::VectorXd v = rail.to_free(st.edot);
+  Eigen::VectorXd Mv, Q;
+  rail.mass().multiply(v, Mv);
+  double U = 0.0;
+  rail.internal_force(st.e, nullptr, Q, &U);
+  const double d = std::max(ev.cf.delta, 0.0);
+  const double Vc = cp.law == ContactLaw::Linear ? 0.5 * cp.stiffness * d * d
+                                                 : 0.4 * cp.stiffness * d * d * std::sqrt(d);
+  return 0.5 * v.dot(Mv) + 0.5 * wheel.mass * st.ydot * st.ydot +
+         0.5 * wheel.inertia * st.thetadot * st.thetadot + U + Vc -
+         rail.gravity_force().dot(st.e - rail.reference()) + wheel.total_load() * st.y -
+         wheel.torque * st.theta;
+}
+
 struct Recorder {
   SimOutput& out;
   const SimSettings& set;
   const WheelParams& wheel;
+  const RailModel& rail;
+  const ContactParams& contact;
   void reserve(size_t n) {
     for (auto* v : {&out.t, &out.x_wheel, &out.y_wheel, &out.ydot_wheel, &out.theta,
                     &out.thetadot, &out.contact_s, &out.y_contact, &out.normal_force,
@@ -276,6 +304,7 @@ struct Recorder {
     out.slip.push_back(ev.rk.g);
     out.state.push_back(static_cast<int>(st.state));
     out.penetration.push_back(ev.cf.delta);
+    if (set.record_energy) out.energy.push_back(total_energy(rail, wheel, contact, st, ev));
     const double v = set.speed;
     out.v_error.push_back(v != 0.0 ? (v - pt.rho * st.thetadot) / v * 100.0 : 0.0);
     // obliquity phi = atan2(y_s, x_s), its slope along s and its rate at fixed s
@@ -386,7 +415,7 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
 
   System sys(rail, wheel, contact, set);
   SimOutput out;
-  Recorder rec{out, set, wheel};
+  Recorder rec{out, set, wheel, rail, contact};
   const long n_steps = static_cast<long>(std::llround(set.t_end / set.dt));
   rec.reserve(static_cast<size_t>(n_steps / set.output_every + 2));
   const double h = set.dt;
@@ -439,7 +468,13 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
   Eigen::VectorXd a_e = edd;
   double a_y = ydd, a_th = thdd;
 
-  Eigen::VectorXd r1, r2, x1, x2;
+  Eigen::VectorXd r1, r2, x1, x2, dedd = Eigen::VectorXd::Zero(rail.n_dof());
+  bool have_jac = false, have_prev = false;
+  Eigen::VectorXd edd_prev = edd;
+  double ydd_prev = ydd, thdd_prev = thdd, lambda_prev = lambda;
+  int jac_element = -1;
+  SlipState jac_state = SlipState::Free;
+  double jac_sigma = 0.0, jac_s = 0.0;
   for (long n = 1; n <= n_steps; ++n) {
     const double t1 = n * h;
     if (set.integrator == Integrator::GeneralizedAlpha) {
@@ -452,29 +487,54 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
       };
       bool done = false;
       for (int attempt = 0; attempt < 4 && !done; ++attempt) {
-        // Newton on (qdd_{n+1}, lambda) starting from the previous accelerations
-        Eigen::VectorXd edd1 = edd0;
-        double ydd1 = ydd0, thdd1 = thdd0, lam1 = lambda;
+        // Newton on (qdd_{n+1}, lambda) from the previous accelerations. The iteration matrix
+        // is reused across iterations and steps (modified Newton) while the contact stays in
+        // the same element and slip state and the iterations contract fast; it is rebuilt
+        // otherwise, so every converged step satisfies the full residual to newton_tol.
+        // predictor: linear extrapolation of the accelerations (constant on the first step
+        // and after a state change)
+        const bool extrap = have_prev && attempt == 0;
+        Eigen::VectorXd edd1 = extrap ? Eigen::VectorXd(2.0 * edd0 - edd_prev) : edd0;
+        double ydd1 = extrap ? 2.0 * ydd0 - ydd_prev : ydd0;
+        double thdd1 = extrap ? 2.0 * thdd0 - thdd_prev : thdd0;
+        double lam1 = extrap ? 2.0 * lambda - lambda_prev : lambda;
         bool conv = false;
         SimState s1 = st;  // carries the slip state of this attempt
+        Eigen::VectorXd ae;
+        double ay = 0, ath = 0, prev_dq = INFINITY;
         for (int it = 0; it < set.max_newton; ++it) {
           // q_{n+1}, v_{n+1} from qdd_{n+1}
-          const Eigen::VectorXd ae = (af * edd0 - am * a_e + (1.0 - af) * edd1) / (1.0 - am);
+          ae = (af * edd0 - am * a_e + (1.0 - af) * edd1) / (1.0 - am);
           s1.e = s0.e + h * s0.edot + h * h * ((0.5 - bet) * a_e + bet * ae);
           s1.edot = s0.edot + h * ((1.0 - gam) * a_e + gam * ae);
-          const double ay = alg(ydd1, ydd0, a_y), ath = alg(thdd1, thdd0, a_th);
+          ay = alg(ydd1, ydd0, a_y);
+          ath = alg(thdd1, thdd0, a_th);
           s1.y = s0.y + h * s0.ydot + h * h * ((0.5 - bet) * a_y + bet * ay);
           s1.ydot = s0.ydot + h * ((1.0 - gam) * a_y + gam * ay);
           s1.theta = s0.theta + h * s0.thetadot + h * h * ((0.5 - bet) * a_th + bet * ath);
           s1.thetadot = s0.thetadot + h * ((1.0 - gam) * a_th + gam * ath);
           if (!finite_state(s1)) diverge(n, "non-finite state in Newton", stability_cause());
+          if (conv) break;  // the state at the converged iterate (ev is one correction old)
           sys.evaluate(t1, s1, true, ev);
           s1.s = ev.pt.s;
-          if (!sys.newton_system(s1, ev, edd1, ydd1, thdd1, lam1, cq, cv, r1, r2))
-            diverge(n, "singular Newton matrix", stability_cause());
+          sys.residual(s1, ev, edd1, ydd1, thdd1, lam1, cv, r1, r2);
+          const bool stale = jac_element != ev.pt.mp.element || jac_state != s1.state ||
+                             jac_sigma != s1.sigma || it >= 4 ||
+                             std::abs(ev.pt.s - jac_s) > 0.02 * rail.element_length();
+          if (!have_jac || stale || !set.reuse_jacobian) {
+            const bool refresh_rail = !have_jac || it >= 3 || out.factorizations % 64 == 0;
+            if (!sys.jacobian(s1, ev, lam1, cq, cv, refresh_rail))
+              diverge(n, "singular Newton matrix", stability_cause());
+            have_jac = true;
+            jac_element = ev.pt.mp.element;
+            jac_s = ev.pt.s;
+            jac_state = s1.state;
+            jac_sigma = s1.sigma;
+            ++out.factorizations;
+          }
           sys.solve(r1, r2, x1, x2);
           ++out.newton_iterations;
-          Eigen::VectorXd dedd = Eigen::VectorXd::Zero(rail.n_dof());
+          dedd.setZero();
           rail.add_from_free(x1, dedd);
           edd1 += dedd;
           ydd1 += x2(kY);
@@ -483,25 +543,18 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
           const double dq = cq * std::max({x1.lpNorm<Eigen::Infinity>(), std::abs(x2(kY)),
                                            wheel.radius * std::abs(x2(kTheta))});
           const double dl = std::abs(x2(kLambda));
-          if (dq <= set.newton_tol && dl <= 1e-9 * std::max(1.0, wheel.total_load())) {
+
+          if (dq <= set.newton_tol && dl <= 1e-7 * std::max(1.0, wheel.total_load())) {
             conv = true;
-            break;
+            it = -1;  // one more pass to set s1 from the final accelerations
+            continue;
           }
+          if (it >= 1 && dq > 0.25 * prev_dq) have_jac = false;  // slow: rebuild
+          prev_dq = dq;
         }
         if (!conv)
           diverge(n, "Newton did not converge in " + std::to_string(set.max_newton) +
                          " iterations", stability_cause());
-        // final state at t_{n+1}
-        const Eigen::VectorXd ae = (af * edd0 - am * a_e + (1.0 - af) * edd1) / (1.0 - am);
-        s1.e = s0.e + h * s0.edot + h * h * ((0.5 - bet) * a_e + bet * ae);
-        s1.edot = s0.edot + h * ((1.0 - gam) * a_e + gam * ae);
-        const double ay = alg(ydd1, ydd0, a_y), ath = alg(thdd1, thdd0, a_th);
-        s1.y = s0.y + h * s0.ydot + h * h * ((0.5 - bet) * a_y + bet * ay);
-        s1.ydot = s0.ydot + h * ((1.0 - gam) * a_y + gam * ay);
-        s1.theta = s0.theta + h * s0.thetadot + h * h * ((0.5 - bet) * a_th + bet * ath);
-        s1.thetadot = s0.thetadot + h * ((1.0 - gam) * a_th + gam * ath);
-        sys.evaluate(t1, s1, false, ev);
-        s1.s = ev.pt.s;
         SimState trial = s1;
         const bool changed = update_state(set, trial, ev, lam1);
         if (changed && attempt < 3) {
@@ -510,6 +563,11 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
           st.sigma = trial.sigma;
           continue;
         }
+        have_prev = !changed && attempt == 0;
+        edd_prev = edd0;
+        ydd_prev = ydd0;
+        thdd_prev = thdd0;
+        lambda_prev = lambda;
         st = s1;
         st.state = trial.state;
         st.sigma = trial.sigma;
@@ -581,8 +639,8 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
                 stability_cause());
     }
     if (n % set.output_every == 0) {
-      sys.evaluate(t1, st, false, ev);
       if (set.integrator == Integrator::ExplicitRK4) {
+        sys.evaluate(t1, st, false, ev);
         // accelerations and multiplier at the recorded state
         Eval e2;
         sys.evaluate(t1, st, true, e2);

@@ -49,7 +49,9 @@ struct SimSettings {
   bool rolling = true;      // rolling constraint with slip judgement (false: frictionless)
   int output_every = 1;     // keep every n-th step [-]
   int max_newton = 25;      // Newton iterations per step [-]
-  double newton_tol = 1e-12;  // Newton tolerance on displacement corrections [m]
+  double newton_tol = 1e-11;  // Newton tolerance on displacement corrections [m]
+  bool record_energy = false;  // record the total mechanical energy per sample
+  bool reuse_jacobian = true;  // modified Newton: keep the factorised matrix while it converges
   long progress_every = 2000;  // steps between progress callbacks [-]
 };
 
@@ -67,9 +69,11 @@ struct SimOutput {
   std::vector<double> t, x_wheel, y_wheel, ydot_wheel, theta, thetadot, contact_s, y_contact,
       normal_force, tangential_force, slip, v_error, phi, acc_contact, acc_A, acc_B, acc_C, acc_D,
       acc_E, reaction, penetration;
+  std::vector<double> energy;  // total mechanical energy [J] (if record_energy)
   std::vector<int> state;    // SlipState per sample
   long steps = 0;            // time steps taken
   long newton_iterations = 0;
+  long factorizations = 0;   // Newton matrix factorisations (generalized-alpha)
   long state_changes = 0;
   SimState final_state;
   double stability_limit = 0.0;  // explicit: predicted dt limit [s]

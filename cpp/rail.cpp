@@ -42,6 +42,7 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports)
   sec_.exact_curvature = p_.exact_curvature;
   sec_.n_gauss = p_.n_gauss;
   Me_ = cable_mass(sec_);
+  quad_ = make_quadrature(sec_);
 
   // boundary conditions
   const int nd = n_dof();
@@ -139,7 +140,7 @@ void RailModel::internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* 
   for (int el = 0; el < p_.n_elements; ++el) {
     double Ue = 0.0;
     const Vec8 ee = e.segment<8>(4 * el);
-    cable_elastic(sec_, ee, &Qe, nullptr, energy ? &Ue : nullptr);
+    cable_elastic(sec_, ee, &Qe, nullptr, energy ? &Ue : nullptr, &quad_);
     Q.segment<8>(4 * el) += Qe;
     U += Ue;
   }
@@ -161,7 +162,7 @@ void RailModel::add_tangent(const Eigen::VectorXd& e, double scale, BandMatrix& 
   Mat8 Ke;
   for (int el = 0; el < p_.n_elements; ++el) {
     const Vec8 ee = e.segment<8>(4 * el);
-    cable_elastic(sec_, ee, nullptr, &Ke, nullptr);
+    cable_elastic(sec_, ee, nullptr, &Ke, nullptr, &quad_);
     add_element_block(el, Ke, scale, K);
   }
   K.add_scaled(scale, Ks_);
@@ -172,7 +173,7 @@ Eigen::MatrixXd RailModel::tangent_dense(const Eigen::VectorXd& e) const {
   Mat8 Ke;
   for (int el = 0; el < p_.n_elements; ++el) {
     const Vec8 ee = e.segment<8>(4 * el);
-    cable_elastic(sec_, ee, nullptr, &Ke, nullptr);
+    cable_elastic(sec_, ee, nullptr, &Ke, nullptr, &quad_);
     K.block<8, 8>(4 * el, 4 * el) += Ke;
   }
   for (size_t j = 0; j < support_points_.size(); ++j) {

@@ -92,6 +92,7 @@ class RailModel {
   RailParams p_;
   SupportParams sup_;
   CableSection sec_;
+  CableQuadrature quad_;
   Mat8 Me_;
   std::vector<int> full_to_free_, free_to_full_;
   std::vector<MeshPoint> support_points_;

@@ -64,6 +64,7 @@ class Result:
     acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
     reaction: np.ndarray  #: horizontal force holding X_A = X_0 + v t [N]
     penetration: np.ndarray  #: rho0 - rho [m] (negative: gap)
+    energy: np.ndarray | None  #: total mechanical energy [J] (``energy=True`` only), see below
     steps: int  #: time steps taken
     newton_iterations: int  #: total Newton iterations (generalized-alpha)
     state_changes: int  #: slip/contact state switches
@@ -129,8 +130,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
              duration: float | None = None, output_every: int | None = None,
              rho_inf: float = 0.8, baumgarte: float = 0.0, rolling: bool = True,
              start: str = "static", drop_height: float = 0.0,
-             progress: bool | None = None, max_newton: int = 25,
-             newton_tol: float = 1e-12) -> Result:
+             progress: bool | None = None, energy: bool = False, max_newton: int = 25,
+             newton_tol: float = 1e-11) -> Result:
     """Simulate the wheel passing over the rail at constant forward ``speed`` [m/s].
 
     Parameters
@@ -158,6 +159,10 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         own weight, wheel just touching: a sudden load).
     drop_height : lift the wheel this much above its start height [m] (it falls and lands).
     progress : show a progress bar (None: only for runs of more than 200 000 steps).
+    energy : also record the total mechanical energy [J] per sample: kinetic + strain + support
+        springs + contact potential + potentials of gravity on the rail, of the wheel load
+        (F + M g) Y_A and of the torque (-T theta). Conserved without damping when the wheel does
+        not move forward (the driving reaction does work when it does).
 
     Raises
     ------
@@ -233,6 +238,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     s.output_every = output_every
     s.max_newton = max_newton
     s.newton_tol = newton_tol
+    s.record_energy = bool(energy)
 
     bar = None
     callback = None
@@ -269,6 +275,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         tangential_force=d["tangential_force"], slip=d["slip"], slip_state=d["state"],
         v_error=d["v_error"], phi=d["phi"], acc_contact=d["acc_contact"], acc_A=d["acc_A"],
         acc_B=d["acc_B"], acc_C=d["acc_C"], acc_D=d["acc_D"], acc_E=d["acc_E"],
-        reaction=d["reaction"], penetration=d["penetration"], steps=d["steps"],
+        reaction=d["reaction"], penetration=d["penetration"],
+        energy=d["energy"] if energy else None, steps=d["steps"],
         newton_iterations=d["newton_iterations"], state_changes=d["state_changes"],
         stability_limit=d["stability_limit"], wall_time=wall, final_state=d["final_state"])
