@@ -477,6 +477,7 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
   double jac_sigma = 0.0, jac_s = 0.0;
   for (long n = 1; n <= n_steps; ++n) {
     const double t1 = n * h;
+    try {
     if (set.integrator == Integrator::GeneralizedAlpha) {
       // predictors (the parts of q_{n+1}, v_{n+1} known at t_n)
       const SimState s0 = st;
@@ -647,6 +648,11 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
         sys.accelerations(st, e2, edd, ydd, thdd, lambda);
       }
       rec.record(t1, st, ev, edd, lambda);
+    }
+    } catch (const DivergenceError&) {
+      throw;
+    } catch (const std::runtime_error& err) {  // contact search, singular systems
+      diverge(n, err.what(), stability_cause());
     }
     if (progress && set.progress_every > 0 && n % set.progress_every == 0) progress(n, n_steps);
   }

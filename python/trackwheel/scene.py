@@ -75,7 +75,8 @@ class Supports:
 
     By default ``n = round(L / spacing) - 1`` equal supports at ``spacing, 2 spacing, ...,
     L - spacing`` (nine for the paper's scene), between the two rigid end supports. Give
-    ``positions`` to place them anywhere inside the rail, on or between nodes.
+    ``positions`` to place them anywhere inside the rail, on or between nodes;
+    ``positions=()`` leaves the rail simply supported at its ends only (a bare beam).
     """
 
     stiffness: float = 140e6  #: k_s, vertical stiffness of each support [N/m]
@@ -88,8 +89,9 @@ class Supports:
         v.positive("Supports.spacing", self.spacing, "m")
         v.number("Supports.damping", self.damping, low=0.0, unit="N s/m")
         if self.positions is not None:
-            pos = tuple(float(x) for x in v.positions("Supports.positions", self.positions,
-                                                      -math.inf, math.inf))
+            pos = () if len(tuple(self.positions)) == 0 else tuple(
+                float(x) for x in v.positions("Supports.positions", self.positions,
+                                              -math.inf, math.inf))
             object.__setattr__(self, "positions", pos)
 
     def resolve(self, length: float) -> tuple[float, ...]:
@@ -98,6 +100,10 @@ class Supports:
             pos = self.positions
         else:
             n = int(round(length / self.spacing))
+            if n < 2:
+                raise ValueError(
+                    f"Supports.spacing = {self.spacing} m leaves no support between the rail "
+                    f"ends; allowed range (0, {length / 1.5:.6g}] m (or give positions=())")
             pos = tuple(self.spacing * j for j in range(1, n))
         for x in pos:
             if not 0.0 < x < length:
