@@ -90,7 +90,7 @@ BAD_VALUES = [
     (lambda: tw.Supports(spacing=0.0), "Supports.spacing"),
     (lambda: tw.Supports(spacing=-0.5), "Supports.spacing"),
     (lambda: tw.Supports(damping=-1.0), "Supports.damping"),
-    (lambda: tw.Supports(positions=()), "Supports.positions"),
+    (lambda: tw.Supports(spacing=4.0), "Supports.spacing"),  # no support between the ends
     (lambda: tw.Supports(positions=(1.0, NAN)), "Supports.positions"),
     (lambda: tw.Scene(supports=tw.Supports(positions=(1.0, 6.0))), "Supports.positions"),
     (lambda: tw.Scene(supports=tw.Supports(positions=(-0.5,))), "Supports.positions"),
@@ -167,3 +167,10 @@ def test_public_functions_validate_their_arguments():
         tw.eigen(None, [2.5])
     with pytest.raises(TypeError, match="speed_kmh"):
         tw.kmh("300")
+
+
+def test_empty_positions_give_a_bare_beam():
+    """positions=() is the simply supported rail without intermediate supports (the moving-force
+    validation case of MODEL.md §9)."""
+    s = tw.Scene(supports=tw.Supports(positions=()))
+    assert s.support_positions == ()
