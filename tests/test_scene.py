@@ -90,7 +90,7 @@ BAD_VALUES = [
     (lambda: tw.Supports(spacing=0.0), "Supports.spacing"),
     (lambda: tw.Supports(spacing=-0.5), "Supports.spacing"),
     (lambda: tw.Supports(damping=-1.0), "Supports.damping"),
-    (lambda: tw.Supports(spacing=4.0), "Supports.spacing"),  # no support between the ends
+    (lambda: tw.Scene(supports=tw.Supports(spacing=4.0)), "Supports.spacing"),  # none inside
     (lambda: tw.Supports(positions=(1.0, NAN)), "Supports.positions"),
     (lambda: tw.Scene(supports=tw.Supports(positions=(1.0, 6.0))), "Supports.positions"),
     (lambda: tw.Scene(supports=tw.Supports(positions=(-0.5,))), "Supports.positions"),
