@@ -545,7 +545,9 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
                                            wheel.radius * std::abs(x2(kTheta))});
           const double dl = std::abs(x2(kLambda));
 
-          if (dq <= set.newton_tol && dl <= 1e-7 * std::max(1.0, wheel.total_load())) {
+          // converged: displacement corrections below newton_tol and the tangential force
+          // correction below 1e-6 of the wheel load
+          if (dq <= set.newton_tol && dl <= 1e-6 * std::max(1.0, wheel.total_load())) {
             conv = true;
             it = -1;  // one more pass to set s1 from the final accelerations
             continue;
