@@ -8,6 +8,7 @@
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "eigen_analysis.hpp"
+#include "linear_track.hpp"
 #include "rolling.hpp"
 #include "rail.hpp"
 #include "statics.hpp"
@@ -44,6 +45,40 @@ py::tuple modal_to_tuple(const ModalResult& r) {
 
 py::array_t<double> as_array(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+py::dict output_to_dict(const SimOutput& o) {
+  py::dict d;
+  d["t"] = as_array(o.t);
+  d["x_wheel"] = as_array(o.x_wheel);
+  d["y_wheel"] = as_array(o.y_wheel);
+  d["ydot_wheel"] = as_array(o.ydot_wheel);
+  d["theta"] = as_array(o.theta);
+  d["thetadot"] = as_array(o.thetadot);
+  d["contact_s"] = as_array(o.contact_s);
+  d["y_contact"] = as_array(o.y_contact);
+  d["normal_force"] = as_array(o.normal_force);
+  d["tangential_force"] = as_array(o.tangential_force);
+  d["slip"] = as_array(o.slip);
+  d["v_error"] = as_array(o.v_error);
+  d["phi"] = as_array(o.phi);
+  d["acc_contact"] = as_array(o.acc_contact);
+  d["acc_A"] = as_array(o.acc_A);
+  d["acc_B"] = as_array(o.acc_B);
+  d["acc_C"] = as_array(o.acc_C);
+  d["acc_D"] = as_array(o.acc_D);
+  d["acc_E"] = as_array(o.acc_E);
+  d["reaction"] = as_array(o.reaction);
+  d["penetration"] = as_array(o.penetration);
+  d["energy"] = as_array(o.energy);
+  d["state"] = py::array_t<int>(static_cast<py::ssize_t>(o.state.size()), o.state.data());
+  d["steps"] = o.steps;
+  d["newton_iterations"] = o.newton_iterations;
+  d["factorizations"] = o.factorizations;
+  d["state_changes"] = o.state_changes;
+  d["final_state"] = o.final_state;
+  d["stability_limit"] = o.stability_limit;
+  return d;
 }
 
 }  // namespace
@@ -255,37 +290,7 @@ PYBIND11_MODULE(_core, m) {
       py::gil_scoped_release nogil;
       o = simulate(rail, w, c, s, init, fn);
     }
-    py::dict d;
-    d["t"] = as_array(o.t);
-    d["x_wheel"] = as_array(o.x_wheel);
-    d["y_wheel"] = as_array(o.y_wheel);
-    d["ydot_wheel"] = as_array(o.ydot_wheel);
-    d["theta"] = as_array(o.theta);
-    d["thetadot"] = as_array(o.thetadot);
-    d["contact_s"] = as_array(o.contact_s);
-    d["y_contact"] = as_array(o.y_contact);
-    d["normal_force"] = as_array(o.normal_force);
-    d["tangential_force"] = as_array(o.tangential_force);
-    d["slip"] = as_array(o.slip);
-    d["v_error"] = as_array(o.v_error);
-    d["phi"] = as_array(o.phi);
-    d["acc_contact"] = as_array(o.acc_contact);
-    d["acc_A"] = as_array(o.acc_A);
-    d["acc_B"] = as_array(o.acc_B);
-    d["acc_C"] = as_array(o.acc_C);
-    d["acc_D"] = as_array(o.acc_D);
-    d["acc_E"] = as_array(o.acc_E);
-    d["reaction"] = as_array(o.reaction);
-    d["penetration"] = as_array(o.penetration);
-    d["energy"] = as_array(o.energy);
-    d["state"] = py::array_t<int>(static_cast<py::ssize_t>(o.state.size()), o.state.data());
-    d["steps"] = o.steps;
-    d["newton_iterations"] = o.newton_iterations;
-    d["factorizations"] = o.factorizations;
-    d["state_changes"] = o.state_changes;
-    d["final_state"] = o.final_state;
-    d["stability_limit"] = o.stability_limit;
-    return d;
+    return output_to_dict(o);
   }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
      py::arg("initial"), py::arg("progress") = py::none(),
      "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
@@ -305,4 +310,36 @@ PYBIND11_MODULE(_core, m) {
     d["s_dot"] = k.s_dot;
     return d;
   }, "Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]");
+
+  py::enum_<WheelModel>(m, "WheelModel")
+      .value("moving_force", WheelModel::MovingForce)
+      .value("moving_mass", WheelModel::MovingMass)
+      .value("sprung", WheelModel::Sprung)
+      .value("hertz", WheelModel::Hertz);
+  py::class_<LinearOptions>(m, "LinearOptions")
+      .def(py::init<>())
+      .def_readwrite("wheel_model", &LinearOptions::wheel_model)
+      .def_readwrite("n_modes", &LinearOptions::n_modes)
+      .def_readwrite("sudden", &LinearOptions::sudden)
+      .def_readwrite("drop_height", &LinearOptions::drop_height);
+  m.def("simulate_linear", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
+                              const SimSettings& s, const LinearOptions& opt,
+                              py::object progress) {
+    ProgressFn fn;
+    if (!progress.is_none()) {
+      fn = [progress](long step, long n) {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        progress(step, n);
+      };
+    }
+    SimOutput o;
+    {
+      py::gil_scoped_release nogil;
+      o = simulate_linear(rail, w, c, s, opt, fn);
+    }
+    return output_to_dict(o);
+  }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
+     py::arg("options"), py::arg("progress") = py::none(),
+     "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
 }

@@ -6,6 +6,7 @@ initial state and wraps the output arrays.
 
 from __future__ import annotations
 
+import dataclasses as dc
 import math
 import time as _time
 from dataclasses import dataclass, field
@@ -17,7 +18,17 @@ from . import _validate as v
 from ._errors import DivergenceError
 from .scene import Scene
 
-__all__ = ["DivergenceError", "Result", "simulate", "DEFAULT_DT", "MAX_OUTPUT_BYTES"]
+__all__ = ["DivergenceError", "Result", "simulate", "DEFAULT_DT", "FIDELITY_LEVELS",
+           "MAX_OUTPUT_BYTES"]
+
+#: Model fidelity levels, most to least detailed (issue 7). "full" is the paper's model: the
+#: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
+#: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
+#: levels use the linear Euler-Bernoulli rail with constant matrices (factorised once, or modal
+#: with ``n_modes``) and a vertical contact at X_A: a moving force P, a moving mass (rigid
+#: contact), a sprung wheel (linear bilateral contact spring k) or a Hertzian wheel (unilateral).
+FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
+                   "linear/moving_mass", "linear/moving_force")
 
 #: Default time steps [s]. Generalized-alpha: 1e-5 s resolves the highest physical frequency of
 #: the paper's scene (the wheel on its contact spring, ~1.4 kHz) with ~70 steps per period;
@@ -100,6 +111,17 @@ class Result:
         return out
 
 
+def _with_law(scene: Scene, law: str) -> Scene:
+    """The scene with its contact law replaced; stiffness None takes the Hertz values."""
+    if scene.contact.law == law:
+        return scene
+    k = scene.contact_stiffness if law == "linear" else None
+    if law == "hertz" and scene.contact.stiffness is not None:
+        # a given linear k becomes the Hertz constant with the same stiffness at the static load
+        k = (scene.contact.stiffness / (1.5 * scene.static_load ** (1 / 3))) ** 1.5
+    return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+
+
 def _initial_state(scene, model, speed, x_start, start, drop_height):
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
@@ -130,7 +152,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
              duration: float | None = None, output_every: int | None = None,
              rho_inf: float = 0.8, baumgarte: float = 0.0, rolling: bool = True,
              start: str = "static", drop_height: float = 0.0,
-             progress: bool | None = None, energy: bool = False, max_newton: int = 25,
+             progress: bool | None = None, energy: bool = False,
+             fidelity: str = "full", n_modes: int | None = None, max_newton: int = 25,
              newton_tol: float = 1e-11) -> Result:
     """Simulate the wheel passing over the rail at constant forward ``speed`` [m/s].
 
@@ -159,6 +182,12 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         own weight, wheel just touching: a sudden load).
     drop_height : lift the wheel this much above its start height [m] (it falls and lands).
     progress : show a progress bar (None: only for runs of more than 200 000 steps).
+    fidelity : model level, one of ``FIDELITY_LEVELS`` (default "full": the paper's model).
+        The "linear/..." levels run the constant-matrix fast path (generalized-alpha only; no
+        rolling constraint: ``tangential_force``, ``slip``, ``v_error`` are zero and
+        ``contact_s = x_wheel``).
+    n_modes : "linear/..." levels only: modal superposition with the lowest ``n_modes`` vertical
+        rail modes (None: all coordinates, the band matrix factorised once).
     energy : also record the total mechanical energy [J] per sample: kinetic + strain + support
         springs + contact potential + potentials of gravity on the rail, of the wheel load
         (F + M g) Y_A and of the torque (-T theta). Conserved without damping when the wheel does
@@ -201,14 +230,28 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     newton_tol = v.number("newton_tol", newton_tol, low=0.0, low_open=True, unit="m")
     if not isinstance(rolling, bool):
         raise TypeError("rolling must be True or False")
+    v.choice("fidelity", fidelity, set(FIDELITY_LEVELS))
+    linear = fidelity.startswith("linear/")
+    if linear and integrator != "generalized_alpha":
+        raise ValueError(f"integrator = {integrator!r} is not available with fidelity = "
+                         f"{fidelity!r}; the linear levels use 'generalized_alpha'")
+    if n_modes is not None:
+        if not linear:
+            raise ValueError(f"n_modes is only used with the linear fidelity levels, not "
+                             f"{fidelity!r}")
+        n_modes = v.integer("n_modes", n_modes, low=1, high=2 * (ne + 1) - 2)
+    if fidelity in ("ancf/sprung", "linear/sprung"):
+        scene = _with_law(scene, "linear")
+    elif fidelity in ("ancf/hertz", "linear/hertz"):
+        scene = _with_law(scene, "hertz")
 
     model = _kernel.rail_model(scene, ne)
-    init = _initial_state(scene, model, speed, x0, start, drop_height)
+    init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
     if dt is None:
         dt = DEFAULT_DT[integrator]
-        if integrator == "explicit":
+        if integrator == "explicit" and not linear:
             omega = _core.highest_frequency(model, wheel, contact, init.e, x0, init.y)
             dt = min(dt, 0.5 * _core.explicit_stability_limit(omega))
     else:
@@ -259,7 +302,16 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
 
     t0 = _time.perf_counter()
     try:
-        d = _core.simulate(model, wheel, contact, s, init, callback)
+        if linear:
+            opt = _core.LinearOptions()
+            opt.wheel_model = getattr(_core.WheelModel, fidelity.split("/")[1])
+            opt.n_modes = 0 if n_modes is None else n_modes
+            opt.sudden = start == "sudden"
+            opt.drop_height = drop_height
+            d = _core.simulate_linear(model, wheel, contact, s, opt, callback)
+            d["final_state"] = None
+        else:
+            d = _core.simulate(model, wheel, contact, s, init, callback)
     finally:
         if bar is not None:
             bar.close()
@@ -267,7 +319,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
 
     settings = dict(integrator=integrator, dt=dt, n_elements=ne, speed=speed, x_start=x0,
                     t_end=n_steps * dt, output_every=output_every, rho_inf=rho_inf,
-                    baumgarte=baumgarte, rolling=rolling, start=start, drop_height=drop_height)
+                    baumgarte=baumgarte, rolling=rolling and not linear, start=start,
+                    drop_height=drop_height, fidelity=fidelity, n_modes=n_modes)
     return Result(
         scene=scene, settings=settings, t=d["t"], x_wheel=d["x_wheel"], y_wheel=d["y_wheel"],
         ydot_wheel=d["ydot_wheel"], theta=d["theta"], thetadot=d["thetadot"],

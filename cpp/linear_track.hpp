@@ -1,0 +1,38 @@
+// Reduced-fidelity fast path: the linear vertical track (MODEL.md §2 linearised, §7).
+//
+// The rail is the Euler-Bernoulli Hermite beam in y (exactly the ANCF element linearised about the
+// straight rail, its y coordinates only) on linear supports, with constant mass, damping and
+// stiffness matrices: M q'' + C q' + K q = Q_g + s(X)^T F. Optionally it is reduced to its lowest
+// n_modes modes (modal superposition, q = Phi z). The wheel acts at X_A(t) = X_0 + v t through
+// the shape functions s(X) and is one of:
+//   MovingForce  the constant force P = F + M g (no wheel dynamics);
+//   MovingMass   the wheel rigidly on the rail: Y_A = y(X_A) + rho0 (multiplier N);
+//   Sprung       a linear contact spring N = k (rho0 - Y_A + y(X_A)) (bilateral, linear system);
+//   Hertz        N = C_H delta^1.5 for delta > 0, else 0 (unilateral: loss of contact).
+// Contact stays vertical at X_A (no obliquity, no contact-point search, no rolling constraint:
+// the tangential dynamics do not enter the vertical problem of a straight linear beam).
+// Generalized-alpha (Arnold-Bruls form) with the constant band part factorised once; the wheel
+// and the contact force are a 2-wide border, so each step costs one band solve for the moving
+// coupling plus one for the right-hand side (one Newton iteration for the linear levels).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "dynamics.hpp"
+
+namespace trackwheel {
+
+enum class WheelModel { MovingForce = 0, MovingMass = 1, Sprung = 2, Hertz = 3 };
+
+struct LinearOptions {
+  WheelModel wheel_model = WheelModel::Sprung;
+  int n_modes = 0;          // 0: all coordinates (factorise once); > 0: modal superposition
+  bool sudden = false;      // start: false = static equilibrium, true = rail under own weight
+  double drop_height = 0.0; // wheel lifted this much at the start [m]
+};
+
+SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
+                          const ContactParams& contact, const SimSettings& settings,
+                          const LinearOptions& options, const ProgressFn& progress = nullptr);
+
+}  // namespace trackwheel
