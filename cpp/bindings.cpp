@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "ancf_cable.hpp"
+#include "bench.hpp"
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "eigen_analysis.hpp"
@@ -298,6 +299,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("highest_frequency", &highest_frequency,
         "omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system");
   m.def("explicit_stability_limit", &explicit_stability_limit);
+  m.def("time_band_factor_solve", &time_band_factor_solve, py::arg("rail"), py::arg("cq"),
+        py::arg("cv"), py::arg("repeats"), py::arg("bordered") = false,
+        "Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)");
   m.def("rolling_eval", [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya,
                            double s_guess, const Vec10& qdot, double thetadot) {
     const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
