@@ -4,6 +4,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include "ancf_cable.hpp"
 #include "bench.hpp"
 #include "contact.hpp"
@@ -80,6 +84,16 @@ py::dict output_to_dict(const SimOutput& o) {
   d["final_state"] = o.final_state;
   d["stability_limit"] = o.stability_limit;
   return d;
+}
+
+// Guards for hostile input at the binding level: the kernel indexes rail coordinate vectors
+// without bounds checks, so every binding taking one checks its size first (std::invalid_argument
+// becomes ValueError in Python).
+void check_coordinates(const RailModel& rail, const Eigen::VectorXd& e, const char* name) {
+  if (e.size() != rail.n_dof())
+    throw std::invalid_argument(std::string(name) + " has " + std::to_string(e.size()) +
+                                " entries; this rail has n_dof = " +
+                                std::to_string(rail.n_dof()));
 }
 
 }  // namespace
@@ -166,15 +180,22 @@ PYBIND11_MODULE(_core, m) {
       .def("reference", &RailModel::reference)
       .def("mass_dense", &RailModel::mass_dense)
       .def("mass_band_dense", [](const RailModel& r) { return r.mass().dense(); })
-      .def("tangent_dense", &RailModel::tangent_dense)
+      .def("tangent_dense", [](const RailModel& r, const Eigen::VectorXd& e) {
+        check_coordinates(r, e, "e");
+        return r.tangent_dense(e);
+      })
       .def("gravity_force", &RailModel::gravity_force)
       .def("internal_force", [](const RailModel& r, const Eigen::VectorXd& e) {
+        check_coordinates(r, e, "e");
         Eigen::VectorXd Q; double U;
         r.internal_force(e, nullptr, Q, &U);
         return py::make_tuple(Q, U);
       })
       .def("positions", [](const RailModel& r, const Eigen::VectorXd& e,
                            const std::vector<double>& s) {
+        check_coordinates(r, e, "e");
+        for (double si : s)
+          if (!std::isfinite(si)) throw std::invalid_argument("s must be finite [m]");
         Eigen::MatrixXd out(s.size(), 2);
         for (size_t i = 0; i < s.size(); ++i) out.row(i) = r.position(e, r.locate(s[i]));
         return out;
@@ -182,6 +203,7 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("contact_eval", [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya,
                            double s_guess, const ContactParams& cp, const Vec10& qdot) {
+    check_coordinates(rail, e, "e");
     const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
     const ContactForce cf = contact_force(cp, pt, qdot, true);
     py::dict d;
@@ -296,7 +318,12 @@ PYBIND11_MODULE(_core, m) {
      py::arg("initial"), py::arg("progress") = py::none(),
      "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
      "settings.progress_every steps with the GIL held, which also checks for Ctrl-C)");
-  m.def("highest_frequency", &highest_frequency,
+  m.def("highest_frequency", [](const RailModel& rail, const WheelParams& w,
+                                const ContactParams& c, const Eigen::VectorXd& e, double x,
+                                double y) {
+    check_coordinates(rail, e, "e");
+    return highest_frequency(rail, w, c, e, x, y);
+  },
         "omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system");
   m.def("explicit_stability_limit", &explicit_stability_limit);
   m.def("time_band_factor_solve", &time_band_factor_solve, py::arg("rail"), py::arg("cq"),
@@ -304,6 +331,7 @@ PYBIND11_MODULE(_core, m) {
         "Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)");
   m.def("rolling_eval", [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya,
                            double s_guess, const Vec10& qdot, double thetadot) {
+    check_coordinates(rail, e, "e");
     const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
     Vec10 grad;
     distance_derivatives(pt, grad, nullptr);

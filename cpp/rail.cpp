@@ -94,7 +94,7 @@ Eigen::VectorXd RailModel::reference() const {
 
 MeshPoint RailModel::locate(double s) const {
   MeshPoint mp;
-  s = std::min(std::max(s, 0.0), p_.length);
+  s = std::isnan(s) ? 0.0 : std::min(std::max(s, 0.0), p_.length);  // NaN: no UB in the cast
   int el = static_cast<int>(std::floor(s / sec_.length));
   el = std::min(std::max(el, 0), p_.n_elements - 1);
   mp.element = el;

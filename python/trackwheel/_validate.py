@@ -44,17 +44,32 @@ def integer(name: str, value, *, low=None, high=None) -> int:
 
 
 def choice(name: str, value, allowed) -> str:
-    if value not in allowed:
+    try:
+        ok = value in allowed
+    except TypeError:  # unhashable, e.g. a list
+        ok = False
+    if not ok:
         raise ValueError(f"{name} = {value!r} is not one of {sorted(allowed)}")
     return value
+
+
+def boolean(name: str, value) -> bool:
+    """``value`` if it is a bool (or numpy bool); TypeError otherwise."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {type(value).__name__}")
+    return bool(value)
 
 
 def positions(name: str, values, low: float, high: float, unit: str = "m") -> np.ndarray:
     """1-d float array of finite values in [low, high]; a scalar becomes a length-1 array."""
     try:
-        arr = np.atleast_1d(np.asarray(values, dtype=float))
-    except (TypeError, ValueError) as exc:
+        raw = np.asarray(values)
+    except (TypeError, ValueError) as exc:  # e.g. ragged nested sequences
         raise TypeError(f"{name} must be a number or a sequence of numbers [{unit}]") from exc
+    if raw.dtype.kind not in "iuf" and not (raw.dtype.kind == "O" and raw.size == 0):
+        raise TypeError(f"{name} must be a number or a sequence of real numbers [{unit}], "
+                        f"got {type(values).__name__} of {raw.dtype}")
+    arr = np.atleast_1d(raw.astype(float))
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name} must be a non-empty 1-d sequence [{unit}]")
     if not np.all(np.isfinite(arr)):

@@ -209,6 +209,10 @@ def build_parser() -> argparse.ArgumentParser:
 def _cmd_reproduce(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.out.exists() and not args.out.is_dir():
         parser.error(f"--out {args.out}: exists and is not a folder")
+    try:
+        args.out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        parser.error(f"--out {args.out}: cannot create the folder ({exc.strerror or exc})")
     reproduce(args.out, quick=args.quick)
     return 0
 

@@ -33,6 +33,10 @@ class EigenResult:
     def rail_mode_shape(self, i_pos: int, mode: int, n_points: int = 201):
         """Vertical mode shape along the rail: (s [m], y(s) [-], wheel Y [-]), scaled so that the
         largest |value| over rail and wheel is 1 and the wheel (or rail maximum) is positive."""
+        n_pos, _, n_avail = self.shapes.shape
+        i_pos = v.integer("i_pos", i_pos, low=-n_pos, high=n_pos - 1)
+        mode = v.integer("mode", mode, low=0, high=n_avail - 1)
+        n_points = v.integer("n_points", n_points, low=2, high=10**7)
         model = _kernel.rail_model(self.scene, self.n_elements)
         vec = np.asarray(self.shapes[i_pos, :, mode])
         s = np.linspace(0.0, self.scene.rail.length, n_points)
@@ -74,6 +78,8 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
 def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None
                      ) -> np.ndarray:
     """Vertical natural frequencies of the rail on its supports without the wheel [Hz]."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     ne = scene.rail.n_elements if n_elements is None else v.integer(
         "n_elements", n_elements, low=1, high=5000)
     model = _kernel.rail_model(scene, ne)

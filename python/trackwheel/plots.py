@@ -73,6 +73,8 @@ def eigen(result: EigenResult, n_modes: int = 4, ax: Axes | None = None) -> Figu
     if ax is None:
         fig = Figure(figsize=(7.0, 4.5), layout="constrained")
         ax = fig.add_subplot()
+    elif not isinstance(ax, Axes):
+        raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
     else:
         fig = _root_figure(ax)
     x = result.positions
@@ -113,6 +115,9 @@ def mode_shapes(result: EigenResult, i_pos: int, modes: Iterable[int] = range(4)
     i_pos = v.integer("i_pos", i_pos, low=-n_pos, high=n_pos - 1)
     if isinstance(modes, (int, np.integer)):
         modes = [modes]
+    if isinstance(modes, (str, bytes)) or not isinstance(modes, Iterable):
+        raise TypeError(f"modes must be an int or an iterable of ints (0-based mode indices), "
+                        f"got {type(modes).__name__}")
     modes = [v.integer("modes[]", m, low=0, high=n_avail - 1) for m in modes]
     if not modes:
         raise ValueError("modes must name at least one mode (0-based indices)")

@@ -14,13 +14,16 @@ from dataclasses import dataclass, field, fields
 
 from . import _validate as v
 
+#: Most supports a scene may resolve to from ``Supports.spacing`` [-] (a guard against a tiny
+#: spacing exhausting memory; 5 m at 0.5 m spacing has nine).
+MAX_SUPPORTS = 100_000
 #: Standard gravity used by the paper's scene [m/s^2]: F = 47040 N is 4800 kg x 9.8 m/s^2.
 GRAVITY = 9.8
 
 
 def kmh(speed_kmh: float) -> float:
     """Convert a speed from km/h to m/s (``kmh(300)`` -> 83.33 m/s)."""
-    return v.number("speed_kmh", speed_kmh, unit="km/h") / 3.6
+    return v.number("speed_kmh", speed_kmh, low=0.0, unit="km/h") / 3.6
 
 
 @dataclass(frozen=True)
@@ -89,7 +92,8 @@ class Supports:
         v.positive("Supports.spacing", self.spacing, "m")
         v.number("Supports.damping", self.damping, low=0.0, unit="N s/m")
         if self.positions is not None:
-            pos = () if len(tuple(self.positions)) == 0 else tuple(
+            empty = isinstance(self.positions, (tuple, list)) and len(self.positions) == 0
+            pos = () if empty else tuple(
                 float(x) for x in v.positions("Supports.positions", self.positions,
                                               -math.inf, math.inf))
             object.__setattr__(self, "positions", pos)
@@ -99,6 +103,11 @@ class Supports:
         if self.positions is not None:
             pos = self.positions
         else:
+            if length / self.spacing > MAX_SUPPORTS + 1.5:
+                raise ValueError(
+                    f"Supports.spacing = {self.spacing} m puts more than {MAX_SUPPORTS} supports "
+                    f"on a {length} m rail; allowed range [{length / (MAX_SUPPORTS + 1):.6g}, "
+                    f"{length / 1.5:.6g}] m")
             n = int(round(length / self.spacing))
             if n < 2:
                 raise ValueError(
@@ -184,6 +193,7 @@ class Scene:
                 raise TypeError(f"Scene.{f.name} must be a {f.default_factory.__name__}, "
                                 f"got {type(value).__name__}")
         v.number("Scene.gravity", self.gravity, low=0.0, unit="m/s^2")
+        v.boolean("Scene.rail_gravity", self.rail_gravity)
         self.supports.resolve(self.rail.length)  # supports must lie on the rail
 
     @classmethod

@@ -33,6 +33,7 @@ class StaticResult:
 
     def rail_shape(self, n_points: int = 201) -> tuple[np.ndarray, np.ndarray]:
         """(x, y) of the deflected rail at ``n_points`` material points [m]."""
+        n_points = v.integer("n_points", n_points, low=2, high=10**7)
         model = _kernel.rail_model(self.scene, self.n_elements)
         s = np.linspace(0.0, self.scene.rail.length, n_points)
         r = model.positions(self.rail_coordinates, s)
