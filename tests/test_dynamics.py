@@ -187,7 +187,7 @@ def test_explicit_far_above_stability_limit_diverges():
     """RK4 at 5x its predicted stability limit: DivergenceError naming the time and the cause,
     within a few hundred steps."""
     scene = tw.Scene.kato2005()
-    with pytest.raises(tw.DivergenceError) as info:
+    with pytest.warns(tw.StabilityWarning), pytest.raises(tw.DivergenceError) as info:
         tw.simulate(scene, tw.kmh(300), integrator="explicit", dt=5e-5)
     err = info.value
     assert err.step < 300

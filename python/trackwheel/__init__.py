@@ -10,9 +10,17 @@ from .statics import QuasiStatic, StaticResult, quasi_static, static
 from .eigen import EigenResult, eigen
 from ._errors import DivergenceError
 from .simulate import Result, simulate
+from .convergence import (Convergence, ConvergenceWarning, StabilityWarning, converged,
+                          default_settings, stability_limit)
 
 __all__ = [
     "Contact",
+    "Convergence",
+    "ConvergenceWarning",
+    "StabilityWarning",
+    "converged",
+    "default_settings",
+    "stability_limit",
     "DivergenceError",
     "Result",
     "simulate",

@@ -256,6 +256,10 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
             dt = min(dt, 0.5 * _core.explicit_stability_limit(omega))
     else:
         dt = v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
+        if integrator == "explicit" and not linear:  # issue 6: warn before a doomed run
+            from .convergence import warn_above_stability_limit
+
+            warn_above_stability_limit(model, wheel, contact, init.e, x0, init.y, dt)
     n_steps = int(round(t_end / dt))
     if output_every is None:
         output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))

@@ -1,0 +1,338 @@
+"""Speed against accuracy: stability limits, derived defaults and automatic convergence (issue 6).
+
+- :func:`stability_limit` predicts the largest stable time step of an integrator. For the
+  explicit RK4 scheme (the paper's way, MODEL.md §6) it is ``2 sqrt(2) / omega_max`` with
+  omega_max the highest eigenfrequency of the assembled system (rail + supports + wheel on its
+  contact spring, linearised at the static state at the start position; power iteration in the
+  kernel). ``simulate(..., integrator="explicit", dt=...)`` warns with :class:`StabilityWarning`
+  before it runs when dt is above it. benchmarks/stability_map.py measures the limit by bisection
+  on real runs: measured and predicted agree within 2 % on 10 to 80 elements.
+- :func:`default_settings` derives a time step and a mesh from the scene and the speed so that
+  the headline outputs (amplitude and main frequency of the contact-point vibration, MODEL.md §8)
+  are within about 1 % of a converged run (see its docstring for the rule and the evidence).
+- :func:`converged` refines dt and n_elements until amplitude and main frequency change by less
+  than ``tol``, and returns the run with the settings chosen and an error estimate.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _core, _kernel
+from . import _validate as v
+from .scene import Scene
+
+__all__ = ["StabilityWarning", "ConvergenceWarning", "Convergence", "stability_limit",
+           "default_settings", "converged", "headline"]
+
+#: Order of accuracy in dt of each integrator (generalized-alpha: second order for any rho_inf;
+#: classical RK4: fourth), used by the Richardson error estimate of :func:`converged`.
+ORDER = {"generalized_alpha": 2, "explicit": 4}
+
+
+class StabilityWarning(UserWarning):
+    """The requested time step is above the predicted stability limit of the integrator."""
+
+
+class ConvergenceWarning(UserWarning):
+    """:func:`converged` ran out of budget before the outputs met the tolerance."""
+
+
+# --------------------------------------------------------------------------------------------
+# stability limits
+def _start_state(scene: Scene, ne: int, x0: float):
+    model = _kernel.rail_model(scene, ne)
+    wheel = _kernel.wheel_params(scene)
+    contact = _kernel.contact_params(scene)
+    st = _core.static_solve(model, wheel, contact, x0)
+    return model, wheel, contact, np.asarray(st["e"]), float(st["y_wheel"])
+
+
+def _explicit_limit(model, wheel, contact, e, x0: float, y: float) -> tuple[float, float]:
+    """(dt_max [s], omega_max [rad/s]) of explicit RK4 at the given state."""
+    omega = _core.highest_frequency(model, wheel, contact, e, x0, y)
+    return _core.explicit_stability_limit(omega), omega
+
+
+def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: int | None = None,
+                    speed: float = 0.0, rho_inf: float = 0.8,
+                    x_start: float | None = None) -> float:
+    """Predicted largest stable time step [s] of ``integrator`` for ``scene``.
+
+    ``"explicit"`` (classical RK4, the paper's scheme): the stability interval of RK4 on the
+    imaginary axis is |omega dt| <= 2 sqrt(2), so dt_max = 2 sqrt(2) / omega_max, with omega_max
+    [rad/s] the highest eigenfrequency of the assembled system -- the ANCF rail on its supports
+    with the wheel mass on its contact spring (MODEL.md §2-§4), linearised at the static state
+    with the wheel at ``x_start`` (default: the start of :func:`trackwheel.simulate`, the middle
+    of the first support bay) -- found by power iteration in the kernel. omega_max grows as
+    1/l_e^2 (the shortest bending wave of an element), so dt_max falls by 4x per mesh doubling
+    (about 1.0e-5 s for the paper's 20 elements, 6.4e-7 s for 80). The speed does not enter: the
+    linearised system does not depend on it (the convective terms of the moving contact are
+    small), which benchmarks/stability_map.py confirms from 50 to 400 km/h; ``speed`` [m/s] is
+    accepted for symmetry with :func:`trackwheel.simulate` and checked only.
+
+    ``"generalized_alpha"``: unconditionally stable for linear problems for every ``rho_inf`` in
+    [0, 1] (Chung & Hulbert 1993), so the result is ``math.inf``. What fails first at large steps
+    is Newton's iteration at contact loss/landing and stick/slip transitions, which no linear
+    analysis predicts; benchmarks/stability_map.py measures where it stops converging.
+
+    Raises ValueError / TypeError naming the parameter for bad arguments.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
+    v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
+    v.number("rho_inf", rho_inf, low=0.0, high=1.0)
+    ne = scene.rail.n_elements if n_elements is None else v.integer(
+        "n_elements", n_elements, low=1, high=5000)
+    L, ds = scene.rail.length, scene.supports.spacing
+    x0 = (0.5 * ds if 0.5 * ds < L else 0.5 * L) if x_start is None else v.number(
+        "x_start", x_start, low=0.0, high=L, unit="m")
+    if integrator == "generalized_alpha":
+        return math.inf
+    dt_max, _ = _explicit_limit(*_start_state(scene, ne, x0), x0)
+    return dt_max
+
+
+def warn_above_stability_limit(model, wheel, contact, e, x0: float, y: float, dt: float,
+                               stacklevel: int = 3) -> float:
+    """Warn (:class:`StabilityWarning`) if the explicit time step ``dt`` [s] is above the
+    predicted RK4 limit at the given state; returns the limit [s]. Used by ``simulate``."""
+    dt_max, omega = _explicit_limit(model, wheel, contact, e, x0, y)
+    if dt > dt_max:
+        warnings.warn(StabilityWarning(
+            f"dt = {dt:.3g} s is above the predicted stability limit of the explicit RK4 scheme, "
+            f"{dt_max:.3g} s (2 sqrt(2)/omega_max, highest eigenfrequency "
+            f"{omega / (2 * math.pi):.4g} Hz for this mesh): the run will almost certainly "
+            f"diverge. Use dt <= {dt_max:.3g} s, fewer elements, or "
+            f"integrator='generalized_alpha' (unconditionally stable)"), stacklevel=stacklevel)
+    return dt_max
+
+
+# --------------------------------------------------------------------------------------------
+# headline outputs
+def headline(result) -> tuple[float, float]:
+    """(amplitude [m], main frequency [Hz]) of a run: max |d| and the spectral peak of
+    d(t) = y_B(t) - y_qs(X_A(t)) (MODEL.md §8), from :func:`trackwheel.analyse`."""
+    try:
+        from .analysis import analyse
+    except ImportError:  # pragma: no cover - only before trackwheel.analysis exists
+        return _headline_minimal(result)
+    a = analyse(result)
+    return float(a.amplitude), float(a.main_frequency)
+
+
+def _headline_minimal(result) -> tuple[float, float]:
+    """Stand-in for trackwheel.analyse: y_qs on a 2.5 mm grid, linear interpolation, Hann
+    window, 8x zero padding, parabolic peak of the log magnitude."""
+    from .statics import quasi_static
+
+    s = result.settings
+    x = np.asarray(result.x_wheel, dtype=float)
+    grid = np.linspace(x.min(), x.max(), max(4, int((x.max() - x.min()) / 0.0025) + 1))
+    yq = quasi_static(result.scene, grid, n_elements=int(s["n_elements"])).y_contact
+    d = result.y_contact - np.interp(x, grid, yq)
+    h = float(s["dt"]) * int(s["output_every"])
+    n = d.size
+    nf = 1 << math.ceil(math.log2(8 * n))
+    spec = np.abs(np.fft.rfft((d - d.mean()) * np.hanning(n), nf))
+    f = np.fft.rfftfreq(nf, h)
+    ok = f >= 1.0 / (n * h)
+    k = int(np.flatnonzero(ok)[np.argmax(spec[ok][:-1])])
+    lm, l0, lp = np.log(spec[k - 1:k + 2])
+    den = lm - 2 * l0 + lp
+    shift = 0.5 * (lm - lp) / den if den < 0 else 0.0
+    return float(np.max(np.abs(d))), float(f[k] + shift * (f[1] - f[0]))
+
+
+# --------------------------------------------------------------------------------------------
+# derived defaults
+#: Elements per support bay of the derived default mesh (see :func:`default_settings`).
+ELEMENTS_PER_BAY = 8
+#: Time steps per period of the highest frequency of interest (see :func:`default_settings`).
+STEPS_PER_PERIOD = 100
+
+
+def _wheel_frequency(scene: Scene) -> float:
+    """sqrt(k/M) / 2 pi [Hz]: the wheel mass on the (linearised) contact spring -- the highest
+    physical frequency the paper's outputs resolve (about 1.34 kHz for its scene)."""
+    return math.sqrt(scene.contact_stiffness / scene.wheel.mass) / (2.0 * math.pi)
+
+
+def default_settings(scene: Scene, speed: float | None = None,
+                     integrator: str = "generalized_alpha") -> dict:
+    """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``.
+
+    Rule (issue 6): ``n_elements`` puts ELEMENTS_PER_BAY elements in every support bay
+    (l_e = d_s / 8, at least the scene's own mesh): the cubic ANCF element interpolates the rail
+    under a moving point contact with a stiffness that varies periodically across each element,
+    so a passing wheel is excited at v / l_e and its harmonics; with l_e = d_s / 4 or coarser this
+    spurious excitation meets the track's main resonance (about 340 Hz for the paper's scene) at
+    some speed between 50 and 400 km/h and moves the amplitude by up to 5 %. ``dt`` resolves the
+    highest frequency of interest, the wheel on its contact spring f_w = sqrt(k/M)/2 pi, with
+    STEPS_PER_PERIOD steps per period (7.5e-6 s for the paper's scene) for generalized-alpha; the
+    explicit scheme takes at most half its stability limit on that mesh. benchmarks/README.md
+    ("Speed against accuracy") records the check against refined runs at 50-400 km/h.
+    ``speed`` [m/s] is accepted for future speed-dependent rules and checked only.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
+    if speed is not None:
+        v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
+    L, ds = scene.rail.length, scene.supports.spacing
+    bays = max(1, round(L / ds))
+    ne = max(scene.rail.n_elements, ELEMENTS_PER_BAY * bays)
+    dt = 1.0 / (STEPS_PER_PERIOD * _wheel_frequency(scene))
+    if integrator == "explicit":
+        dt = min(dt, 0.5 * stability_limit(scene, "explicit", n_elements=ne))
+    return dict(dt=float(dt), n_elements=int(ne))
+
+
+# --------------------------------------------------------------------------------------------
+# automatic convergence
+@dataclass(frozen=True, eq=False)
+class Convergence:
+    """Outcome of :func:`converged`."""
+
+    result: object  #: the accepted run (trackwheel.Result) at ``dt``, ``n_elements``
+    dt: float  #: time step chosen [s]
+    n_elements: int  #: mesh chosen [-]
+    amplitude: float  #: max |d| of the accepted run [m]
+    main_frequency: float  #: main frequency of d(t) of the accepted run [Hz]
+    amplitude_error: float  #: estimated relative error of ``amplitude`` [-] (see converged)
+    frequency_error: float  #: estimated relative error of ``main_frequency`` [-]
+    converged: bool  #: both estimated errors below tol
+    tol: float  #: the tolerance asked for [-]
+    wall_time: float  #: total wall time of all runs [s]
+    history: list = field(default_factory=list)  #: one dict per run: dt, n_elements, outputs
+
+    @property
+    def error(self) -> float:
+        """The larger of the two estimated relative errors [-]."""
+        return max(self.amplitude_error, self.frequency_error)
+
+
+def _rel(a: float, b: float) -> float:
+    return abs(a - b) / max(abs(b), 1e-300)
+
+
+def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
+              integrator: str = "generalized_alpha", dt: float | None = None,
+              n_elements: int | None = None, max_refinements: int = 6,
+              max_wall_time: float = 120.0, **simulate_kwargs) -> Convergence:
+    """Refine dt and n_elements until amplitude and main frequency (MODEL.md §8) are within
+    ``tol`` (relative) of the converged values; return the run, the settings and the estimate.
+
+    Starting from ``dt``, ``n_elements`` (default :func:`default_settings`), each round runs the
+    current settings and the two single refinements, dt/2 and 2 n_elements. The change caused by
+    each refinement estimates that discretisation's error of the current run by Richardson
+    extrapolation: e_dt = c_dt 2^p / (2^p - 1) with p the integrator's order in dt (2 for
+    generalized-alpha, 4 for RK4), and e_x = 2 c_x for the mesh (first order assumed: the
+    amplitude, a maximum over the passage, converges irregularly with the mesh). The estimated
+    error of a run is e_dt + e_x, for the amplitude and the main frequency separately. If both
+    are below ``tol`` the current run is accepted; otherwise the settings move to the refinement
+    with the larger estimated error (its run is already there) and the round repeats.
+
+    Budget: at most ``max_refinements`` moves and ``max_wall_time`` [s] of simulation (a round
+    that would exceed it, by the cost of the last runs, is not started). When it runs out, the
+    best settings reached are returned with ``converged=False`` and a
+    :class:`ConvergenceWarning`. ``simulate_kwargs`` go to :func:`trackwheel.simulate` (e.g.
+    ``x_end`` for a shorter stretch, ``rho_inf``); ``output_every`` is fixed to 1 and
+    ``progress`` off unless given.
+    """
+    from .simulate import simulate
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    tol = v.number("tol", tol, low=0.0, low_open=True, high=0.5)
+    v.choice("integrator", integrator, set(ORDER))
+    max_refinements = v.integer("max_refinements", max_refinements, low=0, high=20)
+    max_wall_time = v.number("max_wall_time", max_wall_time, low=0.0, low_open=True, unit="s")
+    speed = v.number("speed", speed, low=0.0, low_open=True, high=300.0, unit="m/s")
+    for bad in ("dt", "n_elements", "integrator"):
+        simulate_kwargs.pop(bad, None)
+    simulate_kwargs.setdefault("progress", False)
+    simulate_kwargs.setdefault("output_every", 1)
+    d = default_settings(scene, speed, integrator)
+    h = d["dt"] if dt is None else v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
+    ne = d["n_elements"] if n_elements is None else v.integer("n_elements", n_elements, low=1,
+                                                               high=5000)
+    p = ORDER[integrator]
+    f_dt = 2.0**p / (2.0**p - 1.0)
+    f_x = 2.0
+
+    runs: dict = {}
+    history: list = []
+    spent = [0.0]
+    t_start = _time.perf_counter()
+
+    def run(h_, ne_):
+        key = (float(h_), int(ne_))
+        if key not in runs:
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", StabilityWarning)  # explicit: refine past limit
+                r = simulate(scene, speed, integrator=integrator, dt=h_, n_elements=ne_,
+                             **simulate_kwargs)
+            amp, freq = headline(r)
+            spent[0] += r.wall_time
+            runs[key] = (r, amp, freq)
+            history.append(dict(dt=h_, n_elements=ne_, amplitude=amp, main_frequency=freq,
+                                wall_time=r.wall_time))
+        return runs[key]
+
+    moves = 0
+    ok = False
+    reason = ""
+    while True:
+        r0, a0, f0 = run(h, ne)
+        # cost of the next round: the two refinements cost about 2x the current run each
+        need = 4.0 * r0.wall_time
+        if spent[0] + need > max_wall_time and ((h / 2, ne) not in runs or (h, 2 * ne) not in runs):
+            reason = (f"the next refinement (about {need:.3g} s) would exceed max_wall_time = "
+                      f"{max_wall_time} s")
+            break
+        try:
+            _, at, ft = run(h / 2, ne)
+        except StabilityWarning:
+            at, ft = a0, f0  # cannot refine dt below the explicit limit of a finer mesh anyway
+        _, ax, fx = run(h, 2 * ne) if integrator == "generalized_alpha" or \
+            h <= 0.5 * stability_limit(scene, "explicit", n_elements=2 * ne) else (None, a0, f0)
+        e_dt = (f_dt * _rel(a0, at), f_dt * _rel(f0, ft))
+        e_x = (f_x * _rel(a0, ax), f_x * _rel(f0, fx))
+        err = (e_dt[0] + e_x[0], e_dt[1] + e_x[1])
+        if max(err) < tol:
+            ok = True
+            break
+        if moves >= max_refinements:
+            reason = f"max_refinements = {max_refinements} reached"
+            break
+        moves += 1
+        if max(e_dt) >= max(e_x):
+            h = h / 2
+        else:
+            ne = 2 * ne
+    r0, a0, f0 = runs[(float(h), int(ne))]
+    if ok:
+        amp_err, freq_err = err
+    else:
+        # the estimate of the last complete round, if any, else unknown
+        amp_err = freq_err = math.nan
+        if (h / 2, ne) in runs and (h, 2 * ne) in runs:
+            amp_err = f_dt * _rel(a0, runs[(h / 2, ne)][1]) + f_x * _rel(a0, runs[(h, 2 * ne)][1])
+            freq_err = f_dt * _rel(f0, runs[(h / 2, ne)][2]) + f_x * _rel(f0,
+                                                                           runs[(h, 2 * ne)][2])
+        warnings.warn(ConvergenceWarning(
+            f"converged(): budget exhausted before amplitude and main frequency reached "
+            f"tol = {tol:g} ({reason}); returning dt = {h:.3g} s, n_elements = {ne} with "
+            f"estimated relative errors {amp_err:.2g} (amplitude), {freq_err:.2g} (frequency)"),
+            stacklevel=2)
+    return Convergence(result=r0, dt=float(h), n_elements=int(ne), amplitude=a0,
+                       main_frequency=f0, amplitude_error=float(amp_err),
+                       frequency_error=float(freq_err), converged=ok, tol=tol,
+                       wall_time=_time.perf_counter() - t_start, history=history)
