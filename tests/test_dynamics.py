@@ -284,7 +284,7 @@ def test_output_limit_raises_before_running():
 
 
 def test_output_decimation():
-    r = tw.simulate(tw.Scene.kato2005(), tw.kmh(300), x_end=1.0, output_every=10)
+    r = tw.simulate(tw.Scene.kato2005(), tw.kmh(300), x_end=1.0, output_every=10, dt=1e-5)
     assert r.steps == round((1.0 - 0.25) / tw.kmh(300) / 1e-5)
     assert len(r.t) == r.steps // 10 + 1
     np.testing.assert_allclose(np.diff(r.t), 10e-5, rtol=1e-9)

@@ -28,7 +28,7 @@ from . import _validate as v
 from .scene import Scene
 
 __all__ = ["StabilityWarning", "ConvergenceWarning", "Convergence", "stability_limit",
-           "default_settings", "converged", "headline"]
+           "default_settings", "derived_dt", "derived_mesh", "converged", "headline"]
 
 #: Order of accuracy in dt of each integrator (generalized-alpha: second order for any rho_inf;
 #: classical RK4: fourth), used by the Richardson error estimate of :func:`converged`.
@@ -155,7 +155,7 @@ def _headline_minimal(result) -> tuple[float, float]:
 #: Elements per support bay of the derived default mesh (see :func:`default_settings`).
 ELEMENTS_PER_BAY = 8
 #: Time steps per period of the highest frequency of interest (see :func:`default_settings`).
-STEPS_PER_PERIOD = 100
+STEPS_PER_PERIOD = 150
 
 
 def _wheel_frequency(scene: Scene) -> float:
@@ -164,31 +164,51 @@ def _wheel_frequency(scene: Scene) -> float:
     return math.sqrt(scene.contact_stiffness / scene.wheel.mass) / (2.0 * math.pi)
 
 
+def derived_mesh(scene: Scene) -> int:
+    """Default number of rail elements: ELEMENTS_PER_BAY per support bay, at least the scene's
+    own ``rail.n_elements`` (80 for the paper's scene). See :func:`default_settings`."""
+    bays = max(1, round(scene.rail.length / scene.supports.spacing))
+    return int(max(scene.rail.n_elements, ELEMENTS_PER_BAY * bays))
+
+
+def derived_dt(scene: Scene) -> float:
+    """Default generalized-alpha time step [s]: STEPS_PER_PERIOD steps per period of the wheel
+    on its contact spring (4.96e-6 s for the paper's scene). See :func:`default_settings`."""
+    return 1.0 / (STEPS_PER_PERIOD * _wheel_frequency(scene))
+
+
 def default_settings(scene: Scene, speed: float | None = None,
                      integrator: str = "generalized_alpha") -> dict:
-    """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``.
+    """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``: what
+    :func:`trackwheel.simulate` uses when neither is given (for the ANCF fidelity levels).
 
-    Rule (issue 6): ``n_elements`` puts ELEMENTS_PER_BAY elements in every support bay
-    (l_e = d_s / 8, at least the scene's own mesh): the cubic ANCF element interpolates the rail
-    under a moving point contact with a stiffness that varies periodically across each element,
-    so a passing wheel is excited at v / l_e and its harmonics; with l_e = d_s / 4 or coarser this
-    spurious excitation meets the track's main resonance (about 340 Hz for the paper's scene) at
-    some speed between 50 and 400 km/h and moves the amplitude by up to 5 %. ``dt`` resolves the
-    highest frequency of interest, the wheel on its contact spring f_w = sqrt(k/M)/2 pi, with
-    STEPS_PER_PERIOD steps per period (7.5e-6 s for the paper's scene) for generalized-alpha; the
-    explicit scheme takes at most half its stability limit on that mesh. benchmarks/README.md
-    ("Speed against accuracy") records the check against refined runs at 50-400 km/h.
-    ``speed`` [m/s] is accepted for future speed-dependent rules and checked only.
+    Target (issue 6): at most 1 % error of the amplitude max |d| (MODEL.md §8) against a refined
+    run. The scene's former defaults (20 elements, dt = 1e-5 s) miss it by up to 5.5 %
+    (benchmarks/README.md, "Speed against accuracy").
+
+    - ``n_elements``: ELEMENTS_PER_BAY = 8 elements per support bay (l_e = d_s / 8; at least
+      the scene's own mesh). Reason: the cubic ANCF element interpolates the rail under a moving
+      point contact with a contact-point stiffness that varies across each element, so the wheel
+      is excited at the element-passing frequency v / l_e and its harmonics. With l_e = d_s / 2
+      (20 elements) or d_s / 4 (40) this spurious excitation meets the track's main resonance
+      (about 340 Hz for the paper's scene) within 50-400 km/h -- at 300 km/h for 20 elements,
+      150 km/h for 40 -- and moves the amplitude by 4-5 %; with d_s / 8 the effect stays below
+      0.5 % (160-element runs as reference).
+    - ``dt``: STEPS_PER_PERIOD = 150 steps per period of the highest frequency of interest, the
+      wheel on its contact spring f_w = sqrt(k/M)/2 pi (1.34 kHz for the paper's scene, so
+      dt = 4.96e-6 s). Phase errors of generalized-alpha grow with the passage time, so the
+      slowest speed (50 km/h) sets the step: 1e-5 s gives -0.9 % there, 2.5e-6 s -0.2 %.
+      The explicit scheme takes at most half its stability limit on the derived mesh.
+
+    ``speed`` [m/s] is checked and otherwise unused: the rule holds from 50 to 400 km/h.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
     if speed is not None:
         v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
-    L, ds = scene.rail.length, scene.supports.spacing
-    bays = max(1, round(L / ds))
-    ne = max(scene.rail.n_elements, ELEMENTS_PER_BAY * bays)
-    dt = 1.0 / (STEPS_PER_PERIOD * _wheel_frequency(scene))
+    ne = derived_mesh(scene)
+    dt = derived_dt(scene)
     if integrator == "explicit":
         dt = min(dt, 0.5 * stability_limit(scene, "explicit", n_elements=ne))
     return dict(dt=float(dt), n_elements=int(ne))

@@ -164,9 +164,15 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     integrator : "generalized_alpha" (default; Chung-Hulbert/Arnold-Bruls, Newton on the analytic
         Jacobian, velocity-level rolling constraint) or "explicit" (the paper's way: acceleration
         -level constraint, classical RK4, optional Baumgarte stabilisation).
-    dt : time step [s]; default ``DEFAULT_DT[integrator]`` (explicit: also at most half the
-        predicted stability limit).
-    n_elements : rail elements; default ``scene.rail.n_elements`` (20 for the paper's scene).
+    dt : time step [s]; default derived from the scene, ``trackwheel.default_settings``: 150
+        steps per period of the wheel on its contact spring (4.96e-6 s for the paper's scene;
+        explicit: also at most half the predicted stability limit); the "linear/..." levels
+        use ``DEFAULT_DT[integrator]``. An explicit dt above the predicted stability limit
+        warns (``trackwheel.StabilityWarning``) before the run.
+    n_elements : rail elements; default: with dt also unset, derived from the scene (8 per
+        support bay, at least ``scene.rail.n_elements``: 80 for the paper's scene), which keeps
+        the amplitude within 1 % of a refined run at 50-400 km/h (benchmarks/README.md); with
+        dt given, or for the "linear/..." levels, ``scene.rail.n_elements``.
     x_start, x_end : wheel-centre start and end [m]; default the middle of the first support bay
         and the middle of the last (0.25 m and 4.75 m for the paper's scene). With ``speed = 0``
         give ``duration`` instead of ``x_end``.
@@ -204,8 +210,15 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     speed = v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
     v.choice("integrator", integrator, set(_INTEGRATORS))
     v.choice("start", start, {"static", "sudden"})
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=5000)
+    # issue 6: derived defaults (convergence.default_settings) for the ANCF levels, <= 1 %
+    # amplitude error at 50-400 km/h; a given dt keeps the scene's mesh it was chosen for
+    derived = not str(fidelity).startswith("linear/")
+    if n_elements is None:
+        from .convergence import derived_mesh
+
+        ne = derived_mesh(scene) if (derived and dt is None) else scene.rail.n_elements
+    else:
+        ne = v.integer("n_elements", n_elements, low=1, high=5000)
     ds = scene.supports.spacing
     x0 = (0.5 * ds if 0.5 * ds < L else 0.5 * L) if x_start is None else v.number(
         "x_start", x_start, low=0.0, high=L, unit="m")
@@ -250,7 +263,12 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
     if dt is None:
-        dt = DEFAULT_DT[integrator]
+        if derived:
+            from .convergence import derived_dt
+
+            dt = derived_dt(scene)
+        else:
+            dt = DEFAULT_DT[integrator]
         if integrator == "explicit" and not linear:
             omega = _core.highest_frequency(model, wheel, contact, init.e, x0, init.y)
             dt = min(dt, 0.5 * _core.explicit_stability_limit(omega))
