@@ -12,8 +12,16 @@ from ._errors import DivergenceError
 from .simulate import Result, simulate
 from .convergence import (Convergence, ConvergenceWarning, StabilityWarning, converged,
                           default_settings, stability_limit)
+from .analysis import Analysis, amplitude_spectrum, analyse, main_frequency
+from .sweep import load_sweep, sweep
 
 __all__ = [
+    "Analysis",
+    "amplitude_spectrum",
+    "analyse",
+    "main_frequency",
+    "load_sweep",
+    "sweep",
     "Contact",
     "Convergence",
     "ConvergenceWarning",

@@ -1,0 +1,349 @@
+"""Sweeps over speed and support stiffness: equality with single runs, executors, the store
+(resume, corruption), failed cases, interruption (issue 5 part 2, issue 8).
+
+Cases are tiny (0.25 -> 0.5 m, dt = 2e-5 s: 225-450 steps each) so that the file runs in seconds;
+what is checked does not depend on the length of a run.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import dataclasses as dc
+import importlib
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import distributed
+import numpy as np
+import pandas as pd
+import psutil
+import pytest
+import trackwheel as tw
+
+sweep_mod = importlib.import_module("trackwheel.sweep")  # (tw.sweep is the function)
+
+SCENE = tw.Scene.kato2005()
+KW = {"x_start": 0.25, "x_end": 0.5, "dt": 2e-5}
+SPEEDS = [tw.kmh(200), tw.kmh(300)]
+STIFF = [70e6, 140e6]
+OUTPUTS = ["amplitude", "main_frequency", "frequency_resolution", "min_contact_force",
+           "max_contact_force"]
+
+
+def no_wall(df):
+    return df.drop(columns=["wall_time"])
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    """Replace the case function by a wrapper recording (speed, stiffness) of each computed case
+    (in-process execution only: max_workers=1 or a thread pool)."""
+    calls = []
+    real = sweep_mod._run_case
+
+    def run(scene, speed, kwargs):
+        calls.append((speed, scene.supports.stiffness))
+        return real(scene, speed, kwargs)
+
+    monkeypatch.setattr(sweep_mod, "_run_case", run)
+    return calls
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """The 2 x 2 sweep run serially, in this process."""
+    return tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, progress=False, **KW)
+
+
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("max_workers", [1, 2])
+def test_rows_equal_single_runs_bit_for_bit(max_workers, reference):
+    """Each row is simulate(scene with k_s replaced, v, **kw) + analyse, bit for bit, in the
+    Cartesian product's order (speed major), whether run serially or on a 2-process pool."""
+    df = reference if max_workers == 1 else tw.sweep(SCENE, SPEEDS, STIFF, max_workers=2,
+                                                      progress=False, **KW)
+    assert len(df) == 4 and list(df.columns) == list(sweep_mod.COLUMNS)
+    for row, (v, k) in zip(df.itertuples(), [(v, k) for v in SPEEDS for k in STIFF]):
+        scene = dc.replace(SCENE, supports=dc.replace(SCENE.supports, stiffness=k))
+        r = tw.simulate(scene, v, **KW)
+        a = tw.analyse(r)
+        assert (row.speed, row.support_stiffness, row.speed_kmh) == (v, k, v * 3.6)
+        for name in OUTPUTS:
+            assert getattr(row, name) == getattr(a, name), name
+        assert row.lost_contact == a.lost_contact and row.error == ""
+        assert row.steps == r.steps
+        for name in ("integrator", "dt", "n_elements", "x_start", "t_end", "output_every",
+                     "rho_inf", "rolling", "start"):
+            assert getattr(row, name) == r.settings[name], name
+        assert row.x_end == pytest.approx(0.5, abs=1e-12)
+        assert row.version == tw.__version__ and 0.0 < row.wall_time < 60.0
+    assert np.all(df.amplitude > 0) and np.all(df.main_frequency > 0)
+
+
+def test_same_table_whatever_the_executor(reference):
+    """1 worker, 2 processes, a thread pool and a local Dask cluster give the same table (every
+    case is a deterministic, independent run; only wall_time differs)."""
+    two = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=2, progress=False, **KW)
+    pd.testing.assert_frame_equal(no_wall(two), no_wall(reference), check_exact=True)
+    with cf.ThreadPoolExecutor(2) as ex:
+        threads = tw.sweep(SCENE, SPEEDS, STIFF, executor=ex, progress=False, **KW)
+    pd.testing.assert_frame_equal(no_wall(threads), no_wall(reference), check_exact=True)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        dask = tw.sweep(SCENE, SPEEDS, STIFF, executor=client.get_executor(), progress=False,
+                        **KW)
+    pd.testing.assert_frame_equal(no_wall(dask), no_wall(reference), check_exact=True)
+
+
+def test_scalars_and_default_stiffness():
+    """A scalar speed and no stiffness list: one case with the scene's support stiffness."""
+    df = tw.sweep(SCENE, tw.kmh(300), max_workers=1, progress=False, **KW)
+    assert len(df) == 1 and df.support_stiffness[0] == SCENE.supports.stiffness
+
+
+# --------------------------------------------------------------------------------------------
+# store
+def records(store):
+    return sorted(Path(store).glob("case-*.json"))
+
+
+def test_store_round_trip_and_skip(tmp_path, reference, counted):
+    """Every case is written to the store; load_sweep gives the same table; a re-run computes
+    nothing and returns the stored rows exactly (wall_time included)."""
+    store = tmp_path / "s"
+    first = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    assert len(counted) == 4 and len(records(store)) == 4
+    pd.testing.assert_frame_equal(no_wall(first), no_wall(reference), check_exact=True)
+    loaded = tw.load_sweep(store)
+    pd.testing.assert_frame_equal(loaded, first, check_exact=True)
+    again = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    assert len(counted) == 4 and again.attrs == {"computed": 0, "from_store": 4}
+    pd.testing.assert_frame_equal(again, first, check_exact=True)
+    # other settings are other cases: nothing is reused
+    tw.sweep(SCENE, SPEEDS[:1], STIFF[:1], max_workers=1, store=store, progress=False,
+             **dict(KW, rho_inf=0.5))
+    assert len(counted) == 5 and len(records(store)) == 5
+
+
+def test_resume_after_a_worker_raises(tmp_path, monkeypatch, counted):
+    """Serial sweep of 6 cases whose 3rd raises an unexpected error: the error propagates, the
+    2 finished cases are in the store; the re-run computes exactly the 4 others."""
+    store = tmp_path / "s"
+    speeds = [tw.kmh(150), tw.kmh(200), tw.kmh(300)]
+    real = sweep_mod._run_case
+
+    def failing(scene, speed, kwargs):  # real counts the cases it runs
+        if len(counted) == 2:
+            raise RuntimeError("worker lost")
+        return real(scene, speed, kwargs)
+
+    monkeypatch.setattr(sweep_mod, "_run_case", failing)
+    with pytest.raises(RuntimeError, match="worker lost"):
+        tw.sweep(SCENE, speeds, STIFF, max_workers=1, store=store, progress=False, **KW)
+    assert len(records(store)) == 2
+    done = set(counted)
+    calls = []
+
+    def count(scene, speed, kwargs):
+        calls.append((speed, scene.supports.stiffness))
+        return real(scene, speed, kwargs)
+
+    monkeypatch.setattr(sweep_mod, "_run_case", count)
+    df = tw.sweep(SCENE, speeds, STIFF, max_workers=1, store=store, progress=False, **KW)
+    assert df.attrs == {"computed": 4, "from_store": 2}
+    assert set(calls) == {(v, k) for v in speeds for k in STIFF} - done
+    fresh = tw.sweep(SCENE, speeds, STIFF, max_workers=1, progress=False, **KW)
+    pd.testing.assert_frame_equal(no_wall(df), no_wall(fresh), check_exact=True)
+
+
+def test_parallel_sweep_keeps_every_finished_case_when_one_raises(tmp_path, monkeypatch):
+    """On a 2-thread executor one case raises: every other case that finished (including the
+    ones still running at the time) is stored; the re-run recomputes only the missing ones."""
+    store = tmp_path / "s"
+    speeds = [tw.kmh(150), tw.kmh(200), tw.kmh(250), tw.kmh(300)]
+    real = sweep_mod._run_case
+    bad = (speeds[1], STIFF[0])
+
+    def failing(scene, speed, kwargs):
+        if (speed, scene.supports.stiffness) == bad:
+            raise RuntimeError("worker lost")
+        return real(scene, speed, kwargs)
+
+    monkeypatch.setattr(sweep_mod, "_run_case", failing)
+    with cf.ThreadPoolExecutor(2) as ex, pytest.raises(RuntimeError, match="worker lost"):
+        tw.sweep(SCENE, speeds, STIFF, executor=ex, store=store, progress=False, **KW)
+    stored = {(r.speed, r.support_stiffness) for r in tw.load_sweep(store).itertuples()}
+    assert bad not in stored and len(stored) >= 1
+    calls = []
+
+    def count(scene, speed, kwargs):
+        calls.append((speed, scene.supports.stiffness))
+        return real(scene, speed, kwargs)
+
+    monkeypatch.setattr(sweep_mod, "_run_case", count)
+    with cf.ThreadPoolExecutor(2) as ex:
+        df = tw.sweep(SCENE, speeds, STIFF, executor=ex, store=store, progress=False, **KW)
+    assert set(calls) == {(v, k) for v in speeds for k in STIFF} - stored
+    assert df.attrs["from_store"] == len(stored) and (df.error == "").all()
+
+
+def test_corrupt_records_are_detected_and_recomputed(tmp_path, counted):
+    """Four kinds of damage to 4 of 6 records -- truncated (a partial write), a value edited
+    without its checksum, another case's record under this name, not JSON -- are each reported
+    and recomputed; the 2 sound records are used; a leftover temporary file is ignored. The
+    final table equals the original one."""
+    store = tmp_path / "s"
+    speeds = [tw.kmh(150), tw.kmh(200), tw.kmh(300)]
+    first = tw.sweep(SCENE, speeds, STIFF, max_workers=1, store=store, progress=False, **KW)
+    paths = records(store)
+    assert len(paths) == 6 and len(counted) == 6
+    text = paths[0].read_text()
+    paths[0].write_text(text[: len(text) // 2])
+    rec = json.loads(paths[1].read_text())
+    rec["row"]["amplitude"] *= 1.0 + 1e-12
+    paths[1].write_text(json.dumps(rec))
+    paths[2].write_bytes(paths[3].read_bytes())
+    paths[4].write_bytes(b"\x00\xff not json")
+    (store / ".tmp-leftover.json").write_text("{")
+    with pytest.warns(RuntimeWarning) as warned:
+        df = tw.sweep(SCENE, speeds, STIFF, max_workers=1, store=store, progress=False, **KW)
+    reasons = " ".join(str(w.message) for w in warned)
+    assert len(warned) == 4
+    for reason in ("unreadable", "checksum mismatch", "other inputs"):
+        assert reason in reasons
+    assert df.attrs == {"computed": 4, "from_store": 2} and len(counted) == 10
+    pd.testing.assert_frame_equal(no_wall(df), no_wall(first), check_exact=True)
+    pd.testing.assert_frame_equal(no_wall(tw.load_sweep(store)), no_wall(first),
+                                  check_exact=True)
+
+
+def test_load_sweep_leaves_out_corrupt_records(tmp_path):
+    store = tmp_path / "s"
+    tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    p = records(store)[0]
+    p.write_text(p.read_text().replace('"error": ""', '"error": "x"'))
+    with pytest.warns(RuntimeWarning, match="checksum mismatch"):
+        df = tw.load_sweep(store)
+    assert len(df) == 3
+    with pytest.raises(ValueError, match="path"):
+        tw.load_sweep(tmp_path / "missing")
+
+
+# --------------------------------------------------------------------------------------------
+def test_diverging_and_rejected_cases_are_recorded(tmp_path):
+    """Explicit RK4 at dt = 5e-6 s is stable on 140 MN/m supports (limit 1.03e-5 s) and diverges
+    on 1e13 N/m ones (their own frequency pushes the limit to 2.4e-6 s); 400 m/s is above
+    simulate's speed range (ValueError). Those rows carry the message and NaN outputs, the
+    others complete; the failures are stored and not retried unless retry_errors=True.
+    simulate's StabilityWarning for the stiff case is issued as usual (here, in this process)."""
+    store = tmp_path / "s"
+    kw = dict(KW, integrator="explicit", dt=5e-6)
+    args = (SCENE, [tw.kmh(300), 400.0], [140e6, 1e13])
+    with pytest.warns(tw.StabilityWarning, match="above the predicted stability limit"):
+        df = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)
+    ok = df.error == ""
+    assert ok.tolist() == [True, False, False, False]
+    assert df.error[1].startswith("DivergenceError:") and "stability limit" in df.error[1]
+    assert all(e.startswith("ValueError: speed = 400.0") for e in df.error[2:])
+    assert np.isfinite(df.amplitude[0]) and df.lost_contact[0] == False
+    assert df.loc[~ok, OUTPUTS].isna().all().all() and df.lost_contact[~ok].isna().all()
+    assert (df.integrator == "explicit").all() and (df.dt == 5e-6).all()
+    again = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)
+    assert again.attrs == {"computed": 0, "from_store": 4}
+    pd.testing.assert_frame_equal(again, df, check_exact=True)
+    with pytest.warns(tw.StabilityWarning):
+        retried = tw.sweep(*args, max_workers=1, store=store, progress=False,
+                           retry_errors=True, **kw)
+    assert retried.attrs == {"computed": 3, "from_store": 1}
+    pd.testing.assert_frame_equal(no_wall(retried), no_wall(df), check_exact=True)
+
+
+@pytest.mark.parametrize("kwargs,exc,match", [
+    ({"speed": []}, ValueError, "speed is empty"),
+    ({"speed": [10.0, -1.0]}, ValueError, "speed = -1.0"),
+    ({"speed": [0.0]}, ValueError, "speed"),
+    ({"speed": [math.nan]}, ValueError, "speed contains NaN"),
+    ({"speed": [10.0, 10.0]}, ValueError, "speed contains duplicate"),
+    ({"speed": [[1.0, 2.0]]}, ValueError, "speed must be"),
+    ({"speed": "fast"}, TypeError, "speed"),
+    ({"speed": 10.0, "support_stiffness": []}, ValueError, "support_stiffness is empty"),
+    ({"speed": 10.0, "support_stiffness": [1e8, -1e8]}, ValueError, "support_stiffness = -1"),
+    ({"speed": 10.0, "support_stiffness": math.inf}, ValueError, "support_stiffness contains"),
+    ({"speed": 10.0, "dtt": 1e-5}, TypeError, "dtt"),
+    ({"speed": 10.0, "max_workers": 0}, ValueError, "max_workers"),
+    ({"speed": 10.0, "executor": object()}, TypeError, "executor"),
+    ({"speed": 10.0, "executor": cf.ThreadPoolExecutor(1), "max_workers": 2}, ValueError,
+     "executor or max_workers"),
+    ({"speed": 10.0, "x_end": np.array([1.0])}, TypeError, "cannot store"),
+])
+def test_bad_arguments(kwargs, exc, match, tmp_path):
+    """Rejected before anything runs (and before the store is touched)."""
+    with pytest.raises(exc, match=match):
+        tw.sweep(SCENE, progress=False, store=tmp_path / "s", **kwargs)
+    assert not records(tmp_path / "s")
+    with pytest.raises(TypeError, match="scene"):
+        tw.sweep("kato", 10.0)
+    (tmp_path / "file").write_text("")
+    with pytest.raises(ValueError, match="store"):
+        tw.sweep(SCENE, 10.0, store=tmp_path / "file")
+
+
+def test_progress_bar(capsys):
+    """On by default (tqdm on stderr outside Jupyter), silenced by progress=False."""
+    tw.sweep(SCENE, SPEEDS, STIFF[:1], max_workers=1, **KW)
+    err = capsys.readouterr().err
+    assert "sweep" in err and "2/2" in err
+    tw.sweep(SCENE, SPEEDS, STIFF[:1], max_workers=1, progress=False, **KW)
+    assert capsys.readouterr().err == ""
+
+
+# --------------------------------------------------------------------------------------------
+CTRL_C_SCRIPT = textwrap.dedent("""
+    import sys
+    import trackwheel as tw
+
+    if __name__ == "__main__":  # the process pool re-imports the main module
+        tw.sweep(tw.Scene.kato2005(), [tw.kmh(v) for v in (300, 250, 200, 150)], [1e8, 1.4e8],
+                 store=sys.argv[1], max_workers=2, progress=False, x_start=0.25, x_end=2.25,
+                 dt=2e-6)
+""")
+
+
+def test_ctrl_c_keeps_finished_cases_and_stops_the_workers(tmp_path):
+    """SIGINT to a sweep running on its own 2-process pool (as Jupyter's interrupt does: the
+    parent only) after the first 2 of 8 cases (0.3-0.7 s each, fastest first) are stored: KeyboardInterrupt within 10 s,
+    every stored record sound, its worker processes gone."""
+    store = tmp_path / "s"
+    script = tmp_path / "run.py"
+    script.write_text(CTRL_C_SCRIPT)
+    env = dict(os.environ, PYTHONPATH=str(Path(tw.__file__).parent.parent))
+    proc = subprocess.Popen([sys.executable, str(script), str(store)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 120.0
+        while len(records(store)) < 2:
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        children = psutil.Process(proc.pid).children(recursive=True)
+        t0 = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=10.0)
+        assert time.monotonic() - t0 < 10.0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert b"KeyboardInterrupt" in err and proc.returncode != 0
+    _, alive = psutil.wait_procs(children, timeout=10.0)
+    assert not alive
+    df = tw.load_sweep(store)  # warnings are errors: every record is sound
+    assert 2 <= len(df) < 8 and (df.error == "").all()
