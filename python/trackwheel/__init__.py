@@ -14,8 +14,13 @@ from .convergence import (Convergence, ConvergenceWarning, StabilityWarning, con
                           default_settings, stability_limit)
 from .analysis import Analysis, amplitude_spectrum, analyse, main_frequency
 from .sweep import load_sweep, sweep
+from .fidelity import adequacy, recommend
+from .simulate import FIDELITY_LEVELS
 
 __all__ = [
+    "FIDELITY_LEVELS",
+    "adequacy",
+    "recommend",
     "Analysis",
     "amplitude_spectrum",
     "analyse",

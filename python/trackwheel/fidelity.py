@@ -1,0 +1,98 @@
+"""Model no more than a scene needs: fidelity levels side by side (issue 7).
+
+:func:`adequacy` runs each level of :data:`trackwheel.simulate.FIDELITY_LEVELS` on the same scene
+and speeds, compares its headline outputs with the full model (nonlinear ANCF rail, the scene's
+contact law, contact-point search with obliquity, rolling constraint with slip) and recommends
+the cheapest level whose outputs stay within ``tol`` of it at every speed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from . import _validate as v
+from .analysis import analyse
+from .convergence import default_settings
+from .scene import Scene
+from .simulate import FIDELITY_LEVELS, simulate
+
+__all__ = ["adequacy", "recommend"]
+
+_HEADLINE = ("amplitude", "main_frequency", "peak_contact_force")
+
+
+def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
+             levels=FIDELITY_LEVELS, reference: str = "full", n_modes: int | None = None,
+             **simulate_kwargs) -> pd.DataFrame:
+    """Run the fidelity ``levels`` side by side at each of ``speeds`` [m/s].
+
+    Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude``
+    [m] (max |d|, MODEL.md §8), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
+    relative differences from the ``reference`` level (``d_amplitude``, ``d_main_frequency``,
+    ``d_peak_contact_force``), ``wall_time`` [s], ``adequate`` (all three differences <= tol)
+    and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the cheapest
+    level (smallest total wall time) adequate at every speed; ``df.attrs["tol"]`` the tolerance.
+    ``n_modes`` applies to the linear levels (None: all coordinates). All levels run on the same
+    mesh and time step: ``simulate_kwargs``' ``dt``/``n_elements``, or else
+    :func:`trackwheel.default_settings` (the derived defaults of the full model).
+
+    The main frequency is compared relative to itself; the frequency resolution of a run is
+    1/T (T the run's duration), so frequency differences below it are not meaningful.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    speeds = v.positions("speeds", speeds, 0.0, 300.0, unit="m/s")
+    if np.any(speeds <= 0):
+        raise ValueError("speeds must be > 0 m/s")
+    tol = v.number("tol", tol, low=0.0, low_open=True)
+    levels = tuple(levels)
+    if not levels:
+        raise ValueError("levels must name at least one of " + ", ".join(FIDELITY_LEVELS))
+    for lv in levels:
+        v.choice("levels", lv, set(FIDELITY_LEVELS))
+    v.choice("reference", reference, set(FIDELITY_LEVELS))
+    run_levels = (reference,) + tuple(lv for lv in levels if lv != reference)
+    # every level on the same mesh and step: the derived defaults unless given
+    defaults = default_settings(scene)
+    if "dt" not in simulate_kwargs and "n_elements" not in simulate_kwargs:
+        simulate_kwargs = dict(simulate_kwargs, **defaults)
+
+    rows = []
+    for speed in speeds:
+        ref = None
+        for lv in run_levels:
+            kw = dict(simulate_kwargs)
+            if lv.startswith("linear/") and n_modes is not None:
+                kw["n_modes"] = n_modes
+            row = dict(speed=float(speed), speed_kmh=float(speed) * 3.6, level=lv, error="")
+            try:
+                r = simulate(scene, float(speed), fidelity=lv, **kw)
+                a = analyse(r)
+                row.update(amplitude=a.amplitude, main_frequency=a.main_frequency,
+                           peak_contact_force=a.max_contact_force, wall_time=r.wall_time,
+                           lost_contact=a.lost_contact)
+            except (ValueError, RuntimeError) as exc:  # DivergenceError is a RuntimeError
+                row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
+                           wall_time=np.nan, lost_contact=False, error=str(exc))
+            if lv == reference:
+                ref = row
+            for key in _HEADLINE:
+                row["d_" + key] = abs(row[key] / ref[key] - 1.0) if ref[key] else np.nan
+            rows.append(row)
+    df = pd.DataFrame(rows)
+    df["adequate"] = (df[["d_" + k for k in _HEADLINE]] <= tol).all(axis=1) & (df.error == "")
+    df.attrs["tol"] = tol
+    df.attrs["reference"] = reference
+    df.attrs["recommended"] = recommend(df)
+    return df
+
+
+def recommend(df: pd.DataFrame) -> str:
+    """The cheapest level (least total wall time) adequate at every speed in an
+    :func:`adequacy` table; the reference level if none other is."""
+    ok = df.groupby("level").agg(adequate=("adequate", "all"), wall_time=("wall_time", "sum"))
+    ok = ok[ok.adequate]
+    if ok.empty:
+        return df.attrs.get("reference", "full")
+    return str(ok.wall_time.idxmin())
