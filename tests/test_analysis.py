@@ -105,23 +105,24 @@ def run300():
 
 
 def test_quasi_static_line_matches_direct_static_solves(run300):
-    """d(t) = y_B - y_qs(X_A): y_qs interpolated from the cached element-aligned 5 mm grid equals
-    direct static solves at 12 sample positions within the interpolation error. The cubic
-    stencils' error is O(h^4 d4y/dX4): measured 1.2e-11 m here, estimated by the analysis
-    (y_qs_error, from the grid's fourth differences) at 1.7e-11 m; the solver's own tolerance
-    is ~1e-13 m. Both are < 1e-5 of the dynamic amplitude (~5e-6 m)."""
+    """d(t) = y_B - y_qs(X_A): y_qs from each element's degree-8 Chebyshev series (8 static
+    solves per element, cached) equals direct static solves at 12 sample positions within the
+    interpolation error. Within an element y_qs is a degree-6 polynomial up to the geometric
+    nonlinearity, so the series is nearly exact: measured 1.7e-13 m here, estimated by the
+    analysis (y_qs_error = |c_7| + |c_8|) at 5e-13 m; the static solver's own tolerance is
+    ~1e-13 m. Both are < 1e-7 of the dynamic amplitude (~5e-6 m)."""
     a = tw.analyse(run300)
-    assert a.y_qs_error < 1e-10
+    assert a.y_qs_error < 1e-11
     idx = np.random.default_rng(3).choice(run300.t.size, 12, replace=False)
     ref = tw.quasi_static(run300.scene, run300.x_wheel[idx],
                           n_elements=run300.settings["n_elements"]).y_contact
     d_ref = run300.y_contact[idx] - ref
-    assert np.max(np.abs(a.dynamic[idx] - d_ref)) <= 1.5 * a.y_qs_error + 1e-12
-    assert np.max(np.abs(a.y_qs[idx] - ref)) <= 1.5 * a.y_qs_error + 1e-12
-    # the run starts from static equilibrium at X_0 = 0.25 m, a grid point: d(0) = 0 to the
-    # static solver's tolerance
+    assert np.max(np.abs(a.dynamic[idx] - d_ref)) <= 1.5 * a.y_qs_error + 1e-13
+    assert np.max(np.abs(a.y_qs[idx] - ref)) <= 1.5 * a.y_qs_error + 1e-13
+    # the run starts from static equilibrium at X_0 = 0.25 m, an element end where the series
+    # interpolates a static solve: d(0) = 0 to the static solver's tolerance
     assert abs(a.dynamic[0]) < 1e-12
-    assert a.amplitude > 1e4 * a.y_qs_error
+    assert a.amplitude > 1e6 * a.y_qs_error
 
 
 def test_analysis_outputs_are_consistent(run300):

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from numpy.polynomial import chebyshev
 
 from . import _validate as v
 from .scene import Scene
@@ -28,7 +29,7 @@ from .simulate import Result
 from .statics import quasi_static
 
 __all__ = [
-    "QS_GRID_SPACING",
+    "QS_DEGREE",
     "ZERO_PADDING",
     "Analysis",
     "amplitude_spectrum",
@@ -36,16 +37,19 @@ __all__ = [
     "main_frequency",
 ]
 
-#: Largest spacing of the grid of wheel positions on which the quasi-static line is solved [m].
-#: The grid is aligned with the element boundaries (an integer number m >= 3 of intervals per
-#: element). y_qs(X) is a smooth (polynomial) function of X inside an element and is only C2
-#: across nodes, so it is interpolated with 4-point (cubic) Lagrange stencils that never straddle
-#: a node: the error is O(h^4 d4y/dX4). For the paper's scene (20 elements, h = 5 mm) the
-#: measured error against direct static solves is below 2e-11 m, 1e-7 of the static deflection
-#: (7e-5 m) and 1e-5 of the dynamic amplitude at 50 km/h (1.2e-6 m); linear interpolation on
-#: the same grid would err by 2.5e-9 m. Each analysis also reports its own estimate
-#: (``Analysis.y_qs_error``).
-QS_GRID_SPACING = 0.005
+#: Degree of the polynomial that represents the quasi-static line inside each rail element.
+#: With the wheel at X, the static contact-point displacement is, to within the geometric
+#: nonlinearity, N(X)^T K^-1 N(X) P with cubic Hermite shape functions N: a polynomial of degree
+#: 6 in X inside an element, with kinks in its derivatives only at the nodes (the support springs
+#: enter K, not N). So y_qs is solved at the QS_DEGREE + 1 Chebyshev-Lobatto points of each
+#: element the run crosses (the end points shared with the neighbours: QS_DEGREE static solves
+#: per element) and interpolated by the element's Chebyshev series. Measured against direct
+#: static solves: < 2e-13 m for the paper's scene with 20 elements and < 1e-15 m with 80, i.e.
+#: below 1e-8 of the static deflection (7e-5 m) and 1e-7 of the smallest dynamic amplitude of
+#: Fig. 7 (1.2e-6 m at 50 km/h); a cubic on a 5 mm grid costs 7 (20 elements) or 1.5 (80) times
+#: as many solves for an error of 2e-11 m. Each analysis reports an estimate of its own error,
+#: |c_7| + |c_8| of the Chebyshev coefficients (``Analysis.y_qs_error``, ~1e-12 m here).
+QS_DEGREE = 8
 #: The FFT length is the smallest power of two >= ZERO_PADDING x the record length.
 ZERO_PADDING = 8
 
@@ -141,57 +145,35 @@ def main_frequency(signal, dt: float, *, n_fft: int | None = None, f_min: float 
 # --------------------------------------------------------------------------------------------
 # quasi-static line
 @lru_cache(maxsize=128)
-def _qs_grid(scene: Scene, n_elements: int, e0: int, e1: int):
-    """y_qs on the element-aligned grid covering elements e0 .. e1-1 of the mesh.
+def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int):
+    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh.
 
-    Returns (x_first [m], h [m], m intervals per element, y (n,) [m]). Cached per (scene, mesh,
-    element range): the same range is always solved the same way (one warm-started sweep), so
-    the line is bit-identical whichever process or which earlier analysis computed it.
+    Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
+    mesh, element range): the same range is always solved the same way (one warm-started
+    sweep), so the line is bit-identical whichever process or earlier analysis computed it.
     """
-    L = scene.rail.length
-    le = L / n_elements
-    m = max(3, math.ceil(le / QS_GRID_SPACING))
-    h = le / m
-    j = np.arange(e0 * m, e1 * m + 1)
-    x = np.minimum(j * h, L)
+    n = QS_DEGREE
+    le = scene.rail.length / n_elements
+    t = -np.cos(np.pi * np.arange(n + 1) / n)  # Chebyshev-Lobatto points on [-1, 1]
+    n_el = e1 - e0
+    x = ((np.arange(e0, e1)[:, None] + 0.5 * (t[None, :-1] + 1.0)) * le).ravel()
+    x = np.minimum(np.append(x, e1 * le), scene.rail.length)
     y = quasi_static(scene, x, n_elements=n_elements).y_contact
-    y.setflags(write=False)
-    return float(x[0]), h, m, y
-
-
-def _lagrange4(y: np.ndarray, u: np.ndarray, m: int) -> np.ndarray:
-    """Cubic Lagrange interpolation of samples y_j at grid coordinate u (x = x_first + u h),
-    with 4-point stencils kept inside one element (m intervals per element, m >= 3)."""
-    i = np.clip(np.floor(u).astype(np.int64), 0, y.size - 2)  # interval index
-    p = i % m  # interval within its element
-    j0 = np.where(p == 0, i, np.where(p == m - 1, i - 2, i - 1))
-    s = u - j0  # local coordinate in [0, 3]
-    w0 = -(s - 1.0) * (s - 2.0) * (s - 3.0) / 6.0
-    w1 = s * (s - 2.0) * (s - 3.0) / 2.0
-    w2 = -s * (s - 1.0) * (s - 3.0) / 2.0
-    w3 = s * (s - 1.0) * (s - 2.0) / 6.0
-    return w0 * y[j0] + w1 * y[j0 + 1] + w2 * y[j0 + 2] + w3 * y[j0 + 3]
-
-
-def _lagrange4_error(y: np.ndarray, m: int) -> float:
-    """Estimate of the largest interpolation error [m]: |x (x-1)(x-2)(x-3)| / 24 <= 1/24 on the
-    stencil times h^4 |d4y/dX4| ~ the largest fourth difference inside an element."""
-    n_el = (y.size - 1) // m
-    per = y[: n_el * m + 1]
-    # fourth differences of each element's m + 1 samples (never across a node)
-    idx = np.arange(n_el)[:, None] * m + np.arange(m + 1)[None, :]
-    d4 = np.diff(per[idx], n=4, axis=1)
-    return float(np.max(np.abs(d4)) / 24.0) if d4.size else 0.0
+    values = y[np.arange(n_el)[:, None] * n + np.arange(n + 1)[None, :]]  # (n_el, n + 1)
+    coef = np.linalg.solve(chebyshev.chebvander(t, n), values.T)  # (n + 1, n_el)
+    coef.setflags(write=False)
+    return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
 
 
 def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray):
-    L = scene.rail.length
-    le = L / n_elements
+    """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
+    le = scene.rail.length / n_elements
     e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
     e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
-    x_first, h, m, y = _qs_grid(scene, n_elements, e0, e1)
-    u = np.clip((x - x_first) / h, 0.0, y.size - 1.0)
-    return _lagrange4(y, u, m), _lagrange4_error(y, m)
+    coef, err = _qs_series(scene, n_elements, e0, e1)
+    k = np.clip(np.floor(x / le).astype(np.int64) - e0, 0, e1 - e0 - 1)
+    t = np.clip(2.0 * (x / le - (k + e0)) - 1.0, -1.0, 1.0)
+    return chebyshev.chebval(t, coef[:, k], tensor=False), err
 
 
 # --------------------------------------------------------------------------------------------
@@ -210,7 +192,7 @@ class Analysis:
     frequency_resolution: float  #: 1 / (N dt) of the record [Hz]
     spectrum: tuple[np.ndarray, np.ndarray]  #: (freqs [Hz], amplitude of d [m]), see below
     n_fft: int  #: FFT length used (zero padding included)
-    y_qs_error: float  #: estimated interpolation error of y_qs [m] (see QS_GRID_SPACING)
+    y_qs_error: float  #: estimated interpolation error of y_qs [m] (see QS_DEGREE)
     normal_force: np.ndarray  #: N [N]
     min_contact_force: float  #: min N [N]
     max_contact_force: float  #: max N [N]
@@ -232,10 +214,10 @@ def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
     """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (MODEL.md §8).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
-    ["n_elements"]``) on an element-aligned grid of wheel positions (spacing <= 5 mm, cached
-    per scene, mesh and range) and interpolated with cubic stencils inside each element;
-    the error (< 2e-11 m for the paper's scene, ``Analysis.y_qs_error`` estimates it for any
-    scene) is negligible against the dynamic part. The spectrum and main frequency are those
+    ["n_elements"]``) at 8 Chebyshev points per element crossed (cached per scene, mesh and
+    range) and interpolated by each element's degree-8 Chebyshev series (see
+    :data:`QS_DEGREE`): the error (< 2e-13 m for the paper's scene, ``Analysis.y_qs_error``
+    estimates it for any scene) is negligible against the dynamic part. The spectrum and main frequency are those
     of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling interval is
     ``dt x output_every``.
 
