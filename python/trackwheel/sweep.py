@@ -291,8 +291,14 @@ def _default_workers() -> int:
 def _pool(workers: int) -> ProcessPoolExecutor:
     # forkserver (POSIX) or spawn: never fork a parent that may run threads (progress bars,
     # Jupyter, Dask); the workers import trackwheel afresh and run _run_case by name.
-    methods = multiprocessing.get_all_start_methods()
-    ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        ctx = multiprocessing.get_context("forkserver")
+        # The server (started once per session) imports trackwheel once; the workers of every
+        # sweep fork from it ready to run: ~0.1 s instead of ~0.5-1 s per pool. "__main__" is
+        # the default preload. No effect if the server already runs.
+        ctx.set_forkserver_preload(["__main__", "trackwheel.sweep"])
+    else:
+        ctx = multiprocessing.get_context("spawn")
     return ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
 
 
