@@ -112,3 +112,19 @@ def test_bad_fidelity_arguments():
         tw.simulate(s, V, n_modes=10)
     with pytest.raises(ValueError, match="n_modes"):
         tw.simulate(s, V, fidelity="linear/sprung", n_modes=0)
+
+
+def test_sweep_auto_fidelity_chooses_and_reports():
+    """fidelity="auto" decides on the most dynamic sample case (highest speed, softest supports),
+    sweeps at the chosen level, and says which; the rows equal sweeps at that level."""
+    scene = tw.Scene.kato2005()
+    kw = dict(x_end=0.75, **SET)
+    df = tw.sweep(scene, speed=[tw.kmh(100), V], support_stiffness=[70e6, 140e6],
+                  fidelity="auto", max_workers=1, progress=False, **kw)
+    auto = df.attrs["fidelity_auto"]
+    assert auto["chosen"] == "linear/sprung"
+    assert auto["sample_speed"] == V and auto["sample_support_stiffness"] == 70e6
+    assert set(df.fidelity) == {"linear/sprung"}
+    ref = tw.sweep(scene, speed=[tw.kmh(100), V], support_stiffness=[70e6, 140e6],
+                   fidelity="linear/sprung", max_workers=1, progress=False, **kw)
+    np.testing.assert_array_equal(df.amplitude.to_numpy(), ref.amplitude.to_numpy())

@@ -9,7 +9,6 @@ the cheapest level whose outputs stay within ``tol`` of it at every speed.
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 
 from . import _validate as v
 from .analysis import analyse
@@ -58,6 +57,8 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     if "dt" not in simulate_kwargs and "n_elements" not in simulate_kwargs:
         simulate_kwargs = dict(simulate_kwargs, **defaults)
 
+    import pandas as pd  # lazily: keeps `import trackwheel` light
+
     rows = []
     for speed in speeds:
         ref = None
@@ -88,7 +89,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     return df
 
 
-def recommend(df: pd.DataFrame) -> str:
+def recommend(df) -> str:
     """The cheapest level (least total wall time) adequate at every speed in an
     :func:`adequacy` table; the reference level if none other is."""
     ok = df.groupby("level").agg(adequate=("adequate", "all"), wall_time=("wall_time", "sum"))

@@ -89,7 +89,7 @@ COLUMNS = (
     "wall_time",  # simulate's wall time [s] (time to failure for failed cases)
     # settings used (from Result.settings; for failed cases the requested or default ones)
     "integrator", "dt", "n_elements", "x_start", "x_end", "t_end", "output_every", "rho_inf",
-    "baumgarte", "rolling", "start", "drop_height",
+    "baumgarte", "rolling", "start", "drop_height", "fidelity", "n_modes",
     "steps",  # time steps taken
     "version",  # trackwheel version that computed the row
     "case",  # inputs hash (the store's record name)
@@ -98,7 +98,7 @@ _FLOAT = ("speed", "speed_kmh", "support_stiffness", "amplitude", "main_frequenc
           "frequency_resolution", "min_contact_force", "max_contact_force", "wall_time", "dt",
           "x_start", "x_end", "t_end", "rho_inf", "baumgarte", "drop_height")
 _SETTINGS = ("integrator", "dt", "n_elements", "x_start", "t_end", "output_every", "rho_inf",
-             "baumgarte", "rolling", "start", "drop_height")
+             "baumgarte", "rolling", "start", "drop_height", "fidelity", "n_modes")
 _SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).parameters.items()
                     if p.kind is inspect.Parameter.KEYWORD_ONLY}
 
@@ -113,7 +113,8 @@ def _case_scene(scene: Scene, stiffness: float) -> Scene:
 def _error_row(scene: Scene, speed: float, kwargs: dict, message: str, wall: float) -> dict:
     row = {c: math.nan for c in _FLOAT}
     row.update(lost_contact=None, n_elements=scene.rail.n_elements, output_every=None,
-               steps=None, integrator=None, rolling=None, start=None)
+               steps=None, integrator=None, rolling=None, start=None, fidelity=None,
+               n_modes=None)
     for name in _SETTINGS:  # what was asked for; None/NaN where simulate resolves it
         given = kwargs.get(name, _SIMULATE_PARAMS.get(name))
         if given is not None:
@@ -319,7 +320,8 @@ def _terminate(pool: ProcessPoolExecutor) -> None:
 
 def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | None = None,
           max_workers: int | None = None, store=None, progress: bool = True,
-          retry_errors: bool = False, **simulate_kwargs) -> pandas.DataFrame:  # noqa: F821
+          retry_errors: bool = False, fidelity_tol: float = 0.005,
+          **simulate_kwargs) -> pandas.DataFrame:  # noqa: F821
     """Run ``simulate`` + ``analyse`` for every (speed, support stiffness) pair.
 
     Parameters
@@ -337,8 +339,14 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
     progress : show a progress bar over the cases (``tqdm.auto``: the notebook widget in
         Jupyter). ``simulate``'s own bar is always off in a sweep.
     retry_errors : recompute stored cases that failed (DivergenceError, ValueError).
+    fidelity_tol : with ``fidelity="auto"``: the tolerance handed to
+        :func:`trackwheel.adequacy` (relative, on amplitude, main frequency, peak force).
     **simulate_kwargs : passed to every :func:`trackwheel.simulate` call (integrator, dt,
-        n_elements, x_start, x_end, ...).
+        n_elements, x_start, x_end, fidelity, ...). ``fidelity="auto"`` first runs
+        :func:`trackwheel.adequacy` on one sample case -- the highest speed on the softest
+        supports, the most dynamic corner of the sweep -- and sweeps at the cheapest level
+        within ``fidelity_tol`` of the full model; the choice is in the ``fidelity`` column and
+        ``df.attrs["fidelity_auto"]`` (chosen level, sample case, the adequacy table).
 
     Returns
     -------
@@ -366,6 +374,19 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
                         f"{sorted(set(_SIMULATE_PARAMS) - {'progress'})}")
     kwargs = dict(simulate_kwargs)
     _jsonable(kwargs)  # the store hashes them: plain numbers, strings, bools, None
+    auto = None
+    if kwargs.get("fidelity") == "auto":
+        from .fidelity import adequacy
+
+        fidelity_tol = v.number("fidelity_tol", fidelity_tol, low=0.0, low_open=True)
+        sample_v, sample_k = float(np.max(speeds)), float(np.min(stiffs))
+        rest = {key: val for key, val in kwargs.items() if key != "fidelity"}
+        table = adequacy(_case_scene(scene, sample_k), speeds=[sample_v], tol=fidelity_tol,
+                         **rest)
+        kwargs["fidelity"] = table.attrs["recommended"]
+        auto = dict(chosen=kwargs["fidelity"], sample_speed=sample_v,
+                    sample_support_stiffness=sample_k, tol=fidelity_tol,
+                    table=table.to_dict("records"))
     if executor is not None and not isinstance(executor, Executor):
         raise TypeError(f"executor must be a concurrent.futures.Executor, "
                         f"got {type(executor).__name__}")
@@ -410,7 +431,8 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
 
     from tqdm.auto import tqdm
 
-    bar = tqdm(total=len(cases), initial=n_stored, unit="case", desc="sweep",
+    bar = tqdm(total=len(cases), initial=n_stored, unit="case",
+               desc=f"sweep [{kwargs['fidelity']}]" if "fidelity" in kwargs else "sweep",
                disable=not progress)
 
     def finish(i: int, row: dict) -> None:
@@ -438,6 +460,8 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
 
     df = _frame(rows)
     df.attrs.update(computed=len(todo), from_store=n_stored)
+    if auto is not None:
+        df.attrs["fidelity_auto"] = auto
     return df
 
 
