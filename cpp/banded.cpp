@@ -12,10 +12,15 @@ void BandMatrix::resize(int n, int half_bandwidth) {
 }
 
 void BandMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  y = Eigen::VectorXd::Zero(n_);
+  // column-oriented: column j of the band is contiguous in data_
+  y.setZero(n_);
+  const int w = 2 * b_ + 1;
+  const double* d = data_.data();
   for (int j = 0; j < n_; ++j) {
     const int i0 = std::max(0, j - b_), i1 = std::min(n_ - 1, j + b_);
-    for (int i = i0; i <= i1; ++i) y(i) += at(i, j) * x(j);
+    const double xj = x(j);
+    const double* col = d + static_cast<std::ptrdiff_t>(j) * w + b_ - j;  // col[i] = A(i, j)
+    for (int i = i0; i <= i1; ++i) y(i) += col[i] * xj;
   }
 }
 
@@ -44,17 +49,23 @@ bool BandMatrix::factorize() {
 }
 
 void BandMatrix::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
-  for (int i = 0; i < n_; ++i) {  // L y = x (unit lower)
-    const int j0 = std::max(0, i - b_);
-    double s = x(i);
-    for (int j = j0; j < i; ++j) s -= at(i, j) * x(j);
-    x(i) = s;
+  // column-oriented forward and back substitution (contiguous band columns)
+  const int w = 2 * b_ + 1;
+  const double* d = data_.data();
+  double* xv = x.data();
+  for (int j = 0; j < n_; ++j) {  // L y = x (unit lower)
+    const double xj = xv[j];
+    if (xj == 0.0) continue;
+    const double* col = d + static_cast<std::ptrdiff_t>(j) * w + b_ - j;
+    const int i1 = std::min(n_ - 1, j + b_);
+    for (int i = j + 1; i <= i1; ++i) xv[i] -= col[i] * xj;
   }
-  for (int i = n_ - 1; i >= 0; --i) {  // U x = y
-    const int j1 = std::min(n_ - 1, i + b_);
-    double s = x(i);
-    for (int j = i + 1; j <= j1; ++j) s -= at(i, j) * x(j);
-    x(i) = s / at(i, i);
+  for (int j = n_ - 1; j >= 0; --j) {  // U x = y
+    const double* col = d + static_cast<std::ptrdiff_t>(j) * w + b_ - j;
+    const double xj = xv[j] / col[j];
+    xv[j] = xj;
+    const int i0 = std::max(0, j - b_);
+    for (int i = i0; i < j; ++i) xv[i] -= col[i] * xj;
   }
 }
 

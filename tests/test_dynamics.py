@@ -135,7 +135,9 @@ def test_pure_rolling_on_stiff_rail():
     scene = tw.Scene(rail=tw.Rail(youngs_modulus=2.058e15), supports=tw.Supports(stiffness=1e13),
                      rail_gravity=False)
     v = tw.kmh(100)
-    r = tw.simulate(scene, v, x_end=1.0)
+    # the constraint holds to the Newton tolerance: 1e-14 m on displacements keeps the velocity
+    # residual ~1e-9 m/s, far below the 1e-8 % (2.8e-9 m/s) asked for
+    r = tw.simulate(scene, v, x_end=1.0, n_elements=20, dt=1e-5, newton_tol=1e-14)
     assert np.max(np.abs(r.v_error)) < 1e-8
     rho = scene.wheel.radius - r.penetration
     assert np.allclose(r.thetadot, v / rho, rtol=1e-10, atol=0)
