@@ -194,6 +194,10 @@ class Scene:
                                 f"got {type(value).__name__}")
         v.number("Scene.gravity", self.gravity, low=0.0, unit="m/s^2")
         v.boolean("Scene.rail_gravity", self.rail_gravity)
+        if self.wheel.load == 0.0 and self.gravity == 0.0:  # P = F + M g = 0
+            raise ValueError("Wheel.load = 0 N with Scene.gravity = 0 m/s^2 leaves the wheel "
+                             "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
+                             "Scene.gravity > 0")
         self.supports.resolve(self.rail.length)  # supports must lie on the rail
 
     @classmethod

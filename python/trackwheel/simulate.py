@@ -38,6 +38,15 @@ DEFAULT_DT = {"generalized_alpha": 1e-5, "explicit": 1e-6}
 MAX_OUTPUT_BYTES = 2 * 1024**3
 #: Default number of kept samples: output_every is chosen so that at most this many are kept.
 DEFAULT_MAX_SAMPLES = 100_000
+#: Most time steps one run may take [-] (10^12: far beyond any practical run; keeps the step and
+#: decimation counts inside the kernel's integer types).
+MAX_STEPS = 10**12
+#: Target wall time between progress callbacks [s]. The callback is where the kernel checks for
+#: Ctrl-C, so this bounds the interruption latency; the interval in steps comes from a
+#: conservative cost estimate of _STEP_COST_PER_ELEMENT seconds per rail element and step (the
+#: measured costs are 1.6-3.4 us per element and step for generalized-alpha and explicit RK4).
+_PROGRESS_INTERVAL = 0.05
+_STEP_COST_PER_ELEMENT = 4e-6
 _N_FIELDS = 23
 
 _INTEGRATORS = {"generalized_alpha": _core.Integrator.generalized_alpha,
@@ -262,6 +271,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
+    dt_default = dt is None
     if dt is None:
         if derived:
             from .convergence import derived_dt
@@ -279,9 +289,16 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
 
             warn_above_stability_limit(model, wheel, contact, init.e, x0, init.y, dt)
     n_steps = int(round(t_end / dt))
+    if n_steps < 1:
+        raise ValueError(f"dt = {dt} s ({'default' if dt_default else 'given'}) is longer than "
+                         f"the simulated time {t_end:.6g} s; allowed range (0, {t_end:.6g}] s")
+    if n_steps > MAX_STEPS:
+        raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s, above "
+                         f"the limit of {MAX_STEPS:.0e} steps; allowed range "
+                         f"[{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s")
     if output_every is None:
         output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))
-    output_every = v.integer("output_every", output_every, low=1)
+    output_every = v.integer("output_every", output_every, low=1, high=2**31 - 1)
     n_samples = n_steps // output_every + 1
     if n_samples * _N_FIELDS * 8 > MAX_OUTPUT_BYTES:
         raise ValueError(
@@ -303,21 +320,23 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     s.output_every = output_every
     s.max_newton = max_newton
     s.newton_tol = newton_tol
-    s.record_energy = bool(energy)
+    s.record_energy = v.boolean("energy", energy)
 
     bar = None
     callback = None
-    show = (n_steps > 200_000) if progress is None else bool(progress)
+    show = (n_steps > 200_000) if progress is None else v.boolean("progress", progress)
+    # Ctrl-C is checked at every callback: about every _PROGRESS_INTERVAL seconds of wall time
+    every = max(1, min(20_000, int(_PROGRESS_INTERVAL / (_STEP_COST_PER_ELEMENT * (ne + 10)))))
     if show:
         from tqdm.auto import tqdm
 
         bar = tqdm(total=n_steps, unit="step", desc=f"simulate {speed * 3.6:.0f} km/h")
-        s.progress_every = max(1, min(20_000, n_steps // 100 or 1))
+        s.progress_every = max(1, min(every, n_steps // 100 or 1))
 
         def callback(step, total):
             bar.update(step - bar.n)
     else:
-        s.progress_every = 20_000
+        s.progress_every = every
 
         def callback(step, total):  # still lets Ctrl-C through every progress_every steps
             return None
