@@ -27,7 +27,7 @@ class EigenResult:
     positions: np.ndarray  #: wheel positions X, (n_pos,) [m]
     frequencies: np.ndarray  #: (n_pos, n_modes) [Hz], ascending in each row
     shapes: np.ndarray  #: (n_pos, n_dof + 1, n_modes): rail ANCF coords then wheel Y [-]
-    axial_frequencies: np.ndarray  #: lowest axial (x) modes of the rail, (n_axial,) [Hz]
+    axial_frequencies: np.ndarray  #: lowest axial (x) modes, (min(n_axial, axial dofs),) [Hz]
     n_elements: int  #: mesh used
 
     def rail_mode_shape(self, i_pos: int, mode: int, n_points: int = 201):
@@ -66,7 +66,8 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1)
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
-    n_axial = v.integer("n_axial", n_axial, low=0, high=n_x)
+    # at most the n_x axial modes the mesh has (one element has only one or two)
+    n_axial = min(v.integer("n_axial", n_axial, low=0), n_x)
     freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
                                          x.tolist(), n_modes)
     axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial

@@ -42,7 +42,8 @@ class Rail:
     n_elements: int = 20  #: n_e, number of ANCF elements [-]
     curvature: str = "exact"  #: "exact" kappa = r_s x r_ss/|r_s|^3, or "simplified" r_s x r_ss
     far_end: str = "roller"  #: "roller" (x free at s = L) or "pinned"
-    n_gauss: int = 5  #: Gauss points per element for the elastic forces [-]
+    n_gauss: int = 5  #: Gauss points per element for the elastic forces [-], 2..10 (one point
+    #: under-integrates the bending stiffness: singular, zero-frequency modes)
 
     def __post_init__(self):
         v.positive("Rail.length", self.length, "m")
@@ -54,7 +55,7 @@ class Rail:
         v.integer("Rail.n_elements", self.n_elements, low=1, high=5000)
         v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
         v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
-        v.integer("Rail.n_gauss", self.n_gauss, low=1, high=10)
+        v.integer("Rail.n_gauss", self.n_gauss, low=2, high=10)
 
     @property
     def mass_per_length(self) -> float:
