@@ -88,7 +88,8 @@ bool BorderedSolver::factorize_border(const BandMatrix& A, const Eigen::MatrixXd
   m_ = static_cast<int>(D.rows());
   if (m_ == 0) return true;
   Z_ = B;
-  for (int k = 0; k < m_; ++k) A.solve_in_place(Z_.col(k));
+  for (int k = 0; k < m_; ++k)
+    if (!Z_.col(k).isZero(0.0)) A.solve_in_place(Z_.col(k));  // a zero column stays zero
   C_ = C;
   const Eigen::MatrixXd S = D - C * Z_;
   if (!S.allFinite()) return false;

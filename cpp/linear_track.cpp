@@ -81,6 +81,17 @@ struct LinearTrack {
     Qg = Phi.transpose() * Qgy;
   }
 
+  // The generalised-coordinate vector of the y coordinate with full ANCF index i (zero if fixed):
+  // a unit vector, or a row of Phi.
+  Eigen::VectorXd basis(int i) const {
+    const int k = y_of_full[i];
+    if (k < 0) return Eigen::VectorXd::Zero(nq);
+    if (modal) return Phi.row(k).transpose();
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(nq);
+    e(k) = 1.0;
+    return e;
+  }
+
   // s(X), s_s(X), s_ss(X) over q: y(X) = s . q etc.
   void coupling(double X, Eigen::VectorXd& s, Eigen::VectorXd& ss, Eigen::VectorXd& sss) const {
     const MeshPoint mp = rail->locate(X);
@@ -175,7 +186,6 @@ SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
   A.set_linear_combination(1.0, tr.M, cv, tr.C);
   A.add_scaled(cq, tr.K);
   if (!A.factorize()) throw std::runtime_error("iteration matrix is singular");
-  BorderedSolver solver;
 
   SimOutput out;
   const long n_steps = static_cast<long>(std::llround(set.t_end / h));
@@ -224,36 +234,71 @@ SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
   };
   record(0.0);
 
-  Eigen::VectorXd a = qdd, Kq, Cq, r1, x1, x2;
+  Eigen::VectorXd a = qdd, Kq, Cq, r1, x1, x2, g;
+  const bool damped = tr.C.dense().cwiseAbs().maxCoeff() > 0.0;
   double aY = Ydd;
-  Eigen::MatrixXd B(nq, 2), Cb(2, nq), D(2, 2);
+  Eigen::Matrix2d D;
+  Eigen::MatrixXd W(nq, 4);
+  Eigen::VectorXd Z(nq);
+  int cache_el = -1;
   Eigen::VectorXd r2(2);
   for (long n = 1; n <= n_steps; ++n) {
     const double t1 = n * h;
-    tr.coupling(set.x_start + v * t1, s, ss, sss);
-    // predictors: parts of q_{n+1}, qd_{n+1} known at t_n (qdd_{n+1} = 0)
+    const double X1 = set.x_start + v * t1;
+    tr.coupling(X1, s, ss, sss);
+    {  // Z = A^-1 s(X) = sum_a N_a A^-1 s_a, columns cached per element
+      const MeshPoint mp = rail.locate(X1);
+      if (mp.element != cache_el) {
+        for (int k = 0; k < 4; ++k) {
+          W.col(k) = tr.basis(mp.dof0() + 2 * k + 1);
+          if (!W.col(k).isZero(0.0)) A.solve_in_place(W.col(k));
+        }
+        cache_el = mp.element;
+      }
+      Z = mp.h.n[0] * W.col(0) + mp.h.n[1] * W.col(1) + mp.h.n[2] * W.col(2) +
+          mp.h.n[3] * W.col(3);
+    }
+    // predictors: q_{n+1} = qh + cq qdd_{n+1}, qd_{n+1} = qdh + cv qdd_{n+1}
     const Eigen::VectorXd q0 = q, qd0 = qd, qdd0 = qdd, a0 = a;
     const double Y0 = Y, Yd0 = Yd, Ydd0 = Ydd, aY0 = aY;
-    Eigen::VectorXd qdd1 = qdd0;
-    double Ydd1 = Ydd0, N1 = N;
+    const Eigen::VectorXd ah = (af * qdd0 - am * a0) / (1.0 - am);  // a_{n+1} minus qdd part
+    const Eigen::VectorXd qh = q0 + h * qd0 + h * h * ((0.5 - bet) * a0 + bet * ah);
+    const Eigen::VectorXd qdh = qd0 + h * ((1.0 - gam) * a0 + gam * ah);
+    const double aYh = (af * Ydd0 - am * aY0) / (1.0 - am);
+    const double Yh = Y0 + h * Yd0 + h * h * ((0.5 - bet) * aY0 + bet * aYh);
+    const double Ydh = Yd0 + h * ((1.0 - gam) * aY0 + gam * aYh);
+    // g = C qdh + K qh - Q_g: r_q(qdd) = (M + cv C + cq K) qdd + g + s N
+    tr.K.multiply(qh, g);
+    if (damped) {
+      tr.C.multiply(qdh, Cq);
+      g += Cq;
+    }
+    g -= tr.Qg;
+    // Newton from qdd_{n+1} = 0: exact in one iteration for the linear wheel models
+    Eigen::VectorXd qdd1 = Eigen::VectorXd::Zero(nq);
+    double Ydd1 = 0.0, N1 = N;
     bool conv = false;
     for (int it = 0; it < std::max(set.max_newton, 1); ++it) {
-      const Eigen::VectorXd a1 = (af * qdd0 - am * a0 + (1.0 - af) * qdd1) / (1.0 - am);
-      q = q0 + h * qd0 + h * h * ((0.5 - bet) * a0 + bet * a1);
-      qd = qd0 + h * ((1.0 - gam) * a0 + gam * a1);
-      const double aY1 = (af * Ydd0 - am * aY0 + (1.0 - af) * Ydd1) / (1.0 - am);
-      Y = Y0 + h * Yd0 + h * h * ((0.5 - bet) * aY0 + bet * aY1);
-      Yd = Yd0 + h * ((1.0 - gam) * aY0 + gam * aY1);
+      q = qh + cq * qdd1;
+      qd = qdh + cv * qdd1;
+      Y = Yh + cq * Ydd1;
+      Yd = Ydh + cv * Ydd1;
       // residuals r = inertia + internal - external (solve J dx = -r)
-      tr.M.multiply(qdd1, r1);
-      tr.C.multiply(qd, Cq);
-      tr.K.multiply(q, Kq);
-      r1 += Cq + Kq - tr.Qg + N1 * s;
-      r1 = -r1;
-      B.setZero();
-      Cb.setZero();
+      if (it == 0) {
+        r1 = -(g + N1 * s);
+      } else {
+        tr.M.multiply(qdd1, r1);
+        tr.K.multiply(qdd1, Kq);
+        r1 += cq * Kq + g + N1 * s;
+        if (damped) {
+          tr.C.multiply(qdd1, Cq);
+          r1 += cv * Cq;
+        }
+        r1 = -r1;
+      }
+      // border [Y'', N]: A x1 + s dN = r1,  D [dY''; dN] + c s^T x1 e_1 = r2
       D.setZero();
-      B.col(1) = s;  // d r_q / d N
+      double c = 0.0;
       switch (wm) {
         case WheelModel::MovingForce:
           r2(0) = -Ydd1;  // dummy: the 'wheel' follows nothing
@@ -267,7 +312,7 @@ SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
           D(0, 0) = Mw;
           D(0, 1) = -1.0;
           D(1, 0) = 1.0;
-          Cb.row(1) = -s.transpose();
+          c = -1.0;
           break;
         default: {
           const double delta = r0 - Y + s.dot(q);
@@ -278,16 +323,25 @@ SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
           D(0, 1) = -1.0;
           D(1, 1) = 1.0;
           D(1, 0) = dN * cq;
-          Cb.row(1) = -dN * cq * s.transpose();
+          c = -dN * cq;
         }
       }
-      if (!solver.factorize_border(A, B, Cb, D)) {
+      // Schur complement on the 2-wide border with Z = A^-1 s from the element cache
+      x1 = r1;
+      A.solve_in_place(x1);
+      Eigen::Matrix2d S = D;
+      S(1, 1) -= c * s.dot(Z);
+      const Eigen::Vector2d rhs(r2(0), r2(1) - c * s.dot(x1));
+      const double det = S.determinant();
+      if (!std::isfinite(det) || det == 0.0) {
         std::ostringstream msg;
         msg << "simulation diverged at t = " << fmt(t1) << " s (step " << n
             << "): singular iteration matrix";
         throw DivergenceError(msg.str(), t1, n, "singular iteration matrix");
       }
-      solver.solve(r1, r2, x1, x2);
+      const Eigen::Vector2d xb = S.partialPivLu().solve(rhs);
+      x2 = xb;
+      x1 -= xb(1) * Z;
       ++out.newton_iterations;
       qdd1 += x1;
       Ydd1 += x2(0);
@@ -296,15 +350,12 @@ SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
       const bool linear = wm != WheelModel::Hertz;
       if (linear || (dq <= set.newton_tol && std::abs(x2(1)) <= 1e-6 * std::max(1.0, P))) {
         conv = true;
-        // the state at the final accelerations
-        const Eigen::VectorXd a1f = (af * qdd0 - am * a0 + (1.0 - af) * qdd1) / (1.0 - am);
-        q = q0 + h * qd0 + h * h * ((0.5 - bet) * a0 + bet * a1f);
-        qd = qd0 + h * ((1.0 - gam) * a0 + gam * a1f);
-        const double aYf = (af * Ydd0 - am * aY0 + (1.0 - af) * Ydd1) / (1.0 - am);
-        Y = Y0 + h * Yd0 + h * h * ((0.5 - bet) * aY0 + bet * aYf);
-        Yd = Yd0 + h * ((1.0 - gam) * aY0 + gam * aYf);
-        a = a1f;
-        aY = aYf;
+        q = qh + cq * qdd1;  // the state at the final accelerations
+        qd = qdh + cv * qdd1;
+        Y = Yh + cq * Ydd1;
+        Yd = Ydh + cv * Ydd1;
+        a = ah + ((1.0 - af) / (1.0 - am)) * qdd1;
+        aY = aYh + ((1.0 - af) / (1.0 - am)) * Ydd1;
         break;
       }
     }
