@@ -114,3 +114,217 @@ def test_bad_arguments(sweep, call, exc, word):
 def test_import_trackwheel_does_not_import_matplotlib():
     code = "import sys, trackwheel; sys.exit('matplotlib' in sys.modules)"
     assert subprocess.run([sys.executable, "-c", code], check=False).returncode == 0
+
+
+# ------------------------------------------------------------------------------------------
+# time simulations and sweeps. Short, coarse runs: the figures must show exactly the arrays
+# they are given, whatever their physics.
+SHORT = dict(n_elements=20, x_start=0.25, x_end=0.30)
+
+
+@pytest.fixture(scope="module")
+def runs():
+    """Two passages over 5 cm at 100 km/h (generalized-alpha at 1e-5 and 5e-6 s) and one at
+    300 km/h on a 10-element mesh."""
+    scene = tw.Scene.kato2005()
+    a = tw.simulate(scene, tw.kmh(100), dt=1e-5, **SHORT)
+    b = tw.simulate(scene, tw.kmh(100), dt=5e-6, **SHORT)
+    c = tw.simulate(scene, tw.kmh(300), dt=1e-5, **dict(SHORT, n_elements=10))
+    return a, b, c
+
+
+def _labelled(ax, label):
+    (line,) = [ln for ln in ax.get_lines() if ln.get_label() == label]
+    return line
+
+
+@pytest.mark.parametrize("func", [plots.time_step_convergence, plots.element_convergence])
+def test_convergence_figures_show_each_run(runs, func):
+    fig = func(list(runs))
+    assert isinstance(fig, Figure)
+    ax_y, ax_v, ax_a = fig.axes
+    assert "[mm]" in ax_y.get_ylabel() and "[%]" in ax_v.get_ylabel()
+    assert "[m/s²]" in ax_a.get_ylabel() and "[m]" in ax_a.get_xlabel()
+    legend = [t.get_text() for t in ax_y.get_legend().get_texts()]
+    assert len(legend) == 3
+    for r, label in zip(runs, legend):
+        for ax, y in ((ax_y, r.y_contact * 1e3), (ax_v, r.v_error), (ax_a, r.acc_contact)):
+            line = _labelled(ax, label)
+            np.testing.assert_array_equal(line.get_xdata(), r.x_wheel)
+            np.testing.assert_array_equal(line.get_ydata(), y)
+
+
+def test_convergence_legends_name_the_setting(runs):
+    ts = plots.time_step_convergence(runs[:2], acceleration=False)
+    assert len(ts.axes) == 2  # no acceleration panel
+    labels = [t.get_text() for t in ts.axes[0].get_legend().get_texts()]
+    assert labels == ["generalized-α, dt = 1e-5 s", "generalized-α, dt = 5e-6 s"]
+    el = plots.element_convergence([runs[0], runs[2]])
+    labels = [t.get_text() for t in el.axes[0].get_legend().get_texts()]
+    assert labels == ["20 elements", "10 elements"]  # same integrator and dt: mesh only
+    mixed = plots.element_convergence([runs[1], runs[2]])
+    labels = [t.get_text() for t in mixed.axes[0].get_legend().get_texts()]
+    assert labels == ["20 elements, generalized-α, dt = 5e-6 s",
+                      "10 elements, generalized-α, dt = 1e-5 s"]
+    own = plots.time_step_convergence(runs[:2], labels=["a", "b"], title="T")
+    assert [t.get_text() for t in own.axes[0].get_legend().get_texts()] == ["a", "b"]
+    assert own._suptitle.get_text() == "T"
+
+
+def test_format_dt():
+    assert [plots.format_dt(x) for x in (1e-7, 5e-6, 2.5e-5, 1.0)] == [
+        "1e-7", "5e-6", "2.5e-5", "1e0"]
+
+
+@pytest.mark.parametrize("against, scale", [("position", None), ("time", 1e3)])
+def test_acceleration_terms_show_A_to_E(runs, against, scale):
+    two = [runs[0], runs[2]]
+    fig = plots.acceleration_terms(two, against=against)
+    assert isinstance(fig, Figure)
+    assert len(fig.axes) == 4  # (run, column)
+    for i, r in enumerate(two):
+        left, right = fig.axes[2 * i], fig.axes[2 * i + 1]
+        x = r.x_wheel if scale is None else r.t * scale
+        for ax, terms in ((left, "AB"), (right, "CDE")):
+            assert "[m/s²]" in ax.get_ylabel()
+            lines = ax.get_lines()[: len(terms)]  # the zero line is drawn after them
+            assert [ln.get_label()[0] for ln in lines] == list(terms)
+            for ln, term in zip(lines, terms):
+                np.testing.assert_array_equal(ln.get_xdata(), x)
+                np.testing.assert_array_equal(ln.get_ydata(), getattr(r, f"acc_{term}"))
+        assert f"{r.settings['speed'] * 3.6:g} km/h" in left.get_title(loc="left")
+    unit = "[m]" if against == "position" else "[ms]"
+    assert unit in fig.axes[-1].get_xlabel()
+    # one y scale per column, so the growth with speed is seen directly
+    assert fig.axes[0].get_ylim() == fig.axes[2].get_ylim()
+    assert fig.axes[1].get_ylim() == fig.axes[3].get_ylim()
+
+
+def test_dynamic_figure_shows_the_analysis(runs):
+    r = runs[0]
+    a = tw.analyse(r)
+    eig = tw.eigen(r.scene, np.linspace(0.0, 5.0, 6), n_modes=4)
+    fig = plots.dynamic(r, a, eigen=eig, n_modes=2)
+    ax_y, ax_d, ax_f = fig.axes
+    assert "[mm]" in ax_y.get_ylabel() and "[m]" in ax_y.get_xlabel()
+    assert "[µm]" in ax_d.get_ylabel() and "[µm]" in ax_f.get_ylabel()
+    assert "[Hz]" in ax_f.get_xlabel()
+    np.testing.assert_array_equal(_labelled(ax_y, "y_B").get_ydata(), a.y_contact * 1e3)
+    np.testing.assert_array_equal(_labelled(ax_y, "y_qs").get_ydata(), a.y_qs * 1e3)
+    d = _labelled(ax_d, "d")
+    np.testing.assert_array_equal(d.get_xdata(), a.x_wheel)
+    np.testing.assert_array_equal(d.get_ydata(), a.dynamic * 1e6)
+    (peak,) = [ln for ln in ax_d.get_lines() if ln.get_label().startswith("amplitude")]
+    assert abs(peak.get_ydata()[0]) == pytest.approx(a.amplitude * 1e6, rel=1e-15)
+    freqs, amps = a.spectrum
+    spec = _labelled(ax_f, "|D(f)|")
+    keep = freqs <= ax_f.get_xlim()[1]
+    np.testing.assert_array_equal(spec.get_xdata(), freqs[keep])
+    np.testing.assert_array_equal(spec.get_ydata(), amps[keep] * 1e6)
+    (main,) = [ln for ln in ax_f.get_lines() if ln.get_gid() == "main frequency"]
+    assert main.get_xdata()[0] == a.main_frequency
+    assert f"{a.main_frequency:.1f} Hz" in main.get_label()
+    bands = {ln.get_gid(): ln.get_xdata()[0] for ln in ax_f.get_lines()
+             if (ln.get_gid() or "").startswith("eigen")}
+    assert set(bands) == {f"eigen mode {k} {e}" for k in (1, 2) for e in ("min", "max")}
+    assert bands["eigen mode 2 max"] == eig.frequencies[:, 1].max()
+    # the analysis is computed when not given: the same figure data
+    again = plots.dynamic(r)
+    np.testing.assert_array_equal(_labelled(again.axes[1], "d").get_ydata(), a.dynamic * 1e6)
+
+
+def _table():
+    """A sweep table as trackwheel.sweep returns it (the columns the plots read), rows out of
+    order, one failed case (NaN outputs)."""
+    import pandas as pd
+
+    rows = []
+    for v in (300.0, 100.0):
+        for k in (140e6, 20e6, 70e6):
+            rows.append(dict(speed=v / 3.6, speed_kmh=v, support_stiffness=k,
+                             amplitude=1e-6 * v / 100 * 140e6 / k,
+                             main_frequency=340.0 * np.sqrt(k / 140e6),
+                             frequency_resolution=v / 16.0, error=""))
+    rows[1].update(amplitude=np.nan, main_frequency=np.nan, error="DivergenceError: x")
+    return pd.DataFrame(rows)
+
+
+def test_support_stiffness_figure_shows_the_table():
+    df = _table()
+    fig = plots.support_stiffness(df, frequency=True)
+    ax_a, ax_f = fig.axes
+    assert "[µm]" in ax_a.get_ylabel() and "[Hz]" in ax_f.get_ylabel()
+    assert "[MN/m]" in ax_f.get_xlabel()
+    for v in (100.0, 300.0):
+        ref = df[df.speed_kmh == v].sort_values("support_stiffness")
+        for ax, y in ((ax_a, ref.amplitude * 1e6), (ax_f, ref.main_frequency)):
+            line = _labelled(ax, f"{v:g} km/h")
+            np.testing.assert_array_equal(line.get_xdata(), ref.support_stiffness / 1e6)
+            np.testing.assert_array_equal(line.get_ydata(), y)  # NaN where the case failed
+    single = plots.support_stiffness(df)
+    assert len(single.axes) == 1
+
+
+def test_speed_figure_shows_the_table_and_the_eigen_bands():
+    df = _table()
+    df = df[df.support_stiffness == 140e6]
+    eig = tw.eigen(tw.Scene.kato2005(), np.linspace(0.0, 5.0, 11), n_modes=5)
+    fig = plots.speed(df, eig)
+    ax_a, ax_f = fig.axes
+    assert "[µm]" in ax_a.get_ylabel() and "[Hz]" in ax_f.get_ylabel()
+    assert "[km/h]" in ax_f.get_xlabel()
+    ref = df.sort_values("speed_kmh")
+    for ax, y in ((ax_a, ref.amplitude * 1e6), (ax_f, ref.main_frequency)):
+        line = _labelled(ax, "k_s = 140 MN/m")
+        np.testing.assert_array_equal(line.get_xdata(), ref.speed_kmh)
+        np.testing.assert_array_equal(line.get_ydata(), y)
+    bands = {ln.get_gid(): ln.get_ydata()[0] for ln in ax_f.get_lines()
+             if (ln.get_gid() or "").startswith("eigen")}
+    assert len(bands) == 8  # 4 modes x (min, max)
+    for k in range(4):
+        assert bands[f"eigen mode {k + 1} min"] == eig.frequencies[:, k].min()
+        assert bands[f"eigen mode {k + 1} max"] == eig.frequencies[:, k].max()
+    legend = [t.get_text() for t in ax_f.get_legend().get_texts()]
+    lo, hi = eig.frequencies[:, 0].min(), eig.frequencies[:, 0].max()
+    assert f"mode 1: {lo:.0f}–{hi:.0f} Hz" in legend
+
+
+def test_new_figures_leave_no_pyplot_state(runs):
+    import matplotlib.pyplot as plt
+
+    before = plt.get_fignums()
+    plots.time_step_convergence(runs)
+    plots.element_convergence(runs)
+    plots.acceleration_terms(runs)
+    plots.dynamic(runs[0])
+    plots.support_stiffness(_table())
+    plots.speed(_table())
+    assert plt.get_fignums() == before
+
+
+@pytest.mark.parametrize("call, exc, word", [
+    (lambda r: plots.time_step_convergence([]), ValueError, "results"),
+    (lambda r: plots.time_step_convergence(["x"]), TypeError, "Result"),
+    (lambda r: plots.time_step_convergence(3), TypeError, "results"),
+    (lambda r: plots.element_convergence(r, labels=["a"]), ValueError, "labels"),
+    (lambda r: plots.element_convergence(r, labels="abc"), TypeError, "labels"),
+    (lambda r: plots.acceleration_terms(r, against="speed"), ValueError, "against"),
+    (lambda r: plots.dynamic(list(r)), TypeError, "Result"),
+    (lambda r: plots.dynamic(r[0], "analysis"), TypeError, "Analysis"),
+    (lambda r: plots.dynamic(r[0], tw.analyse(r[1])), ValueError, "analysis"),
+    (lambda r: plots.dynamic(r[0], f_max=-1.0), ValueError, "f_max"),
+    (lambda r: plots.support_stiffness(_table().drop(columns="amplitude")), TypeError,
+     "amplitude"),
+    (lambda r: plots.support_stiffness(_table().iloc[:0]), ValueError, "empty"),
+    (lambda r: plots.support_stiffness(_table(), frequency=True, ax=Figure().add_subplot()),
+     ValueError, "ax"),
+    (lambda r: plots.speed({"speed_kmh": [1]}), TypeError, "sweep table"),
+    (lambda r: plots.speed(_table(), tw.eigen(tw.Scene.kato2005(), [1.0])), ValueError,
+     "k_s"),
+    (lambda r: plots.speed(_table()[_table().support_stiffness == 140e6],
+                           tw.eigen(tw.Scene.kato2005(), [1.0], n_modes=2)), ValueError,
+     "n_modes"),
+])
+def test_bad_arguments_of_the_new_figures(runs, call, exc, word):
+    with pytest.raises(exc, match=word):
+        call(runs)

@@ -2,8 +2,14 @@
 
 Every function returns a :class:`matplotlib.figure.Figure` built without ``pyplot``, so nothing is
 registered in pyplot's global figure list and no backend is needed: save it with
-``fig.savefig("x.png")`` or let Jupyter show it (after ``%matplotlib inline``). Pass ``ax`` to
-draw into an axes of your own figure instead. Units are SI and are written on every axis.
+``fig.savefig("x.png")`` or let Jupyter show it (after ``%matplotlib inline``). Where a function
+takes ``ax``, pass it to draw into an axes of your own figure instead. Every axis names its unit;
+figures show SI quantities in the units a track engineer reads (mm and µm, MN/m, km/h).
+
+The paper's figures (Kato et al. 2005): :func:`eigen` (Fig. 3), :func:`time_step_convergence`
+(Fig. 4), :func:`element_convergence` (Fig. 5), :func:`support_stiffness` (Fig. 6),
+:func:`speed` (Fig. 7), :func:`acceleration_terms` (Fig. 8); and :func:`mode_shapes` and
+:func:`dynamic` (one run: y_B, y_qs, d(t) and its spectrum).
 
 This module imports matplotlib; ``import trackwheel`` does not, until ``trackwheel.plots`` is
 used.
@@ -20,7 +26,17 @@ from matplotlib.figure import Figure, SubFigure
 from . import _validate as v
 from .eigen import EigenResult
 
-__all__ = ["eigen", "mode_shapes"]
+__all__ = [
+    "acceleration_terms",
+    "dynamic",
+    "eigen",
+    "element_convergence",
+    "format_dt",
+    "mode_shapes",
+    "speed",
+    "support_stiffness",
+    "time_step_convergence",
+]
 
 #: style of the marks at the support positions: faint, behind the data
 _SUPPORT_STYLE = {"color": "0.6", "linewidth": 0.8, "linestyle": ":", "zorder": 0}
@@ -139,4 +155,455 @@ def mode_shapes(result: EigenResult, i_pos: int, modes: Iterable[int] = range(4)
     axes[-1].set_xlabel("position along the rail s [m]")
     axes[-1].set_xlim(0.0, result.scene.rail.length)
     fig.suptitle(f"Vertical mode shapes, wheel at X = {x_wheel:g} m")
+    return fig
+
+
+# --------------------------------------------------------------------------------------------
+# time simulations (MODEL.md §8): convergence, one run, acceleration terms
+# --------------------------------------------------------------------------------------------
+#: display names of the integrators
+_INTEGRATOR_NAMES = {"explicit": "explicit RK4", "generalized_alpha": "generalized-α"}
+#: the acceleration terms of MODEL.md §8 (paper's eq. 21, Fig. 8): field, legend text
+_ACC_TERMS = (
+    ("acc_A", "A = ρ cosφ θ' v φ_s"),
+    ("acc_B", "B = ρ cosφ θ' φ_t"),
+    ("acc_C", "C = ρ cosφ v² φ_s²"),
+    ("acc_D", "D = ρ cosφ φ_t²"),
+    ("acc_E", "E = 2 ρ cosφ φ_t v φ_s"),
+)
+
+
+def _check_results(name: str, results) -> list:
+    from .simulate import Result
+
+    if isinstance(results, Result):
+        results = [results]
+    try:
+        results = list(results)
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence of trackwheel.Result (from "
+                        f"trackwheel.simulate), got {type(results).__name__}") from None
+    if not results:
+        raise ValueError(f"{name} is empty: give at least one trackwheel.Result")
+    for r in results:
+        if not isinstance(r, Result):
+            raise TypeError(f"{name} must hold trackwheel.Result objects (from "
+                            f"trackwheel.simulate), got {type(r).__name__}")
+    return results
+
+
+def _labels(name: str, labels, n: int) -> list[str] | None:
+    if labels is None:
+        return None
+    if isinstance(labels, str):
+        raise TypeError(f"{name} must be a sequence of strings, not one string")
+    labels = [str(s) for s in labels]
+    if len(labels) != n:
+        raise ValueError(f"{name} has {len(labels)} entries for {n} results")
+    return labels
+
+
+def format_dt(dt: float) -> str:
+    """A time step [s] written compactly: 1e-07 -> "1e-7", 5e-06 -> "5e-6", 2.5e-5 -> "2.5e-5"."""
+    mant, exp = f"{dt:.3e}".split("e")
+    mant = mant.rstrip("0").rstrip(".")
+    return f"{mant}e{int(exp)}"
+
+
+def _speed_kmh(result) -> float:
+    return result.settings["speed"] * 3.6
+
+
+def _stretch(results) -> str:
+    x0 = min(float(r.x_wheel[0]) for r in results)
+    x1 = max(float(r.x_wheel[-1]) for r in results)
+    return f"X = {x0:.3g}–{x1:.3g} m"
+
+
+def _same(results, key) -> bool:
+    return len({r.settings[key] for r in results}) == 1
+
+
+def _run_label(r, *, dt: bool, n_elements: bool) -> str:
+    s = r.settings
+    parts = []
+    if n_elements:
+        parts.append(f"{s['n_elements']} elements")
+    name = _INTEGRATOR_NAMES.get(s["integrator"], s["integrator"])
+    parts.append(f"{name}, dt = {format_dt(s['dt'])} s" if dt else name)
+    if s.get("fidelity", "full") != "full":
+        parts.append(s["fidelity"])
+    return ", ".join(parts)
+
+
+def _convergence(results, labels, acceleration: bool, title: str) -> Figure:
+    n_rows = 3 if acceleration else 2
+    fig = Figure(figsize=(8.0, 2.0 + 2.2 * n_rows), layout="constrained")
+    axes = fig.subplots(n_rows, 1, sharex=True, squeeze=False)[:, 0]
+    styles = ["-", "--", "-.", ":"]
+    for i, (r, label) in enumerate(zip(results, labels)):
+        # the first run drawn widest, so that curves lying on top of each other stay visible
+        kw = dict(label=label, color=f"C{i % 10}", linestyle=styles[i % len(styles)],
+                  linewidth=max(0.8, 2.4 - 0.4 * i))
+        axes[0].plot(r.x_wheel, r.y_contact * 1e3, **kw)
+        axes[1].plot(r.x_wheel, r.v_error, **kw)
+        if acceleration:
+            axes[2].plot(r.x_wheel, r.acc_contact, **kw)
+    axes[0].set_ylabel("contact point y_B [mm]")
+    axes[1].set_ylabel("calculation error v_e [%]")
+    if acceleration:
+        axes[2].set_ylabel("contact point d²y_B/dt² [m/s²]")
+    axes[-1].set_xlabel("wheel position X [m]")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(loc="best", fontsize="small")
+    fig.suptitle(title)
+    return fig
+
+
+def time_step_convergence(results, *, labels=None, acceleration: bool = True,
+                          title: str | None = None) -> Figure:
+    """The paper's Fig. 4, effect of the time step: the contact-point displacement y_B [mm],
+    the calculation error v_e [%] (eq. 28) and, with ``acceleration``, the contact-point
+    vertical acceleration [m/s²] against the wheel position X [m], one line per run.
+
+    Parameters
+    ----------
+    results : sequence of Result
+        Runs of :func:`trackwheel.simulate` that differ in time step (and integrator).
+    labels : sequence of str, optional
+        Legend entries; default "<integrator>, dt = <dt> s" (plus the mesh if it differs
+        between the runs).
+    acceleration : bool
+        Add the acceleration panel (the quantity the paper says needs 1e-7 s).
+    title : str, optional
+        Figure title; default names the figure, the speed(s) and the stretch of track.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Axes from top: y_B [mm] (``y_contact * 1e3``), v_e [%], acceleration [m/s²], each line
+        against ``x_wheel`` and labelled as in the legend.
+    """
+    results = _check_results("results", results)
+    labels = _labels("labels", labels, len(results)) or [
+        _run_label(r, dt=True, n_elements=not _same(results, "n_elements")) for r in results]
+    if title is None:
+        speeds = ", ".join(sorted({f"{_speed_kmh(r):g}" for r in results}, key=float))
+        title = (f"Effect of the time step (Kato et al. 2005, Fig. 4): {speeds} km/h, "
+                 f"{_stretch(results)}")
+    return _convergence(results, labels, v.boolean("acceleration", acceleration), title)
+
+
+def element_convergence(results, *, labels=None, acceleration: bool = True,
+                        title: str | None = None) -> Figure:
+    """The paper's Fig. 5, effect of the number of elements: as
+    :func:`time_step_convergence`, with the legend naming the mesh of each run
+    ("<n> elements", plus integrator and dt if they differ between the runs)."""
+    results = _check_results("results", results)
+    same_int = _same(results, "integrator") and _same(results, "dt")
+    labels = _labels("labels", labels, len(results)) or [
+        _run_label(r, dt=True, n_elements=True) if not same_int
+        else f"{r.settings['n_elements']} elements" for r in results]
+    if title is None:
+        speeds = ", ".join(sorted({f"{_speed_kmh(r):g}" for r in results}, key=float))
+        how = ""
+        if same_int:
+            how = ", " + _run_label(results[0], dt=True, n_elements=False)
+        title = (f"Effect of the number of elements (Kato et al. 2005, Fig. 5): {speeds} km/h"
+                 f"{how}, {_stretch(results)}")
+    return _convergence(results, labels, v.boolean("acceleration", acceleration), title)
+
+
+def acceleration_terms(results, *, against: str = "position", title: str | None = None
+                       ) -> Figure:
+    """The paper's Fig. 8: the terms A–E of the contact-point vertical acceleration (MODEL.md
+    §8, paper's eq. 21) for each run (the paper: 100 and 300 km/h), one row per run.
+
+    Left column: A = ρ cosφ θ' v φ_s and B = ρ cosφ θ' φ_t (first order in the rail's slope);
+    right column: C = ρ cosφ v² φ_s², D = ρ cosφ φ_t², E = 2 ρ cosφ φ_t v φ_s (second order,
+    about 10⁻⁴ of A and B for the paper's scene, hence their own axes). Each column shares its
+    y axis between the runs, so the growth with speed is seen directly.
+
+    Parameters
+    ----------
+    results : sequence of Result
+    against : "position" (wheel position X [m]) or "time" (t [ms]).
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Axes row by row (left, right); the lines are labelled as in the legend, their y data
+        are ``result.acc_A`` ... ``result.acc_E`` [m/s²].
+    """
+    results = _check_results("results", results)
+    v.choice("against", against, {"position", "time"})
+    n = len(results)
+    fig = Figure(figsize=(10.0, 1.4 + 2.6 * n), layout="constrained")
+    axes = fig.subplots(n, 2, squeeze=False, sharey="col")
+    for (ax_l, ax_r), r in zip(axes, results):
+        x = r.x_wheel if against == "position" else r.t * 1e3
+        for k, (name, text) in enumerate(_ACC_TERMS):
+            ax = ax_l if k < 2 else ax_r
+            ax.plot(x, getattr(r, name), color=f"C{k}", linewidth=1.0, label=text)
+        head = (f"{_speed_kmh(r):g} km/h, k_s = {r.scene.supports.stiffness / 1e6:g} MN/m")
+        ax_l.set_title(f"{head}: terms A, B", loc="left", fontsize="medium")
+        ax_r.set_title(f"{head}: terms C, D, E", loc="left", fontsize="medium")
+        for ax in (ax_l, ax_r):
+            ax.set_ylabel("acceleration [m/s²]")
+            ax.grid(True, alpha=0.3)
+            ax.axhline(0.0, color="0.7", linewidth=0.8, zorder=0)
+    xlabel = "wheel position X [m]" if against == "position" else "time t [ms]"
+    for ax in axes[-1]:
+        ax.set_xlabel(xlabel)
+    axes[0, 0].legend(loc="upper right", fontsize="small")
+    axes[0, 1].legend(loc="upper right", fontsize="small")
+    fig.suptitle("Terms of the contact-point acceleration (Kato et al. 2005, Fig. 8)"
+                 if title is None else title)
+    return fig
+
+
+def _eigen_bands(ax: Axes, eigen: EigenResult, n_modes: int, *, horizontal: bool) -> None:
+    """Each of the lowest ``n_modes`` modes as a band from its lowest to its highest frequency
+    over the wheel positions of ``eigen``: two thin lines (gid "eigen mode k min/max") and a
+    faint fill between them, labelled "mode k: lo–hi Hz"."""
+    f = eigen.frequencies[:, :n_modes]
+    for k in range(n_modes):
+        lo, hi = float(f[:, k].min()), float(f[:, k].max())
+        style = dict(color=f"C{(k + 5) % 10}", linewidth=0.8, linestyle="--", zorder=0)
+        line = ax.axhline if horizontal else ax.axvline
+        span = ax.axhspan if horizontal else ax.axvspan
+        line(lo, gid=f"eigen mode {k + 1} min", **style)
+        line(hi, gid=f"eigen mode {k + 1} max", **style)
+        span(lo, hi, color=style["color"], alpha=0.15, zorder=0,
+             label=f"mode {k + 1}: {lo:.0f}–{hi:.0f} Hz")
+
+
+def _check_eigen(eigen, n_modes) -> int:
+    _check_result(eigen)
+    return v.integer("n_modes", n_modes, low=1, high=eigen.frequencies.shape[1])
+
+
+def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes: int = 4,
+            f_max: float | None = None) -> Figure:
+    """One run measured as the paper measures it (MODEL.md §8): the contact-point
+    displacement y_B and the quasi-static line y_qs [mm] against the wheel position, the
+    dynamic part d = y_B - y_qs [µm] with its amplitude max |d| marked, and the amplitude
+    spectrum of d [µm] with the main frequency marked.
+
+    Parameters
+    ----------
+    result : Result
+    analysis : Analysis, optional
+        ``trackwheel.analyse(result)``; computed here if not given.
+    eigen : EigenResult, optional
+        Natural frequencies of the same scene over wheel positions: the lowest ``n_modes`` are
+        drawn on the spectrum as bands from their lowest to their highest frequency.
+    f_max : float, optional
+        Upper limit of the spectrum axis [Hz]; default max(1000, 3 x main frequency).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Three axes: lines "y_B" and "y_qs" (``* 1e3``), "d" (``* 1e6``) and the spectrum
+        "|D(f)|" (``* 1e6``); the main frequency is a vertical line labelled with its value and
+        resolution.
+    """
+    from .analysis import Analysis, analyse
+    from .simulate import Result
+
+    if not isinstance(result, Result):
+        raise TypeError(f"result must be a trackwheel.Result (from trackwheel.simulate), "
+                        f"got {type(result).__name__}")
+    if analysis is None:
+        analysis = analyse(result)
+    elif not isinstance(analysis, Analysis):
+        raise TypeError(f"analysis must be a trackwheel.Analysis (from trackwheel.analyse), "
+                        f"got {type(analysis).__name__}")
+    a = analysis
+    if a.t.shape != result.t.shape or not np.array_equal(a.t, result.t):
+        raise ValueError("analysis does not belong to result (its times differ)")
+    if eigen is not None:
+        n_modes = _check_eigen(eigen, n_modes)
+    fm = a.main_frequency
+    if f_max is None:
+        f_max = max(1000.0, 3.0 * fm) if np.isfinite(fm) else 1000.0
+    f_max = v.positive("f_max", f_max, "Hz")
+
+    fig = Figure(figsize=(8.0, 8.5), layout="constrained")
+    ax_y, ax_d, ax_f = fig.subplots(3, 1)
+    ax_y.plot(a.x_wheel, a.y_contact * 1e3, color="C0", label="y_B")
+    ax_y.plot(a.x_wheel, a.y_qs * 1e3, color="C1", linestyle="--", label="y_qs")
+    ax_y.set_ylabel("displacement [mm]")
+    ax_y.set_xlabel("wheel position X [m]")
+    ax_y.legend(loc="best", fontsize="small")
+
+    ax_d.plot(a.x_wheel, a.dynamic * 1e6, color="C2", linewidth=0.9, label="d")
+    i_max = int(np.argmax(np.abs(a.dynamic)))
+    ax_d.plot([a.x_wheel[i_max]], [a.dynamic[i_max] * 1e6], marker="o", linestyle="none",
+              color="C3", label=f"amplitude max|d| = {a.amplitude * 1e6:.3g} µm")
+    ax_d.axhline(0.0, color="0.7", linewidth=0.8, zorder=0)
+    ax_d.set_ylabel("dynamic part d = y_B - y_qs [µm]")
+    ax_d.set_xlabel("wheel position X [m]")
+    ax_d.legend(loc="best", fontsize="small")
+
+    freqs, amps = a.spectrum
+    keep = freqs <= f_max
+    if eigen is not None:
+        _eigen_bands(ax_f, eigen, n_modes, horizontal=False)
+    ax_f.plot(freqs[keep], amps[keep] * 1e6, color="C2", label="|D(f)|")
+    if np.isfinite(fm):
+        ax_f.axvline(fm, color="C3", linewidth=1.2, gid="main frequency",
+                     label=f"main frequency {fm:.1f} Hz (resolution {a.frequency_resolution:.2g}"
+                           " Hz)")
+    ax_f.set_xlim(0.0, f_max)
+    ax_f.set_xlabel("frequency [Hz]")
+    ax_f.set_ylabel("amplitude spectrum of d [µm]")
+    ax_f.legend(loc="upper right", fontsize="small")
+    for ax in (ax_y, ax_d, ax_f):
+        ax.grid(True, alpha=0.3)
+    fig.suptitle(f"{_speed_kmh(result):g} km/h, k_s = {result.scene.supports.stiffness / 1e6:g}"
+                 f" MN/m, {_run_label(result, dt=True, n_elements=True)}")
+    return fig
+
+
+# --------------------------------------------------------------------------------------------
+# sweeps (tables of trackwheel.sweep)
+# --------------------------------------------------------------------------------------------
+def _check_frame(df, columns) -> None:
+    missing = [c for c in columns if not hasattr(df, "columns") or c not in df.columns]
+    if missing:
+        raise TypeError(f"df must be a sweep table (pandas DataFrame from trackwheel.sweep or "
+                        f"trackwheel.load_sweep) with columns {list(columns)}; missing "
+                        f"{missing}")
+    if len(df) == 0:
+        raise ValueError("df is empty: no cases to plot")
+
+
+def _groups(df, key):
+    """(value, rows sorted by the other axis) per distinct value of ``key``."""
+    return [(val, grp) for val, grp in df.groupby(key, sort=True)]
+
+
+def _frequency_panel(ax: Axes, x, grp, label, color) -> None:
+    f = grp["main_frequency"].to_numpy(float)
+    ax.plot(x, f, marker="o", color=color, label=label)
+    if "frequency_resolution" in grp.columns:
+        ax.errorbar(x, f, yerr=grp["frequency_resolution"].to_numpy(float), fmt="none",
+                    ecolor=color, elinewidth=0.8, capsize=2)
+
+
+def support_stiffness(df, *, frequency: bool = False, ax: Axes | None = None) -> Figure:
+    """The paper's Fig. 6: the amplitude of the contact-point vibration max |d| [µm] (MODEL.md
+    §8) against the support stiffness k_s [MN/m], one line per speed (the paper: 100 and
+    300 km/h).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        A sweep table (:func:`trackwheel.sweep`), columns ``speed_kmh``, ``support_stiffness``,
+        ``amplitude`` (and ``main_frequency``, ``frequency_resolution`` for ``frequency``).
+        Failed cases (NaN amplitude) leave gaps.
+    frequency : bool
+        Add a second panel with the main frequency [Hz] against k_s (bars: the frequency
+        resolution of each run).
+    ax : Axes, optional
+        Draw the amplitude panel here (not with ``frequency``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Lines labelled "<v> km/h": x = ``support_stiffness / 1e6``, y = ``amplitude * 1e6``
+        (and ``main_frequency`` in the second panel), sorted by stiffness.
+    """
+    cols = ["speed_kmh", "support_stiffness", "amplitude"]
+    frequency = v.boolean("frequency", frequency)
+    if frequency:
+        cols += ["main_frequency"]
+    _check_frame(df, cols)
+    if ax is not None and frequency:
+        raise ValueError("ax cannot be given with frequency=True (the figure has two panels)")
+    if ax is None:
+        fig = Figure(figsize=(7.0, 7.5 if frequency else 4.5), layout="constrained")
+        axes = fig.subplots(2 if frequency else 1, 1, sharex=True, squeeze=False)[:, 0]
+    elif not isinstance(ax, Axes):
+        raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
+    else:
+        fig, axes = _root_figure(ax), [ax]
+    for i, (speed, grp) in enumerate(_groups(df, "speed_kmh")):
+        grp = grp.sort_values("support_stiffness")
+        x = grp["support_stiffness"].to_numpy(float) / 1e6
+        label = f"{speed:g} km/h"
+        axes[0].plot(x, grp["amplitude"].to_numpy(float) * 1e6, marker="o", color=f"C{i}",
+                     label=label)
+        if frequency:
+            _frequency_panel(axes[1], x, grp, label, f"C{i}")
+    axes[0].set_ylabel("amplitude max |d| [µm]")
+    title = "Amplitude against support stiffness (Kato et al. 2005, Fig. 6)"
+    if ax is None:
+        fig.suptitle(title)
+    else:
+        ax.set_title(title)
+    if frequency:
+        axes[1].set_ylabel("main frequency [Hz]")
+        axes[1].legend(loc="best", fontsize="small")
+    axes[-1].set_xlabel("support stiffness k_s [MN/m]")
+    axes[0].legend(loc="best", fontsize="small")
+    for a in axes:
+        a.grid(True, alpha=0.3)
+    return fig
+
+
+def speed(df, eigen: EigenResult | None = None, *, n_modes: int = 4) -> Figure:
+    """The paper's Fig. 7: the amplitude of the contact-point vibration max |d| [µm] and its
+    main frequency [Hz] against the speed [km/h] (the paper: 50–400 km/h at 140 MN/m), one line
+    per support stiffness.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        A sweep table (:func:`trackwheel.sweep`), columns ``speed_kmh``, ``support_stiffness``,
+        ``amplitude``, ``main_frequency`` (``frequency_resolution`` draws bars).
+    eigen : EigenResult, optional
+        Natural frequencies of the coupled system over wheel positions (:func:`trackwheel.eigen`,
+        same support stiffness as the table): the lowest ``n_modes`` are drawn on the frequency
+        panel as horizontal bands from their lowest to their highest frequency.
+    n_modes : int
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two axes, lines labelled "k_s = <k> MN/m": x = ``speed_kmh``, y = ``amplitude * 1e6``
+        and ``main_frequency``; the eigen bands are lines with gid "eigen mode k min/max".
+    """
+    _check_frame(df, ["speed_kmh", "support_stiffness", "amplitude", "main_frequency"])
+    if eigen is not None:
+        n_modes = _check_eigen(eigen, n_modes)
+        k_eig = eigen.scene.supports.stiffness
+        other = [k for k in df["support_stiffness"].unique()
+                 if abs(k - k_eig) > 1e-9 * k_eig]
+        if other:
+            raise ValueError(f"eigen was computed for k_s = {k_eig:g} N/m but the table has "
+                             f"k_s = {other[0]:g} N/m; give eigen for the table's scene")
+    fig = Figure(figsize=(7.0, 7.5), layout="constrained")
+    ax_a, ax_f = fig.subplots(2, 1, sharex=True)
+    for i, (k, grp) in enumerate(_groups(df, "support_stiffness")):
+        grp = grp.sort_values("speed_kmh")
+        x = grp["speed_kmh"].to_numpy(float)
+        label = f"k_s = {k / 1e6:g} MN/m"
+        ax_a.plot(x, grp["amplitude"].to_numpy(float) * 1e6, marker="o", color=f"C{i}",
+                  label=label)
+        _frequency_panel(ax_f, x, grp, label, f"C{i}")
+    if eigen is not None:
+        _eigen_bands(ax_f, eigen, n_modes, horizontal=True)
+    ax_a.set_ylabel("amplitude max |d| [µm]")
+    fig.suptitle("Amplitude and main frequency against speed (Kato et al. 2005, Fig. 7)")
+    ax_f.set_ylabel("main frequency [Hz]")
+    ax_f.set_xlabel("speed v [km/h]")
+    ax_a.legend(loc="best", fontsize="small")
+    ax_f.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize="small",
+                title="data / eigenfrequencies\nover wheel positions", title_fontsize="small")
+    for a in (ax_a, ax_f):
+        a.grid(True, alpha=0.3)
     return fig
