@@ -725,7 +725,7 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     print(f"Scene.kato2005(), k_s = {scene.supports.stiffness / 1e6:g} MN/m, "
           f"v = {args.speed_kmh:g} km/h ({speed:.2f} m/s)")
     print(f"  settings       : {st['integrator']}, dt = {st['dt']:.3g} s, {st['n_elements']} "
-          f"elements, X = {x0:g} -> {x1:g} m, fidelity {st.get('fidelity', 'full')}")
+          f"elements, X = {x0:.4g} -> {x1:.4g} m, fidelity {st.get('fidelity', 'full')}")
     print(f"  amplitude      : {a.amplitude * 1e6:.3f} µm  (max |d|, d = y_B - y_qs; at "
           f"X = {a.x_wheel[i_max]:.3f} m)")
     print(f"  main frequency : {a.main_frequency:.1f} Hz  (resolution "
