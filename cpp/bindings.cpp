@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "ancf_cable.hpp"
 #include "bench.hpp"
@@ -48,35 +49,40 @@ py::tuple modal_to_tuple(const ModalResult& r) {
   return py::make_tuple(r.frequencies, shapes);
 }
 
-py::array_t<double> as_array(const std::vector<double>& v) {
-  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+// Hands the vector's buffer to numpy without copying it (the array owns it through a capsule),
+// so a run's output is held once, not twice, on its way to Python.
+template <class T>
+py::array_t<T> as_array(std::vector<T>&& v) {
+  auto* owner = new std::vector<T>(std::move(v));
+  py::capsule free_owner(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(static_cast<py::ssize_t>(owner->size()), owner->data(), free_owner);
 }
 
-py::dict output_to_dict(const SimOutput& o) {
+py::dict output_to_dict(SimOutput&& o) {
   py::dict d;
-  d["t"] = as_array(o.t);
-  d["x_wheel"] = as_array(o.x_wheel);
-  d["y_wheel"] = as_array(o.y_wheel);
-  d["ydot_wheel"] = as_array(o.ydot_wheel);
-  d["theta"] = as_array(o.theta);
-  d["thetadot"] = as_array(o.thetadot);
-  d["contact_s"] = as_array(o.contact_s);
-  d["y_contact"] = as_array(o.y_contact);
-  d["normal_force"] = as_array(o.normal_force);
-  d["tangential_force"] = as_array(o.tangential_force);
-  d["slip"] = as_array(o.slip);
-  d["v_error"] = as_array(o.v_error);
-  d["phi"] = as_array(o.phi);
-  d["acc_contact"] = as_array(o.acc_contact);
-  d["acc_A"] = as_array(o.acc_A);
-  d["acc_B"] = as_array(o.acc_B);
-  d["acc_C"] = as_array(o.acc_C);
-  d["acc_D"] = as_array(o.acc_D);
-  d["acc_E"] = as_array(o.acc_E);
-  d["reaction"] = as_array(o.reaction);
-  d["penetration"] = as_array(o.penetration);
-  d["energy"] = as_array(o.energy);
-  d["state"] = py::array_t<int>(static_cast<py::ssize_t>(o.state.size()), o.state.data());
+  d["t"] = as_array(std::move(o.t));
+  d["x_wheel"] = as_array(std::move(o.x_wheel));
+  d["y_wheel"] = as_array(std::move(o.y_wheel));
+  d["ydot_wheel"] = as_array(std::move(o.ydot_wheel));
+  d["theta"] = as_array(std::move(o.theta));
+  d["thetadot"] = as_array(std::move(o.thetadot));
+  d["contact_s"] = as_array(std::move(o.contact_s));
+  d["y_contact"] = as_array(std::move(o.y_contact));
+  d["normal_force"] = as_array(std::move(o.normal_force));
+  d["tangential_force"] = as_array(std::move(o.tangential_force));
+  d["slip"] = as_array(std::move(o.slip));
+  d["v_error"] = as_array(std::move(o.v_error));
+  d["phi"] = as_array(std::move(o.phi));
+  d["acc_contact"] = as_array(std::move(o.acc_contact));
+  d["acc_A"] = as_array(std::move(o.acc_A));
+  d["acc_B"] = as_array(std::move(o.acc_B));
+  d["acc_C"] = as_array(std::move(o.acc_C));
+  d["acc_D"] = as_array(std::move(o.acc_D));
+  d["acc_E"] = as_array(std::move(o.acc_E));
+  d["reaction"] = as_array(std::move(o.reaction));
+  d["penetration"] = as_array(std::move(o.penetration));
+  d["energy"] = as_array(std::move(o.energy));
+  d["state"] = as_array(std::move(o.state));
   d["steps"] = o.steps;
   d["newton_iterations"] = o.newton_iterations;
   d["factorizations"] = o.factorizations;
@@ -313,7 +319,7 @@ PYBIND11_MODULE(_core, m) {
       py::gil_scoped_release nogil;
       o = simulate(rail, w, c, s, init, fn);
     }
-    return output_to_dict(o);
+    return output_to_dict(std::move(o));
   }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
      py::arg("initial"), py::arg("progress") = py::none(),
      "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
@@ -370,7 +376,7 @@ PYBIND11_MODULE(_core, m) {
       py::gil_scoped_release nogil;
       o = simulate_linear(rail, w, c, s, opt, fn);
     }
-    return output_to_dict(o);
+    return output_to_dict(std::move(o));
   }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
      py::arg("options"), py::arg("progress") = py::none(),
      "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
