@@ -126,35 +126,10 @@ def warn_above_stability_limit(model, wheel, contact, e, x0: float, y: float, dt
 def headline(result) -> tuple[float, float]:
     """(amplitude [m], main frequency [Hz]) of a run: max |d| and the spectral peak of
     d(t) = y_B(t) - y_qs(X_A(t)) (MODEL.md §8), from :func:`trackwheel.analyse`."""
-    try:
-        from .analysis import analyse
-    except ImportError:  # pragma: no cover - only before trackwheel.analysis exists
-        return _headline_minimal(result)
+    from .analysis import analyse  # analysis imports simulate, which imports this module
+
     a = analyse(result)
     return float(a.amplitude), float(a.main_frequency)
-
-
-def _headline_minimal(result) -> tuple[float, float]:
-    """Stand-in for trackwheel.analyse: y_qs on a 2.5 mm grid, linear interpolation, Hann
-    window, 8x zero padding, parabolic peak of the log magnitude."""
-    from .statics import quasi_static
-
-    s = result.settings
-    x = np.asarray(result.x_wheel, dtype=float)
-    grid = np.linspace(x.min(), x.max(), max(4, int((x.max() - x.min()) / 0.0025) + 1))
-    yq = quasi_static(result.scene, grid, n_elements=int(s["n_elements"])).y_contact
-    d = result.y_contact - np.interp(x, grid, yq)
-    h = float(s["dt"]) * int(s["output_every"])
-    n = d.size
-    nf = 1 << math.ceil(math.log2(8 * n))
-    spec = np.abs(np.fft.rfft((d - d.mean()) * np.hanning(n), nf))
-    f = np.fft.rfftfreq(nf, h)
-    ok = f >= 1.0 / (n * h)
-    k = int(np.flatnonzero(ok)[np.argmax(spec[ok][:-1])])
-    lm, l0, lp = np.log(spec[k - 1:k + 2])
-    den = lm - 2 * l0 + lp
-    shift = 0.5 * (lm - lp) / den if den < 0 else 0.0
-    return float(np.max(np.abs(d))), float(f[k] + shift * (f[1] - f[0]))
 
 
 # --------------------------------------------------------------------------------------------
