@@ -115,7 +115,7 @@ def drift_map():
 
 def newton_map():
     rows = []
-    dts = [1e-5 * 2**k for k in range(0, 8)]  # 1e-5 ... 1.28e-3 s
+    dts = [1e-5 * 2**k for k in range(8)]  # 1e-5 ... 1.28e-3 s
     cases = {"passage": dict(), "drop 0.2 mm": dict(drop_height=2e-4, x_end=1.25),
              "drop 2 mm": dict(drop_height=2e-3)}
     for case, kw in cases.items():

@@ -56,13 +56,25 @@ def exudyn_run(dt: float, x_start: float, x_end: float, speed: float):
     """Build and run the scene in Exudyn; returns (t, x_wheel, y_wheel, y_B, solve wall [s])."""
     import exudyn as exu
     from exudyn.beams import GenerateStraightLineANCFCable2D
-    from exudyn.itemInterface import (CoordinateConstraint, LoadCoordinate, MarkerBodyCable2DShape,
-                                      MarkerNodeCoordinate, MarkerNodeRigid, NodeGenericData,
-                                      NodePointGround, NodeRigidBody2D, ObjectANCFCable2D,
-                                      ObjectConnectorCoordinateSpringDamper,
-                                      ObjectContactFrictionCircleCable2D, ObjectRigidBody2D,
-                                      SensorNode, VCable2D, VCoordinateSpringDamper,
-                                      VObjectContactFrictionCircleCable2D, VObjectRigidBody2D)
+    from exudyn.itemInterface import (
+        CoordinateConstraint,
+        LoadCoordinate,
+        MarkerBodyCable2DShape,
+        MarkerNodeCoordinate,
+        MarkerNodeRigid,
+        NodeGenericData,
+        NodePointGround,
+        NodeRigidBody2D,
+        ObjectANCFCable2D,
+        ObjectConnectorCoordinateSpringDamper,
+        ObjectContactFrictionCircleCable2D,
+        ObjectRigidBody2D,
+        SensorNode,
+        VCable2D,
+        VCoordinateSpringDamper,
+        VObjectContactFrictionCircleCable2D,
+        VObjectRigidBody2D,
+    )
 
     s, r, w = SCENE, SCENE.rail, SCENE.wheel
     sc = exu.SystemContainer()
@@ -138,7 +150,8 @@ def exudyn_run(dt: float, x_start: float, x_end: float, speed: float):
     wall = time.perf_counter() - t0
     dw = mbs.GetSensorStoredData(sens_w)
     t, xw, yw = dw[:, 0], dw[:, 1], dw[:, 2]
-    coords = np.stack([mbs.GetSensorStoredData(k)[:, 1:5] for k in sens_n], axis=1)  # (n_t, nodes, 4)
+    # nodal coordinates (displacements from the reference), shape (n_t, n_nodes, 4)
+    coords = np.stack([mbs.GetSensorStoredData(k)[:, 1:5] for k in sens_n], axis=1)
     # rail y under the wheel centre: cubic Hermite in the element containing X_A
     j = np.clip((xw // le).astype(int), 0, NE - 1)
     xi = (xw - j * le) / le
@@ -226,7 +239,8 @@ def main():
 
     fig, ax = plt.subplots(2, 1, figsize=(11, 7))
     t, xw, yb, d = runs[matched["dt"]]
-    ax[0].plot(a.x_wheel, 1e6 * a.dynamic, lw=0.8, label=f"trackwheel (dt {ours.settings['dt']:.3g} s)")
+    ax[0].plot(a.x_wheel, 1e6 * a.dynamic, lw=0.8,
+               label=f"trackwheel (dt {ours.settings['dt']:.3g} s)")
     ax[0].plot(xw, 1e6 * d, lw=0.8, label=f"Exudyn (dt {matched['dt']:.3g} s)")
     ax[0].set_xlabel("wheel position X_A [m]")
     ax[0].set_ylabel("d = y_B - y_qs [µm]")

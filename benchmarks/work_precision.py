@@ -1,19 +1,20 @@
 """Work-precision of the two integrators on the paper's scene (issue 6): wall time against error.
 
-For the paper's scene at 100 and 300 km/h (full passage 0.25 m -> 4.75 m), each integrator runs
-over a range of dt with 20, 40 and 80 elements. Wall time is the median of REPEATS runs of
-``trackwheel.simulate`` (fewer for slow explicit points, see ``repeats_for``: one run above
-20 s, three above 3 s; the CSV says how many). Errors are against a converged reference computed once and
+For the paper's scene at 100 and 300 km/h (full passage 0.25 m -> 4.75 m), each integrator runs over
+a range of dt with 20, 40 and 80 elements. Wall time is the median of REPEATS runs of
+``trackwheel.simulate`` (fewer for slow explicit points, see ``repeats_for``: one run above 20 s,
+three above 3 s; the CSV says how many). Errors are against a converged reference computed once and
 cached in benchmarks/.cache/: generalized-alpha, 80 elements, dt = 6.25e-7 s. Its convergence is
-checked against a second reference with 160 elements at dt = 1.25e-6 s (the difference is
-printed and recorded in work_precision_reference.csv). Three errors:
+checked against a second reference with 160 elements at dt = 1.25e-6 s (the difference is printed
+and recorded in work_precision_reference.csv). Three errors:
 
 - relative error of the amplitude max |d| (d = y_B - y_qs(X_A), MODEL.md §8),
 - relative error of the main frequency of d(t),
 - RMS of d(t) - d_ref(t) over the passage, divided by max |d_ref|.
 
 The paper's own setting (explicit RK4, dt = 1e-7 s, 20 elements) is run once per speed over the
-full passage (one repeat: 39 s and 117 s) and marked on the chart.
+full passage (one run each: about a minute at 300 km/h, three at 100 km/h) and marked on the
+chart.
 
 Also measured: the per-step cost of generalized-alpha against one banded factorisation + solve
 of the rail's iteration matrix M + gamma' h C_s + beta' h^2 K_t (kernel helper
@@ -29,7 +30,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import math
 import os
 import platform
 import statistics
@@ -228,7 +228,7 @@ def chart(rows, paper_rows, path):
 
 
 def main(argv=None):
-    global SPEEDS_KMH, GA_DTS, EX_DTS, MESHES
+    global SPEEDS_KMH, GA_DTS, EX_DTS
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true",
                     help="300 km/h only, two dts per line, no paper run (a smoke test)")

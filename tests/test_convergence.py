@@ -68,10 +68,10 @@ def test_simulate_warns_above_the_limit_only():
     """A dt 5 % above the predicted limit warns before the run; 5 % below does not (pytest turns
     any warning into an error, so the second call fails if it warns)."""
     limit = tw.stability_limit(SCENE, n_elements=20)
-    with pytest.warns(tw.StabilityWarning, match="stability limit"):
-        with pytest.raises(tw.DivergenceError):
-            tw.simulate(SCENE, tw.kmh(300), integrator="explicit", dt=1.05 * limit,
-                        n_elements=20, x_end=1.0)
+    with pytest.warns(tw.StabilityWarning, match="stability limit"), \
+            pytest.raises(tw.DivergenceError):
+        tw.simulate(SCENE, tw.kmh(300), integrator="explicit", dt=1.05 * limit, n_elements=20,
+                    x_end=1.0)
     tw.simulate(SCENE, tw.kmh(300), integrator="explicit", dt=0.95 * limit, n_elements=20,
                 x_end=0.3)
 
