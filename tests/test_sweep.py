@@ -307,8 +307,13 @@ def test_progress_bar(capsys):
 
 # --------------------------------------------------------------------------------------------
 CTRL_C_SCRIPT = textwrap.dedent("""
+    import signal
     import sys
     import trackwheel as tw
+
+    # a process started in the background by a non-interactive shell (as CI may be) inherits
+    # SIGINT ignored, and Python then leaves it ignored: restore Ctrl-C's KeyboardInterrupt
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
     if __name__ == "__main__":  # the process pool re-imports the main module
         tw.sweep(tw.Scene.kato2005(), [tw.kmh(v) for v in (300, 250, 200, 150)], [1e8, 1.4e8],
