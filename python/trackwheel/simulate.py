@@ -201,7 +201,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     start : "static" (static equilibrium at x_start, the paper's start) or "sudden" (rail under its
         own weight, wheel just touching: a sudden load).
     drop_height : lift the wheel this much above its start height [m] (it falls and lands).
-    progress : show a progress bar (None: only for runs of more than 200 000 steps).
+    progress : show a progress bar (None: for runs estimated to take more than a few seconds).
     fidelity : model level, one of ``FIDELITY_LEVELS`` (default "full": the paper's model).
         The "linear/..." levels run the constant-matrix fast path (generalized-alpha only; no
         rolling constraint: ``tangential_force``, ``slip``, ``v_error`` are zero and
@@ -329,7 +329,9 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
 
     bar = None
     callback = None
-    show = (n_steps > 200_000) if progress is None else v.boolean("progress", progress)
+    # a bar for runs estimated (conservatively) to take more than a few seconds
+    est = n_steps * _STEP_COST_PER_ELEMENT * (ne + 10)
+    show = (est > 5.0) if progress is None else v.boolean("progress", progress)
     # Ctrl-C is checked at every callback: about every _PROGRESS_INTERVAL seconds of wall time
     every = max(1, min(20_000, int(_PROGRESS_INTERVAL / (_STEP_COST_PER_ELEMENT * (ne + 10)))))
     if show:
