@@ -10,7 +10,9 @@
 # package in that folder, which goes first on PYTHONPATH, so neither the repository nor an
 # installed trackwheel is touched. Python is not instrumented, so the ASan runtime is preloaded
 # (LD_PRELOAD) and leak detection is off (CPython's own allocations would be reported). Every
-# ASan or UBSan report aborts the process: the run is clean only if pytest passes.
+# ASan or UBSan report aborts the process: the run is clean only if pytest passes. The Ctrl-C,
+# thread and hypothesis tests run too (the hypothesis deadline is generous enough for the ~3x
+# slower instrumented kernel).
 #
 # Needs g++ (or clang) with libasan; installs the build requirements (pybind11, cmeel-eigen,
 # cmake, ninja) into the current Python environment with pip if they are missing.
@@ -60,7 +62,10 @@ cp "$repo"/python/trackwheel/*.py "$pkg/"
 cp "$build"/_core*.so "$pkg/"
 
 # ---- tests ------------------------------------------------------------------------------------
-export LD_PRELOAD="$libasan${LD_PRELOAD:+:$LD_PRELOAD}"
+# libstdc++ is preloaded too, so that ASan intercepts C++ exceptions thrown by other extension
+# modules (matplotlib's) as well
+libstdcxx="$("$cxx" -print-file-name=libstdc++.so)"
+export LD_PRELOAD="$libasan:$libstdcxx${LD_PRELOAD:+:$LD_PRELOAD}"
 export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1:strict_init_order=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 export PYTHONPATH="$build/pkg"

@@ -28,7 +28,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 import trackwheel as tw
 from trackwheel import _core, _kernel, cli, plots
 
@@ -161,7 +160,8 @@ BAD_CALLS = [
     (lambda: plots.eigen(_eigen_result(), ax="axes"), TypeError, ["ax", "str"]),
     (lambda: plots.mode_shapes(_eigen_result(), 3), ValueError, ["i_pos", "3", "[-2, 1]"]),
     (lambda: plots.mode_shapes(_eigen_result(), 0, modes=None), TypeError, ["modes", "NoneType"]),
-    (lambda: plots.mode_shapes(_eigen_result(), 0, modes=[4]), ValueError, ["modes", "4", "[0, 3]"]),
+    (lambda: plots.mode_shapes(_eigen_result(), 0, modes=[4]), ValueError,
+     ["modes", "4", "[0, 3]"]),
     (lambda: plots.mode_shapes(_eigen_result(), 0, modes=[]), ValueError, ["modes"]),
 ]
 
@@ -417,22 +417,22 @@ def test_simulate_releases_the_gil():
     """While a simulation runs in a thread, the main thread keeps running Python code.
 
     If the kernel held the GIL, the main thread could not execute a single bytecode until the
-    call returned; with it released, the main thread's loop runs throughout (the kernel takes the
-    GIL only for a few microseconds at each progress callback)."""
+    call returned: one gap as long as the run. With it released (the kernel takes it only for
+    microseconds at each progress callback), the main thread ticks throughout; the longest gap
+    is a scheduling hiccup, far below half the run even on a loaded machine."""
     result = []
     worker = threading.Thread(target=lambda: result.append(
         tw.simulate(KATO, tw.kmh(100), x_start=0.25, x_end=4.75, dt=1e-5)))
-    ticks = 0
+    stamps = []
     worker.start()
-    t0 = time.perf_counter()
     while worker.is_alive():
-        ticks += 1
+        stamps.append(time.perf_counter())
         time.sleep(0.001)
-    wall = time.perf_counter() - t0
     worker.join()
     assert result and result[0].steps == round(4.5 / tw.kmh(100) / 1e-5)
-    # ~1 tick per ms of the run while the kernel computes; require a third of that
-    assert wall > 0.05 and ticks > 0.33 * wall / 0.001
+    wall = stamps[-1] - stamps[0]
+    assert wall > 0.1  # the run is long enough to tell (~0.3 s)
+    assert len(stamps) > 20 and max(np.diff(stamps)) < 0.5 * wall
 
 
 # --------------------------------------------------------------------------------------------
