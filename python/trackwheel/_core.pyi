@@ -1,0 +1,604 @@
+"""
+trackwheel C++ kernel (ANCF rail, supports, contact, statics, eigen analysis)
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['CableSection', 'ContactLaw', 'ContactParams', 'Integrator', 'KernelDivergenceError', 'LinearOptions', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'WheelModel', 'WheelParams', 'axial_modes', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'explicit_stability_limit', 'gauss_points', 'hermite', 'highest_frequency', 'quasi_static', 'rail_static', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'time_band_factor_solve', 'vertical_modes']
+class CableSection:
+    exact_curvature: bool
+    def __init__(self) -> None:
+        ...
+    @property
+    def EA(self) -> float:
+        """
+        axial stiffness [N]
+        """
+    @EA.setter
+    def EA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def EI(self) -> float:
+        """
+        bending stiffness [N m^2]
+        """
+    @EI.setter
+    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def length(self) -> float:
+        """
+        element length l [m]
+        """
+    @length.setter
+    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_gauss(self) -> int:
+        ...
+    @n_gauss.setter
+    def n_gauss(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rhoA(self) -> float:
+        """
+        mass per length [kg/m]
+        """
+    @rhoA.setter
+    def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class RailParams:
+    exact_curvature: bool
+    pin_far_end: bool
+    def __init__(self) -> None:
+        ...
+    @property
+    def EA(self) -> float:
+        ...
+    @EA.setter
+    def EA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def EI(self) -> float:
+        ...
+    @EI.setter
+    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gravity(self) -> float:
+        ...
+    @gravity.setter
+    def gravity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def length(self) -> float:
+        ...
+    @length.setter
+    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_elements(self) -> int:
+        ...
+    @n_elements.setter
+    def n_elements(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_gauss(self) -> int:
+        ...
+    @n_gauss.setter
+    def n_gauss(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rhoA(self) -> float:
+        ...
+    @rhoA.setter
+    def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SupportParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def damping(self) -> list[float]:
+        ...
+    @damping.setter
+    def damping(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def position(self) -> list[float]:
+        ...
+    @position.setter
+    def position(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def stiffness(self) -> list[float]:
+        ...
+    @stiffness.setter
+    def stiffness(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+class WheelParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def gravity(self) -> float:
+        ...
+    @gravity.setter
+    def gravity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def inertia(self) -> float:
+        ...
+    @inertia.setter
+    def inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load(self) -> float:
+        ...
+    @load.setter
+    def load(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mass(self) -> float:
+        ...
+    @mass.setter
+    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
+    @radius.setter
+    def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def torque(self) -> float:
+        ...
+    @torque.setter
+    def torque(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ContactLaw:
+    """
+    Members:
+    
+      linear
+    
+      hertz
+    """
+    __members__: typing.ClassVar[dict[str, ContactLaw]]
+    hertz: typing.ClassVar[ContactLaw]
+    linear: typing.ClassVar[ContactLaw]
+    @typing.overload
+    def __eq__(self, other: ContactLaw) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: ContactLaw) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class ContactParams:
+    law: ContactLaw
+    def __init__(self) -> None:
+        ...
+    @property
+    def damping(self) -> float:
+        ...
+    @damping.setter
+    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
+    @radius.setter
+    def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stiffness(self) -> float:
+        ...
+    @stiffness.setter
+    def stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class RailModel:
+    def __init__(self, arg0: RailParams, arg1: SupportParams) -> None:
+        ...
+    def gravity_force(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def internal_force(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], float]:
+        ...
+    def mass_band_dense(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    def mass_dense(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    def positions(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        Rail points r(s) (n, 2) [m] for material coordinates s [m]
+        """
+    def reference(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def tangent_dense(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def element_length(self) -> float:
+        ...
+    @property
+    def free_to_full(self) -> list[int]:
+        ...
+    @property
+    def n_dof(self) -> int:
+        ...
+    @property
+    def n_free(self) -> int:
+        ...
+    @property
+    def n_nodes(self) -> int:
+        ...
+    @property
+    def total_mass(self) -> float:
+        ...
+class Integrator:
+    """
+    Members:
+    
+      generalized_alpha
+    
+      explicit
+    """
+    __members__: typing.ClassVar[dict[str, Integrator]]
+    explicit: typing.ClassVar[Integrator]
+    generalized_alpha: typing.ClassVar[Integrator]
+    @typing.overload
+    def __eq__(self, other: Integrator) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Integrator) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class SlipState:
+    """
+    Members:
+    
+      free
+    
+      stick
+    
+      slip
+    """
+    __members__: typing.ClassVar[dict[str, SlipState]]
+    free: typing.ClassVar[SlipState]
+    slip: typing.ClassVar[SlipState]
+    stick: typing.ClassVar[SlipState]
+    @typing.overload
+    def __eq__(self, other: SlipState) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: SlipState) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class SimSettings:
+    integrator: Integrator
+    record_energy: bool
+    reuse_jacobian: bool
+    rolling: bool
+    def __init__(self) -> None:
+        ...
+    @property
+    def baumgarte(self) -> float:
+        ...
+    @baumgarte.setter
+    def baumgarte(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def dt(self) -> float:
+        ...
+    @dt.setter
+    def dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def friction(self) -> float:
+        ...
+    @friction.setter
+    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_newton(self) -> int:
+        ...
+    @max_newton.setter
+    def max_newton(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def newton_tol(self) -> float:
+        ...
+    @newton_tol.setter
+    def newton_tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def output_every(self) -> int:
+        ...
+    @output_every.setter
+    def output_every(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def progress_every(self) -> int:
+        ...
+    @progress_every.setter
+    def progress_every(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rho_inf(self) -> float:
+        ...
+    @rho_inf.setter
+    def rho_inf(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def speed(self) -> float:
+        ...
+    @speed.setter
+    def speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def t_end(self) -> float:
+        ...
+    @t_end.setter
+    def t_end(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x_start(self) -> float:
+        ...
+    @x_start.setter
+    def x_start(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SimState:
+    state: SlipState
+    def __init__(self) -> None:
+        ...
+    @property
+    def e(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @e.setter
+    def e(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def edot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @edot.setter
+    def edot(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def s(self) -> float:
+        ...
+    @s.setter
+    def s(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sigma(self) -> float:
+        ...
+    @sigma.setter
+    def sigma(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def theta(self) -> float:
+        ...
+    @theta.setter
+    def theta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def thetadot(self) -> float:
+        ...
+    @thetadot.setter
+    def thetadot(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def y(self) -> float:
+        ...
+    @y.setter
+    def y(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ydot(self) -> float:
+        ...
+    @ydot.setter
+    def ydot(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class KernelDivergenceError(RuntimeError):
+    pass
+class WheelModel:
+    """
+    Members:
+    
+      moving_force
+    
+      moving_mass
+    
+      sprung
+    
+      hertz
+    """
+    __members__: typing.ClassVar[dict[str, WheelModel]]
+    hertz: typing.ClassVar[WheelModel]
+    moving_force: typing.ClassVar[WheelModel]
+    moving_mass: typing.ClassVar[WheelModel]
+    sprung: typing.ClassVar[WheelModel]
+    @typing.overload
+    def __eq__(self, other: WheelModel) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: WheelModel) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class LinearOptions:
+    sudden: bool
+    wheel_model: WheelModel
+    def __init__(self) -> None:
+        ...
+    @property
+    def drop_height(self) -> float:
+        ...
+    @drop_height.setter
+    def drop_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_modes(self) -> int:
+        ...
+    @n_modes.setter
+    def n_modes(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+def axial_modes(arg0: RailModel, arg1: typing.SupportsInt | typing.SupportsIndex) -> tuple:
+    ...
+def cable_axial(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
+    ...
+def cable_bending(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
+    ...
+def cable_elastic(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
+    """
+    Elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy U [J]
+    """
+def cable_mass(arg0: CableSection) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"]:
+    """
+    Element mass matrix (8x8) [kg]
+    """
+def contact_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: ContactParams, arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"]) -> dict:
+    """
+    Contact point and force for q = [X_A, Y_A, e_el]
+    """
+def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    ...
+def gauss_points(arg0: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+    ...
+def hermite(arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: typing.SupportsFloat | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]]:
+    ...
+def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
+    """
+def quasi_static(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
+    ...
+def rail_static(arg0: RailModel) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    ...
+def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"], arg6: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    """
+    Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
+    """
+def simulate(rail: RailModel, wheel: WheelParams, contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None) -> dict:
+    """
+    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C)
+    """
+def simulate_linear(rail: RailModel, wheel: WheelParams, contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None) -> dict:
+    """
+    Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)
+    """
+def static_solve(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    ...
+def time_band_factor_solve(rail: RailModel, cq: typing.SupportsFloat | typing.SupportsIndex, cv: typing.SupportsFloat | typing.SupportsIndex, repeats: typing.SupportsInt | typing.SupportsIndex, bordered: bool = False) -> float:
+    """
+    Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)
+    """
+def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.SupportsIndex, arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], arg4: typing.SupportsInt | typing.SupportsIndex) -> tuple:
+    """
+    Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))
+    """
