@@ -463,8 +463,11 @@ def test_output_request_above_the_limit_raises_before_allocating():
 # 6. Ctrl-C
 # --------------------------------------------------------------------------------------------
 _INTERRUPT_SCRIPT = """
-import sys, time
+import signal, sys, time
 import trackwheel as tw
+# a process started in the background by a non-interactive shell (as CI may be) inherits SIGINT
+# ignored, and Python then leaves it ignored: restore Ctrl-C's KeyboardInterrupt
+signal.signal(signal.SIGINT, signal.default_int_handler)
 scene = tw.Scene.kato2005()
 kw = dict(integrator=sys.argv[1], n_elements=int(sys.argv[2]), dt=float(sys.argv[3]),
           x_start=0.25, x_end=4.75, progress=False)
