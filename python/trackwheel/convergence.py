@@ -25,7 +25,7 @@ import numpy as np
 
 from . import _core, _kernel
 from . import _validate as v
-from .scene import Scene
+from .scene import MAX_ELEMENTS, Scene
 
 __all__ = [
     "Convergence",
@@ -104,7 +104,7 @@ def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: i
     v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
     v.number("rho_inf", rho_inf, low=0.0, high=1.0)
     ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=5000)
+        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     L, ds = scene.rail.length, scene.supports.spacing
     x0 = (0.5 * ds if 0.5 * ds < L else 0.5 * L) if x_start is None else v.number(
         "x_start", x_start, low=0.0, high=L, unit="m")
@@ -297,7 +297,7 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
     d = default_settings(scene, speed, integrator)
     h = d["dt"] if dt is None else v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
     ne = d["n_elements"] if n_elements is None else v.integer("n_elements", n_elements, low=4,
-                                                               high=5000)
+                                                               high=MAX_ELEMENTS)
     explicit = integrator == "explicit"
 
     def cap(h_, ne_):

@@ -16,7 +16,7 @@ import numpy as np
 
 from . import _core, _kernel
 from . import _validate as v
-from .scene import Scene
+from .scene import MAX_ELEMENTS, Scene
 
 
 @dataclass(frozen=True)
@@ -61,7 +61,7 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
     ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=5000)
+        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     model = _kernel.rail_model(scene, ne)
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1)
@@ -82,7 +82,7 @@ def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None =
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=5000)
+        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     model = _kernel.rail_model(scene, ne)
     freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], v.integer("n_modes", n_modes, low=1))
     return np.asarray(freqs).ravel()

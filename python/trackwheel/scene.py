@@ -17,6 +17,11 @@ from . import _validate as v
 #: Most supports a scene may resolve to from ``Supports.spacing`` [-] (a guard against a tiny
 #: spacing exhausting memory; 5 m at 0.5 m spacing has nine).
 MAX_SUPPORTS = 100_000
+#: Most rail elements a scene or a call may use [-]: 2.5 mm elements on the 5 m rail. The static
+#: Newton (tolerance 1e-13 L on the corrections) stops converging in round-off beyond ~3000, and
+#: the dense eigen analysis costs O(n^3) per wheel position (~25 s at 1000 elements).
+MAX_ELEMENTS = 2000
+
 #: Standard gravity used by the paper's scene [m/s^2]: F = 47040 N is 4800 kg x 9.8 m/s^2.
 GRAVITY = 9.8
 
@@ -52,7 +57,7 @@ class Rail:
         v.positive("Rail.density", self.density, "kg/m^3")
         v.positive("Rail.area", self.area, "m^2")
         v.positive("Rail.second_moment", self.second_moment, "m^4")
-        v.integer("Rail.n_elements", self.n_elements, low=1, high=5000)
+        v.integer("Rail.n_elements", self.n_elements, low=1, high=MAX_ELEMENTS)
         v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
         v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
         v.integer("Rail.n_gauss", self.n_gauss, low=2, high=10)

@@ -16,7 +16,7 @@ import numpy as np
 from . import _core, _kernel
 from . import _validate as v
 from ._errors import DivergenceError
-from .scene import Scene
+from .scene import MAX_ELEMENTS, Scene
 
 __all__ = ["DivergenceError", "Result", "simulate", "DEFAULT_DT", "FIDELITY_LEVELS",
            "MAX_OUTPUT_BYTES"]
@@ -232,7 +232,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
 
         ne = derived_mesh(scene) if (derived and dt is None) else scene.rail.n_elements
     else:
-        ne = v.integer("n_elements", n_elements, low=1, high=5000)
+        ne = v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     ds = scene.supports.spacing
     x0 = (0.5 * ds if 0.5 * ds < L else 0.5 * L) if x_start is None else v.number(
         "x_start", x_start, low=0.0, high=L, unit="m")

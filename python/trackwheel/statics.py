@@ -14,7 +14,7 @@ import numpy as np
 
 from . import _core, _kernel
 from . import _validate as v
-from .scene import Scene
+from .scene import MAX_ELEMENTS, Scene
 
 
 @dataclass(frozen=True)
@@ -54,7 +54,7 @@ class QuasiStatic:
 def _mesh(scene: Scene, n_elements) -> int:
     if n_elements is None:
         return scene.rail.n_elements
-    return v.integer("n_elements", n_elements, low=1, high=5000)
+    return v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
 
 
 def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> StaticResult:
