@@ -102,6 +102,17 @@ void check_coordinates(const RailModel& rail, const Eigen::VectorXd& e, const ch
                                 std::to_string(rail.n_dof()));
 }
 
+// progress(step, n_steps) called from the time loop with the GIL held; it is also where Ctrl-C
+// reaches the kernel (PyErr_CheckSignals), whether or not a progress bar is shown.
+ProgressFn python_progress(py::object progress) {
+  if (progress.is_none()) return nullptr;
+  return [progress](long step, long n) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    progress(step, n);
+  };
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -306,14 +317,7 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("simulate", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
                        const SimSettings& s, const SimState& init, py::object progress) {
-    ProgressFn fn;
-    if (!progress.is_none()) {
-      fn = [progress](long step, long n) {
-        py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        progress(step, n);
-      };
-    }
+    const ProgressFn fn = python_progress(progress);
     SimOutput o;
     {
       py::gil_scoped_release nogil;
@@ -363,14 +367,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("simulate_linear", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
                               const SimSettings& s, const LinearOptions& opt,
                               py::object progress) {
-    ProgressFn fn;
-    if (!progress.is_none()) {
-      fn = [progress](long step, long n) {
-        py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        progress(step, n);
-      };
-    }
+    const ProgressFn fn = python_progress(progress);
     SimOutput o;
     {
       py::gil_scoped_release nogil;

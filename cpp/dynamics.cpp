@@ -9,17 +9,19 @@
 
 namespace trackwheel {
 
-namespace {
-
-constexpr int kBorder = 3;  // wheel Y, theta, lambda
-constexpr int kY = 0, kTheta = 1, kLambda = 2;
-
-std::string fmt(double x) {
+std::string format3(double x) {
   std::ostringstream s;
   s.precision(3);
   s << x;
   return s.str();
 }
+
+namespace {
+
+constexpr int kBorder = 3;  // wheel Y, theta, lambda
+constexpr int kY = 0, kTheta = 1, kLambda = 2;
+
+std::string fmt(double x) { return format3(x); }
 
 // Everything evaluated at one (t, state).
 struct Eval {

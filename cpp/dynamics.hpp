@@ -90,6 +90,9 @@ class DivergenceError : public std::runtime_error {
 
 using ProgressFn = std::function<void(long step, long n_steps)>;
 
+// A number with 3 significant digits, for error messages.
+std::string format3(double x);
+
 SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const ContactParams& contact,
                    const SimSettings& settings, const SimState& initial,
                    const ProgressFn& progress = nullptr);

@@ -12,12 +12,7 @@ namespace trackwheel {
 
 namespace {
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << x;
-  return s.str();
-}
+std::string fmt(double x) { return format3(x); }
 
 // The linear vertical track in generalised coordinates q (y coordinates, or modal).
 struct LinearTrack {
