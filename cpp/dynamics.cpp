@@ -52,6 +52,14 @@ class System {
   void evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
     ev.x = x_at(t);
     ev.pt = find_contact_point(rail_, st.e, Eigen::Vector2d(ev.x, st.y), st.s);
+    contact_terms(st, jac, ev);
+    rail_.internal_force(st.e, &st.edot, ev.Qint);
+  }
+
+  // Contact force and rolling kinematics at the found contact point (with their Jacobians if
+  // jac): cheap next to the rail's elastic forces, so a Newton iteration that rebuilds its
+  // matrix calls this again with jac rather than evaluating Jacobians every iteration.
+  void contact_terms(const SimState& st, bool jac, Eval& ev) const {
     const int d0 = ev.pt.mp.dof0();
     Vec10 qdot;
     qdot(0) = set_.speed;
@@ -59,7 +67,6 @@ class System {
     qdot.tail<8>() = st.edot.segment<8>(d0);
     ev.cf = contact_force(contact_, ev.pt, qdot, jac);
     ev.rk = rolling_kinematics(ev.pt, ev.cf.grad_rho, qdot, st.thetadot, jac);
-    rail_.internal_force(st.e, &st.edot, ev.Qint);
   }
 
   // Multiplier prescribed by the slip state (Slip, Free), or NaN for Stick.
@@ -518,7 +525,7 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
           s1.thetadot = s0.thetadot + h * ((1.0 - gam) * a_th + gam * ath);
           if (!finite_state(s1)) diverge(n, "non-finite state in Newton", stability_cause());
           if (conv) break;  // the state at the converged iterate (ev is one correction old)
-          sys.evaluate(t1, s1, true, ev);
+          sys.evaluate(t1, s1, false, ev);
           s1.s = ev.pt.s;
           sys.residual(s1, ev, edd1, ydd1, thdd1, lam1, cv, r1, r2);
           const bool stale = jac_element != ev.pt.mp.element || jac_state != s1.state ||
@@ -526,6 +533,7 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
                              std::abs(ev.pt.s - jac_s) > 0.02 * rail.element_length();
           if (!have_jac || stale || !set.reuse_jacobian) {
             const bool refresh_rail = !have_jac || it >= 3 || out.factorizations % 64 == 0;
+            sys.contact_terms(s1, true, ev);
             if (!sys.jacobian(s1, ev, lam1, cq, cv, refresh_rail))
               diverge(n, "singular Newton matrix", stability_cause());
             have_jac = true;

@@ -134,7 +134,7 @@ void RailModel::add_element_block(int el, const Mat8& Ke, double scale, BandMatr
 
 void RailModel::internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* edot,
                                Eigen::VectorXd& Q, double* energy) const {
-  Q = Eigen::VectorXd::Zero(n_dof());
+  Q.setZero(n_dof());  // reuses Q's storage when it has the size already
   double U = 0.0;
   Vec8 Qe;
   for (int el = 0; el < p_.n_elements; ++el) {
