@@ -530,7 +530,7 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
           sys.residual(s1, ev, edd1, ydd1, thdd1, lam1, cv, r1, r2);
           const bool stale = jac_element != ev.pt.mp.element || jac_state != s1.state ||
                              jac_sigma != s1.sigma || it >= 4 ||
-                             std::abs(ev.pt.s - jac_s) > 0.02 * rail.element_length();
+                             std::abs(ev.pt.s - jac_s) > 0.05 * rail.element_length();
           if (!have_jac || stale || !set.reuse_jacobian) {
             const bool refresh_rail = !have_jac || it >= 3 || out.factorizations % 64 == 0;
             sys.contact_terms(s1, true, ev);

@@ -159,8 +159,9 @@ def test_torque_slip_threshold(factor, expect_slip):
     if expect_slip:
         assert np.all(r.slip_state[tail] == 2)
         assert np.all(r.slip[tail] < 0)
+        # lambda = mu N holds to the Newton tolerance on the tangential force (1e-6 of the load)
         np.testing.assert_allclose(r.tangential_force[tail], mu * r.normal_force[tail],
-                                   rtol=1e-9)
+                                   rtol=0, atol=1e-6 * P)
     else:
         assert np.all(r.slip_state == 1)
         # J theta'' = T - rho lambda with theta'' ~ 0 (dynamic fluctuations of N are ~5 %)
