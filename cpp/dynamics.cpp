@@ -411,14 +411,18 @@ double highest_frequency(const RailModel& rail, const WheelParams& wheel,
 
 double explicit_stability_limit(double omega_max) { return 2.0 * std::sqrt(2.0) / omega_max; }
 
-SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const ContactParams& contact,
-                   const SimSettings& set, const SimState& initial, const ProgressFn& progress) {
+void check_settings(const SimSettings& set) {
   if (!(set.dt > 0.0) || !std::isfinite(set.dt)) throw std::invalid_argument("dt must be > 0 s");
   if (!(set.t_end >= 0.0) || !std::isfinite(set.t_end))
     throw std::invalid_argument("t_end must be >= 0 s");
   if (set.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
   if (!(set.rho_inf >= 0.0 && set.rho_inf <= 1.0))
     throw std::invalid_argument("rho_inf must be in [0, 1]");
+}
+
+SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const ContactParams& contact,
+                   const SimSettings& set, const SimState& initial, const ProgressFn& progress) {
+  check_settings(set);
   if (initial.e.size() != rail.n_dof() || initial.edot.size() != rail.n_dof())
     throw std::invalid_argument("initial rail state has the wrong size");
 

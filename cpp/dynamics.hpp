@@ -90,6 +90,10 @@ class DivergenceError : public std::runtime_error {
 
 using ProgressFn = std::function<void(long step, long n_steps)>;
 
+// Throws std::invalid_argument for settings no integrator can run (dt, t_end, output_every,
+// rho_inf out of range).
+void check_settings(const SimSettings& settings);
+
 // A number with 3 significant digits, for error messages.
 std::string format3(double x);
 

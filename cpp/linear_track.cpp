@@ -115,12 +115,7 @@ struct LinearTrack {
 SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
                           const ContactParams& contact, const SimSettings& set,
                           const LinearOptions& opt, const ProgressFn& progress) {
-  if (!(set.dt > 0.0) || !std::isfinite(set.dt)) throw std::invalid_argument("dt must be > 0 s");
-  if (!(set.t_end >= 0.0) || !std::isfinite(set.t_end))
-    throw std::invalid_argument("t_end must be >= 0 s");
-  if (set.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
-  if (!(set.rho_inf >= 0.0 && set.rho_inf <= 1.0))
-    throw std::invalid_argument("rho_inf must be in [0, 1]");
+  check_settings(set);
   const LinearTrack tr(rail, opt.n_modes);
   const int nq = tr.nq;
   const WheelModel wm = opt.wheel_model;
