@@ -237,6 +237,38 @@ void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
 
 void cable_elastic(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
                    const CableQuadrature* quad) {
+  if (!K && Q && quad) {
+    // force (and energy) only, axial and bending in one pass over the Gauss points: the hot
+    // path of the time loop (same formulas as cable_axial and cable_bending)
+    Q->setZero();
+    if (U) *U = 0.0;
+    Eigen::Vector2d rs, rss;
+    for (int g = 0; g < quad->n; ++g) {
+      const HermiteValues& h = quad->h[g];
+      derivatives(h, e, rs, rss);
+      const double gg = rs.squaredNorm();
+      const double eps = 0.5 * (gg - 1.0);
+      const double cr = rs.x() * rss.y() - rs.y() * rss.x();
+      double kappa, fa, fb;  // dkappa/de = sum_i ns_i (fa a + fb r_s) + nss_i fa b
+      if (c.exact_curvature) {
+        const double g32 = 1.0 / (gg * std::sqrt(gg));
+        kappa = cr * g32;
+        fa = g32;
+        fb = -3.0 * cr * g32 / gg;
+      } else {
+        kappa = cr;
+        fa = 1.0;
+        fb = 0.0;
+      }
+      const double wl = quad->w[g] * c.length;
+      if (U) *U += 0.5 * wl * (c.EA * eps * eps + c.EI * kappa * kappa);
+      const double sb = wl * c.EI * kappa, sa = wl * c.EA * eps;
+      const Eigen::Vector2d a(rss.y(), -rss.x()), b(-rs.y(), rs.x());
+      const Eigen::Vector2d va = sb * (fa * a + fb * rs) + sa * rs, vb = (sb * fa) * b;
+      for (int i = 0; i < 4; ++i) Q->segment<2>(2 * i) += h.ns[i] * va + h.nss[i] * vb;
+    }
+    return;
+  }
   Vec8 Qa, Qb;
   Mat8 Ka, Kb;
   double Ua = 0.0, Ub = 0.0;
