@@ -483,6 +483,7 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
 
   Eigen::VectorXd r1, r2, x1, x2, dedd = Eigen::VectorXd::Zero(rail.n_dof());
   bool have_jac = false, have_prev = false;
+  bool start_ready = false;  // explicit: ev/edd/lambda already evaluated at the current state
   Eigen::VectorXd edd_prev = edd;
   double ydd_prev = ydd, thdd_prev = thdd, lambda_prev = lambda;
   int jac_element = -1;
@@ -605,9 +606,12 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
         sys.evaluate(t, s, true, e2);
         sys.accelerations(s, e2, ea, ya, tha, lam);
       };
-      sys.evaluate(t1 - h, st, true, ev);
+      if (!start_ready) {  // else ev, edd, ... hold this state's evaluation from the output
+        sys.evaluate(t1 - h, st, true, ev);
+        sys.accelerations(st, ev, edd, ydd, thdd, lambda);
+      }
+      start_ready = false;
       st.s = ev.pt.s;
-      sys.accelerations(st, ev, edd, ydd, thdd, lambda);
       if (update_state(set, st, ev, lambda)) {
         ++out.state_changes;
         sys.accelerations(st, ev, edd, ydd, thdd, lambda);
@@ -657,11 +661,10 @@ SimOutput simulate(const RailModel& rail, const WheelParams& wheel, const Contac
     }
     if (n % set.output_every == 0) {
       if (set.integrator == Integrator::ExplicitRK4) {
-        sys.evaluate(t1, st, false, ev);
-        // accelerations and multiplier at the recorded state
-        Eval e2;
-        sys.evaluate(t1, st, true, e2);
-        sys.accelerations(st, e2, edd, ydd, thdd, lambda);
+        // accelerations and multiplier at the recorded state; the next step starts from them
+        sys.evaluate(t1, st, true, ev);
+        sys.accelerations(st, ev, edd, ydd, thdd, lambda);
+        start_ready = true;
       }
       rec.record(t1, st, ev, edd, lambda);
     }
