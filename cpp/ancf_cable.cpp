@@ -116,6 +116,23 @@ inline Vec8 spread(const double n[4], const Eigen::Vector2d& v) {
   return out;
 }
 
+// Curvature kappa and the factors of its gradient, dkappa/de = sum_i ns_i (fa a + fb r_s)
+// + nss_i fa b with a = dc/dr_s, b = dc/dr_ss (c = r_s x r_ss), exact or simplified curvature.
+inline void curvature_terms(const Eigen::Vector2d& rs, double cr, bool exact, double& kappa,
+                            double& fa, double& fb) {
+  if (exact) {
+    const double gg = rs.squaredNorm();
+    const double g32 = 1.0 / (gg * std::sqrt(gg));
+    kappa = cr * g32;
+    fa = g32;
+    fb = -3.0 * cr * g32 / gg;
+  } else {
+    kappa = cr;
+    fa = 1.0;
+    fb = 0.0;
+  }
+}
+
 }  // namespace
 
 void cable_axial(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, double* U,
@@ -157,35 +174,6 @@ void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
   if (K) K->setZero();
   if (U) *U = 0.0;
   Eigen::Vector2d rs, rss;
-  if (!K) {
-    // force (and energy) only: the hot path of the time loop
-    for (int g = 0; g < c.n_gauss; ++g) {
-      const HermiteValues& h = q.h[g];
-      derivatives(h, e, rs, rss);
-      const double cr = rs.x() * rss.y() - rs.y() * rss.x();
-      double kappa, fa, fb;  // dkappa/de = sum_i ns_i (fa a + fb r_s) + nss_i fa b
-      if (c.exact_curvature) {
-        const double gg = rs.squaredNorm();
-        const double g32 = 1.0 / (gg * std::sqrt(gg));
-        kappa = cr * g32;
-        fa = g32;
-        fb = -3.0 * cr * g32 / gg;
-      } else {
-        kappa = cr;
-        fa = 1.0;
-        fb = 0.0;
-      }
-      const double wl = w[g] * c.length * c.EI;
-      if (U) *U += 0.5 * wl * kappa * kappa;
-      if (Q) {
-        const double s = wl * kappa;
-        const Eigen::Vector2d a(rss.y(), -rss.x()), b(-rs.y(), rs.x());
-        const Eigen::Vector2d va = s * (fa * a + fb * rs), vb = (s * fa) * b;
-        for (int i = 0; i < 4; ++i) Q->segment<2>(2 * i) += h.ns[i] * va + h.nss[i] * vb;
-      }
-    }
-    return;
-  }
   for (int g = 0; g < c.n_gauss; ++g) {
     const HermiteValues& h = q.h[g];
     derivatives(h, e, rs, rss);
@@ -249,17 +237,8 @@ void cable_elastic(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
       const double gg = rs.squaredNorm();
       const double eps = 0.5 * (gg - 1.0);
       const double cr = rs.x() * rss.y() - rs.y() * rss.x();
-      double kappa, fa, fb;  // dkappa/de = sum_i ns_i (fa a + fb r_s) + nss_i fa b
-      if (c.exact_curvature) {
-        const double g32 = 1.0 / (gg * std::sqrt(gg));
-        kappa = cr * g32;
-        fa = g32;
-        fb = -3.0 * cr * g32 / gg;
-      } else {
-        kappa = cr;
-        fa = 1.0;
-        fb = 0.0;
-      }
+      double kappa, fa, fb;
+      curvature_terms(rs, cr, c.exact_curvature, kappa, fa, fb);
       const double wl = quad->w[g] * c.length;
       if (U) *U += 0.5 * wl * (c.EA * eps * eps + c.EI * kappa * kappa);
       const double sb = wl * c.EI * kappa, sa = wl * c.EA * eps;
