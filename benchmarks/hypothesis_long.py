@@ -16,13 +16,14 @@ build). Exit code 1 if any property failed.
 from __future__ import annotations
 
 import argparse
-import csv
 import os
 import re
 import subprocess
 import sys
 import time
 from pathlib import Path
+
+from _common import write_csv
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -79,10 +80,7 @@ def main(argv=None) -> int:
               f"({row['examples_per_s']:.0f}/s)", flush=True)
     total = sum(r["passing"] for r in rows)
     print(f"total: {total} passing examples in {time.perf_counter() - start:.0f} s")
-    with open(HERE / "hypothesis_long.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv("hypothesis_long.csv", rows)
     return 0 if all(r["status"] == "passed" for r in rows) else 1
 
 

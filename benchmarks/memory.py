@@ -18,11 +18,12 @@ Writes ``memory.csv`` next to itself.
 
 from __future__ import annotations
 
-import csv
 import json
 import subprocess
 import sys
 from pathlib import Path
+
+from _common import write_csv
 
 HERE = Path(__file__).resolve().parent
 
@@ -67,10 +68,7 @@ def main():
               f"{d['peak_mib']:6.1f} MiB (baseline {d['baseline_mib']:.1f}, growth "
               f"{row['growth_mib']:.1f}; output arrays {d['output_mib']:.1f} MiB) in "
               f"{d['wall_s']:.1f} s", flush=True)
-    with open(HERE / "memory.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv("memory.csv", rows)
 
 
 if __name__ == "__main__":

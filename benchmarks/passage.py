@@ -12,11 +12,12 @@ Writes benchmarks/passage.csv.
 from __future__ import annotations
 
 import argparse
-import csv
 import os
 import platform
 import statistics
 import time
+
+from _common import write_csv
 
 import trackwheel as tw
 
@@ -70,12 +71,7 @@ def main(argv=None):
     ga = rows[0]["median_s"]
     print(f"target: generalized-alpha full passage < 0.1 s: {ga:.4f} s -> "
           f"{'met' if ga < 0.1 else 'NOT met'}; paper's scheme / ours = {rows[2]['median_s'] / ga:.0f}x")
-    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "passage.csv")
-    with open(out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    print(f"wrote {out}")
+    write_csv("passage.csv", rows)
 
 
 if __name__ == "__main__":

@@ -20,13 +20,13 @@ stability_map.png next to this file. Takes about 3-5 minutes on the 2-core machi
 
 from __future__ import annotations
 
-import csv
 import math
 import os
 import time
 import warnings
 
 import numpy as np
+from _common import write_csv
 
 import trackwheel as tw
 
@@ -148,15 +148,6 @@ def newton_map():
                 print(f"gen.-alpha {case:12s} {kmh} km/h rho_inf={rho}: first failing dt "
                       f"{first_fail:.3g} s (tried up to {dt:.3g} s)", flush=True)
     return rows
-
-
-def write_csv(name, rows):
-    path = os.path.join(HERE, name)
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    print(f"wrote {path}")
 
 
 def chart(ex, drift, newton, path):

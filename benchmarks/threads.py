@@ -16,7 +16,6 @@ the GIL): a speed-up below 2 there is the machine's (shared or throttled cores),
 from __future__ import annotations
 
 import argparse
-import csv
 import dataclasses
 import hashlib
 import os
@@ -24,6 +23,8 @@ import statistics
 import threading
 import time
 from pathlib import Path
+
+from _common import write_csv
 
 import trackwheel as tw
 
@@ -120,10 +121,7 @@ def main(argv=None):
           f"(medians of {args.repeats}); median speed-up {mr:.2f} (ideal 2.00; a GIL-free "
           f"SHA-256 reference reaches {mh:.2f} on this machine)")
     print("threaded results identical to serial:", all(r["identical"] for r in rows))
-    with open(HERE / "threads.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv("threads.csv", rows)
 
 
 if __name__ == "__main__":

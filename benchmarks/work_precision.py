@@ -36,6 +36,7 @@ import statistics
 import time
 
 import numpy as np
+from _common import write_csv
 
 import trackwheel as tw
 from trackwheel import _core, _kernel
@@ -171,15 +172,6 @@ def read_csv(name):
             if k != "integrator":
                 r[k] = float(val) if any(c in val for c in ".en") else int(val)
     return rows
-
-
-def write_csv(name, rows):
-    path = os.path.join(HERE, name)
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    print(f"wrote {path}")
 
 
 def chart(rows, paper_rows, path):
