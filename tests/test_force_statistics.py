@@ -109,3 +109,28 @@ def test_no_loss_and_loss_at_the_record_end():
 def test_bad_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call(np.linspace(0.0, 1.0, 101))
+
+
+def test_force_figures_carry_units_and_data():
+    from matplotlib.figure import Figure
+
+    from trackwheel import plots
+
+    dt = 1e-4
+    t = np.arange(0.0, 0.2, dt)
+    x = 2.0 + 80.0 * t
+    n = P0 + 5e3 * np.sin(2 * math.pi * 120.0 * t)
+    fig = plots.contact_force(x, n, defect_at=5.0, static_load=P0)
+    assert isinstance(fig, Figure)
+    (ax,) = fig.axes
+    assert "[m]" in ax.get_xlabel() and "[kN]" in ax.get_ylabel()
+    gids = {ln.get_gid(): ln for ln in ax.get_lines()}
+    assert np.array_equal(gids["force"].get_ydata(), n / 1e3)
+    assert list(gids["defect"].get_xdata()) == [5.0, 5.0]
+    st = force_statistics(t, x, n, P0)
+    fig = plots.force_bands(st)
+    (ax,) = fig.axes
+    assert "[Hz]" in ax.get_xlabel() and "[N]" in ax.get_ylabel()
+    (bands,) = ax.get_lines()
+    # the 120 Hz sine is in the 125 Hz band (112-141 Hz): its marker is the highest
+    assert bands.get_xdata()[np.argmax(bands.get_ydata())] == pytest.approx(10**2.1, rel=1e-12)

@@ -369,3 +369,25 @@ def test_scene_rejects_wrong_excitation_types():
         trackwheel.Wheel(defects=(0.05,))
     with pytest.raises(ValueError, match="WheelFlat.length"):
         trackwheel.Wheel(radius=0.1, defects=(WheelFlat(0.25),))
+
+
+# ---------------------------------------------------------------------------------------------
+# plots
+def test_profile_figure_shows_the_profile_and_its_spectrum():
+    from matplotlib.figure import Figure
+
+    from trackwheel import plots
+
+    irr = Irregularity.random(spectra.fra(5), seed=4, wavelengths=(2.0, 40.0))
+    fig = plots.irregularity_profile(irr, 0.0, 2000.0, 0.25)
+    assert isinstance(fig, Figure)
+    ax_r, ax_s = fig.axes
+    assert "[m]" in ax_r.get_xlabel() and "[mm]" in ax_r.get_ylabel()
+    assert "[rad/m]" in ax_s.get_xlabel() and "[m^2/(rad/m)]" in ax_s.get_ylabel()
+    (profile,) = [ln for ln in ax_r.get_lines() if ln.get_gid() == "profile"]
+    x = np.asarray(profile.get_xdata())
+    assert np.array_equal(profile.get_ydata(), irr(x) * 1e3)
+    (target,) = [ln for ln in ax_s.get_lines() if ln.get_gid() == "target"]
+    w = np.asarray(target.get_xdata())
+    assert w[0] >= 2 * math.pi / 40.0 * (1 - 1e-12) and w[-1] <= math.pi * (1 + 1e-12)
+    assert np.array_equal(target.get_ydata(), spectra.fra(5)(w))
