@@ -15,6 +15,7 @@ from trackwheel.irregularity import (
     Polygon,
     WheelFlat,
     contact_filter,
+    contact_half_width,
     filter_attenuation,
     filter_matters,
     hertz_half_width,
@@ -391,3 +392,28 @@ def test_profile_figure_shows_the_profile_and_its_spectrum():
     w = np.asarray(target.get_xdata())
     assert w[0] >= 2 * math.pi / 40.0 * (1 - 1e-12) and w[-1] <= math.pi * (1 + 1e-12)
     assert np.array_equal(target.get_ydata(), spectra.fra(5)(w))
+
+
+def test_filtered_table_is_the_sinc_scaled_profile():
+    # a sine of 3 cm under the paper's patch (a ~ 6 mm): the table is H sin(...) everywhere on
+    # the requested grid, H = sin(Omega a)/(Omega a); sampling error (Omega dx)^2 / 12
+    import trackwheel
+
+    a = contact_half_width(trackwheel.Scene())
+    assert 1e-3 < a < 1e-2  # millimetres, as for a 0.1 m wheel under 47 kN
+    lam, dx = 0.03, 1e-4
+    irr = Irregularity.sine(lam, 1.0)
+    x0, h, r = irr.table(0.0, 0.5, dx, half_width=a)
+    x = x0 + h * np.arange(r.size)
+    assert x[-1] == pytest.approx(0.5, rel=1e-12)
+    expected = filter_attenuation(lam, a)[0] * irr(x)
+    assert np.max(np.abs(r - expected)) < (2 * math.pi / lam * dx) ** 2 / 12
+
+
+def test_shortest_wavelength():
+    irr = (Irregularity.random(spectra.fra(5), seed=0, wavelengths=(3.0, 30.0))
+           + Irregularity.sine(0.05, 1e-5) + Irregularity.dipped_joint(1e-3, 0.4, 1.0))
+    assert irr.shortest_wavelength() == 0.05
+    assert Irregularity.samples([0, 0.01, 0.03, 0.04], [0, 0, 0, 0]).shortest_wavelength() == \
+        pytest.approx(0.02, rel=1e-12)
+    assert Irregularity().shortest_wavelength() == math.inf

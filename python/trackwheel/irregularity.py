@@ -334,12 +334,42 @@ class Irregularity:
                              "allowed at most 5e7")
         return np.linspace(x_min, x_max, n)
 
-    def table(self, x_min: float, x_max: float, dx: float) -> tuple[float, float, np.ndarray]:
+    def table(self, x_min: float, x_max: float, dx: float, *, half_width: float | None = None
+              ) -> tuple[float, float, np.ndarray]:
         """(x0 [m], dx [m], r [m]) on the uniform grid :meth:`grid`: x_i = x0 + i dx, i = 0..n-1,
         with dx = (x_max - x_min)/(n - 1) <= the requested dx. This is how the kernel receives
-        the profile (it interpolates cubically between the samples)."""
+        the profile (it interpolates cubically between the samples).
+
+        ``half_width`` a [m] (e.g. :func:`contact_half_width`): the values are the contact-
+        filtered profile (:func:`contact_filter`), computed from samples on the grid extended
+        by a on both sides, so every returned value averages the whole patch."""
         x = self.grid(x_min, x_max, dx)
-        return float(x[0]), float(x[1] - x[0]), self(x)
+        h = float(x[1] - x[0])
+        if half_width is None:
+            return float(x[0]), h, self(x)
+        a = v.positive("half_width", half_width, "m")
+        k = math.ceil(a / h * (1 - 1e-12)) + 1
+        xe = x[0] + h * np.arange(-k, x.size + k)
+        xf, rf = contact_filter(xe, self(xe), a)
+        first = int(np.searchsorted(xf, x[0] - 0.5 * h))
+        return float(x[0]), h, rf[first:first + x.size]
+
+    def shortest_wavelength(self) -> float:
+        """The shortest wavelength [m] the profile holds, to judge the contact filter
+        (:func:`filter_matters`): lambda_min of a random part, a sine's wavelength, a joint's
+        length (its cusp has content at all shorter wavelengths, falling like lambda^2), and
+        twice the finest spacing of sampled data (their Nyquist wavelength); inf if empty."""
+        out = math.inf
+        for p in self.parts:
+            if isinstance(p, RandomProfile):
+                out = min(out, p.wavelengths[0])
+            elif isinstance(p, SineProfile):
+                out = min(out, p.wavelength)
+            elif isinstance(p, DippedJoint):
+                out = min(out, p.length)
+            else:
+                out = min(out, 2.0 * float(np.min(np.diff(p.x))))
+        return out
 
     def psd(self, x_min: float, x_max: float, dx: float, *, nperseg: int | None = None
             ) -> tuple[np.ndarray, np.ndarray]:
@@ -377,6 +407,13 @@ def hertz_half_width(load: float, radius: float, effective_modulus: float,
         return (3.0 * p * r / (4.0 * e)) ** (1.0 / 3.0)
     b = v.positive("contact_length", contact_length, "m")
     return math.sqrt(4.0 * p * r / (math.pi * b * e))
+
+
+def contact_half_width(scene) -> float:
+    """Hertz half-length a [m] of the static contact patch of a :class:`trackwheel.Scene`:
+    :func:`hertz_half_width` at P = F + M g, R = rho0, the scene's E* (circular contact, the
+    geometry of its Hertz constant)."""
+    return hertz_half_width(scene.static_load, scene.wheel.radius, scene.effective_modulus)
 
 
 def contact_filter(x, r, half_width: float) -> tuple[np.ndarray, np.ndarray]:
