@@ -134,3 +134,23 @@ def test_force_figures_carry_units_and_data():
     (bands,) = ax.get_lines()
     # the 120 Hz sine is in the 125 Hz band (112-141 Hz): its marker is the highest
     assert bands.get_xdata()[np.argmax(bands.get_ydata())] == pytest.approx(10**2.1, rel=1e-12)
+
+
+def test_statistics_of_a_simulated_run():
+    # the paper's smooth track: the statistics read the run's own arrays, against its P0
+    import trackwheel as tw
+    from trackwheel.force_statistics import result_statistics
+
+    scene = tw.Scene.kato2005()
+    r = tw.simulate(scene, tw.kmh(200), x_start=1.5, x_end=2.6, progress=False)
+    st = result_statistics(r, defect_at=2.0)
+    assert st.max_force == r.normal_force.max() and st.min_force == r.normal_force.min()
+    assert st.dynamic_factor == pytest.approx(r.normal_force.max() / (47040 + 10 * 9.8),
+                                              rel=1e-15)
+    td = float(np.interp(2.0, r.x_wheel, r.t))
+    assert st.defect_time == pytest.approx(td, rel=1e-12)
+    assert st.p1_time >= td and st.p2_time > st.p1_time
+    # as many loss intervals as the Result's own contact-free intervals
+    assert len(st.loss_intervals) == len(r.contact_free_intervals())
+    with pytest.raises(TypeError, match="Result"):
+        result_statistics(object())

@@ -179,3 +179,16 @@ def force_statistics(t, x, n, static_load: float, *, defect_at: float | None = N
         max_force=float(n.max()), min_force=float(n.min()), dynamic_factor=float(n.max()) / p0,
         loss_duration=loss, loss_intervals=intervals, band_centres=centres, band_rms=rms,
         frequency=f, amplitude=amp, **peaks)
+
+
+def result_statistics(result, *, defect_at: float | None = None, p1_period: float = P1_PERIOD,
+                      p2_period: float = P2_PERIOD, loss_threshold: float = 0.0
+                      ) -> ForceStatistics:
+    """:func:`force_statistics` of a :class:`trackwheel.Result`: t, X_A = ``x_wheel`` and
+    N = ``normal_force`` of the run against its scene's static load P0 = F + M g [N]."""
+    for name in ("t", "x_wheel", "normal_force", "scene"):
+        if not hasattr(result, name):
+            raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
+    return force_statistics(result.t, result.x_wheel, result.normal_force,
+                            result.scene.static_load, defect_at=defect_at, p1_period=p1_period,
+                            p2_period=p2_period, loss_threshold=loss_threshold)
