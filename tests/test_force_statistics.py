@@ -158,8 +158,8 @@ def test_statistics_of_a_simulated_run():
 
 def test_jenkins_p2_by_hand():
     # illustrative values of the right order for a wheelset on ballasted track: P0 = 112.5 kN,
-    # 2 alpha = 0.02 rad,
-    # v = 44.7 m/s, M_u = 1275 kg, M_t = 245 kg, K_t = 1.5e8 N/m, C_t = 0.76e5 N s/m
+    # 2 alpha = 0.02 rad, v = 44.7 m/s, M_u = 1275 kg, M_t = 245 kg, K_t = 1.5e8 N/m,
+    # C_t = 0.76e5 N s/m
     from trackwheel.force_statistics import jenkins_p2
 
     root = math.sqrt(1275 / 1520)
