@@ -204,6 +204,15 @@ class Analysis:
     acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
     acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
 
+    def __repr__(self) -> str:
+        return (f"<trackwheel.Analysis: {self.t.size} samples, "
+                f"X = {self.x_wheel[0]:.4g} -> {self.x_wheel[-1]:.4g} m>\n"
+                f"  amplitude max|d| = {self.amplitude:.4g} m at t = {self.amplitude_time:.4g} s, "
+                f"main frequency {self.main_frequency:.1f} Hz "
+                f"(resolution {self.frequency_resolution:.2g} Hz)\n"
+                f"  contact force {self.min_contact_force:.6g}..{self.max_contact_force:.6g} N, "
+                f"lost contact: {'yes' if self.lost_contact else 'no'}")
+
     @property
     def sample_spacing(self) -> float:
         """dt of the record [s] (time step x output_every)."""

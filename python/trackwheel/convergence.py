@@ -91,6 +91,15 @@ class Convergence:
     wall_time: float  #: total wall time of all runs [s]
     history: list = field(default_factory=list)  #: one dict per run: dt, n_elements, outputs
 
+    def __repr__(self) -> str:
+        return (f"<trackwheel.Convergence: {'converged' if self.converged else 'NOT converged'} "
+                f"to tol = {self.tol:g} after {len(self.history)} runs "
+                f"({self.wall_time:.3g} s)>\n"
+                f"  dt = {self.dt:.3g} s, {self.n_elements} elements\n"
+                f"  amplitude {self.amplitude:.6g} m (est. error {self.amplitude_error:.2g}), "
+                f"main frequency {self.main_frequency:.6g} Hz "
+                f"(est. error {self.frequency_error:.2g})")
+
     @property
     def error(self) -> float:
         """The larger of the two estimated relative errors [-]."""

@@ -123,13 +123,12 @@ class Result:
         lost = self.lost_contact
         return "\n".join([
             (f"<trackwheel.Result: {n} samples, t = {self.t[0]:.4g}..{self.t[-1]:.4g} s, "
-            f"{self.steps} steps>"),
+             f"{self.steps} steps in {self.wall_time:.3g} s>"),
             (f"  settings : {s.fidelity}, {s.integrator}, dt = {s.dt:.3g} s, {s.n_elements} "
             f"elements, v = {s.speed:.4g} m/s, X = {s.x_start:.4g} -> {s.x_end:.4g} m"),
             f"  y_contact: {self.y_contact.min():.4g} .. {self.y_contact.max():.4g} m",
             (f"  normal force: {self.normal_force.min():.4g} .. {self.normal_force.max():.4g} N, "
             f"lost contact: {'yes' if lost else 'no'}"),
-            f"  wall time: {self.wall_time:.3g} s",
         ])
 
 
