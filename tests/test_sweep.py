@@ -254,7 +254,7 @@ def test_diverging_and_rejected_cases_are_recorded(tmp_path):
     assert ok.tolist() == [True, False, False, False]
     assert df.error[1].startswith("DivergenceError:") and "stability limit" in df.error[1]
     assert all(e.startswith("ValueError: speed = 400.0") for e in df.error[2:])
-    assert np.isfinite(df.amplitude[0]) and df.lost_contact[0] == False
+    assert np.isfinite(df.amplitude[0]) and df.lost_contact[0] in (False,)  # not None
     assert df.loc[~ok, OUTPUTS].isna().all().all() and df.lost_contact[~ok].isna().all()
     assert (df.integrator == "explicit").all() and (df.dt == 5e-6).all()
     again = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)

@@ -60,6 +60,7 @@ import warnings
 from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -67,8 +68,12 @@ from . import _validate as v
 from ._errors import DivergenceError
 from ._version import __version__
 from .analysis import analyse
+from .fidelity import adequacy
 from .scene import Scene
 from .simulate import simulate
+
+if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
+    import pandas as pd
 
 __all__ = ["COLUMNS", "load_sweep", "sweep"]
 
@@ -243,7 +248,7 @@ def _frame(rows: list[dict]):
     return df
 
 
-def load_sweep(path) -> pandas.DataFrame:  # noqa: F821
+def load_sweep(path) -> pd.DataFrame:
     """Load every sound record of a sweep store (``path``: the ``store=`` directory) into a
     DataFrame with the columns of :func:`sweep` (see the module docstring for the format),
     sorted by speed, support stiffness and case hash. Records that fail their checks are left
@@ -325,7 +330,7 @@ def _terminate(pool: ProcessPoolExecutor) -> None:
 def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | None = None,
           max_workers: int | None = None, store=None, progress: bool = True,
           retry_errors: bool = False, fidelity_tol: float = 0.005,
-          **simulate_kwargs) -> pandas.DataFrame:  # noqa: F821
+          **simulate_kwargs) -> pd.DataFrame:
     """Run ``simulate`` + ``analyse`` for every (speed, support stiffness) pair.
 
     Parameters
@@ -380,8 +385,6 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
     _jsonable(kwargs)  # the store hashes them: plain numbers, strings, bools, None
     auto = None
     if kwargs.get("fidelity") == "auto":
-        from .fidelity import adequacy
-
         fidelity_tol = v.number("fidelity_tol", fidelity_tol, low=0.0, low_open=True)
         sample_v, sample_k = float(np.max(speeds)), float(np.min(stiffs))
         rest = {key: val for key, val in kwargs.items() if key != "fidelity"}
