@@ -260,3 +260,21 @@ def test_linear_sprung_uses_the_full_models_settings(speed_kmh, capsys):
         assert f"dt = {d['dt']:.3g} s, {d['n_elements']} elements" in line
     full, lin = (_value(printed[k], "amplitude") for k in ("full", "linear/sprung"))
     assert abs(lin / full - 1.0) < 3e-4
+
+
+def test_version_is_written_once():
+    """pyproject.toml takes the version from _version.py (scikit-build-core's regex provider)
+    and declares none of its own; the installed metadata agrees with the package."""
+    import importlib.metadata
+    import re
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    project = (root / "pyproject.toml").read_text(encoding="utf-8")
+    table = project.split("[project]", 1)[1].split("\n[", 1)[0]
+    assert re.search(r'^dynamic = \["version"\]', table, re.M)
+    assert not re.search(r"^version\s*=", table, re.M)
+    assert 'metadata.version.input = "python/trackwheel/_version.py"' in project
+    source = (root / "python" / "trackwheel" / "_version.py").read_text(encoding="utf-8")
+    assert re.findall(r'__version__ = "([^"]+)"', source) == [tw.__version__]
+    assert importlib.metadata.version("trackwheel") == tw.__version__
