@@ -82,7 +82,7 @@ def test_rows_equal_single_runs_bit_for_bit(max_workers, reference):
         assert row.steps == r.steps
         for name in ("integrator", "dt", "n_elements", "x_start", "t_end", "output_every",
                      "rho_inf", "rolling", "start"):
-            assert getattr(row, name) == r.settings[name], name
+            assert getattr(row, name) == getattr(r.settings, name), name
         assert row.x_end == pytest.approx(0.5, abs=1e-12)
         assert row.version == tw.__version__ and 0.0 < row.wall_time < 60.0
     assert np.all(df.amplitude > 0) and np.all(df.main_frequency > 0)

@@ -85,8 +85,8 @@ class Plan:
 
     The convergence runs (Figs. 4, 5) start where every run starts (the middle of the first
     support bay) and cover only ``fig4_stretch`` / ``fig5_stretch`` of track: the paper's
-    explicit steps of 1e-8 s over the whole passage would take hours (the summary states the
-    cost per step measured in the run).
+    smallest explicit step over the whole passage is expensive (the summary states the cost per
+    step measured in the run and what the whole passage would take).
     """
 
     name: str
