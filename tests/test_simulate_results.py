@@ -4,6 +4,7 @@ lines with the key numbers, never the arrays), and the derived defaults shared b
 from __future__ import annotations
 
 import dataclasses as dc
+import importlib
 import warnings
 
 import numpy as np
@@ -102,3 +103,14 @@ def test_fewer_elements_than_bays_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         tw.simulate(SCENE, tw.kmh(100), n_elements=10, dt=1e-5, x_end=0.5)
+
+
+def test_the_output_size_check_counts_every_recorded_array():
+    """simulate refuses outputs above MAX_OUTPUT_BYTES before running, counting _N_FIELDS
+    float64 arrays per sample: exactly the arrays a run with energy=True returns."""
+    sim = importlib.import_module("trackwheel.simulate")  # (tw.simulate is the function)
+    r = tw.simulate(SCENE, tw.kmh(300), n_elements=20, dt=1e-5, x_end=0.5, energy=True)
+    arrays = [f.name for f in dc.fields(tw.Result)
+              if isinstance(getattr(r, f.name), np.ndarray)]
+    assert len(arrays) == sim._N_FIELDS
+    assert all(getattr(r, name).shape == r.t.shape for name in arrays)
