@@ -4,6 +4,7 @@ is computed, in the command line's units. (``reproduce``: tests/test_reproduce.p
 
 from __future__ import annotations
 
+import dataclasses
 import subprocess
 import sys
 
@@ -278,3 +279,19 @@ def test_version_is_written_once():
     source = (root / "python" / "trackwheel" / "_version.py").read_text(encoding="utf-8")
     assert re.findall(r'__version__ = "([^"]+)"', source) == [tw.__version__]
     assert importlib.metadata.version("trackwheel") == tw.__version__
+
+
+@pytest.mark.parametrize("stiffness, message", [
+    (1e6, "the simulation could not start: static solve: the wheel lost contact with the rail"),
+    (140e6, "the analysis failed: static solve: the wheel lost contact with the rail"),
+])
+def test_a_failed_static_solve_is_one_line(stiffness, message, capsys, monkeypatch):
+    """A wheel load of 2e7 N pushes the rail through 1 MN/m supports at the start (the kernel's
+    static solve fails), and through 140 MN/m ones somewhere along the quasi-static line of the
+    analysis: exit code 1 and one line, not a traceback."""
+    scene = tw.Scene.kato2005()
+    heavy = dataclasses.replace(scene, wheel=dataclasses.replace(scene.wheel, load=2e7),
+                                supports=dataclasses.replace(scene.supports, stiffness=stiffness))
+    monkeypatch.setattr(cli, "_scene", lambda stiffness=None: heavy)
+    assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
+    assert capsys.readouterr().err == f"trackwheel run: {message}\n"

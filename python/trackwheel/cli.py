@@ -292,7 +292,11 @@ def _print_warnings(caught, command: str) -> None:
 # --------------------------------------------------------------------------------------------
 def _cmd_reproduce(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     _writable_folder(args.out, "--out", parser, create=True)
-    reproduce(args.out, quick=args.quick, only=args.only, workers=args.workers)
+    try:
+        reproduce(args.out, quick=args.quick, only=args.only, workers=args.workers)
+    except (OSError, RuntimeError) as exc:  # e.g. the disk filled up, a run failed
+        print(f"trackwheel reproduce: failed: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -343,8 +347,16 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         _print_warnings(caught, "run")
         print(f"trackwheel run: the simulation diverged: {exc}", file=sys.stderr)
         return 1
+    except RuntimeError as exc:  # the kernel's static solve at the start failed
+        _print_warnings(caught, "run")
+        print(f"trackwheel run: the simulation could not start: {exc}", file=sys.stderr)
+        return 1
     _print_warnings(caught, "run")
-    a = analyse(r)
+    try:
+        a = analyse(r)
+    except RuntimeError as exc:  # a static solve of the quasi-static line failed
+        print(f"trackwheel run: the analysis failed: {exc}", file=sys.stderr)
+        return 1
     _print_run(scene, args.speed_kmh, r, a)
     if args.plot is not None:
         from . import plots
