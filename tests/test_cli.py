@@ -295,3 +295,13 @@ def test_a_failed_static_solve_is_one_line(stiffness, message, capsys, monkeypat
     monkeypatch.setattr(cli, "_scene", lambda stiffness=None: heavy)
     assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
     assert capsys.readouterr().err == f"trackwheel run: {message}\n"
+
+
+@pytest.mark.parametrize("command", ["reproduce", "run", "sweep"])
+def test_help_has_no_hand_typed_timings(command, capsys):
+    """issue 16, item 9: timings come from the run or from benchmarks/, never the help text."""
+    import re
+
+    assert cli.main([command, "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert not re.search(r"\b(minutes?|hours?|seconds)\b|about \d+ ?s\b|µs", text), text
