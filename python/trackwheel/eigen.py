@@ -30,6 +30,19 @@ class EigenResult:
     axial_frequencies: np.ndarray  #: lowest axial (x) modes, (min(n_axial, axial dofs),) [Hz]
     n_elements: int  #: mesh used
 
+    def __repr__(self) -> str:
+        n_pos, n_modes = self.frequencies.shape
+        lo, hi = self.frequencies.min(axis=0), self.frequencies.max(axis=0)
+        shown = min(n_modes, 4)
+        bands = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in zip(lo[:shown], hi[:shown]))
+        more = f" (+{n_modes - shown} more)" if n_modes > shown else ""
+        axial = ", ".join(f"{f:.1f}" for f in self.axial_frequencies[:3])
+        return (f"<trackwheel.EigenResult: {n_modes} vertical modes at {n_pos} wheel positions "
+                f"X = {self.positions.min():.4g}..{self.positions.max():.4g} m, "
+                f"{self.n_elements} elements>\n"
+                f"  vertical [Hz]: {bands}{more}\n"
+                f"  axial [Hz]: {axial or '-'}")
+
     def rail_mode_shape(self, i_pos: int, mode: int, n_points: int = 201):
         """Vertical mode shape along the rail: (s [m], y(s) [-], wheel Y [-]), scaled so that the
         largest |value| over rail and wheel is 1 and the wheel (or rail maximum) is positive."""

@@ -8,13 +8,18 @@ the cheapest level whose outputs stay within ``tol`` of it at every speed.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import _validate as v
 from .analysis import analyse
-from .convergence import default_settings
+from .defaults import MAX_SPEED, default_settings
 from .scene import Scene
 from .simulate import FIDELITY_LEVELS, simulate
+
+if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
+    import pandas as pd
 
 __all__ = ["adequacy", "recommend"]
 
@@ -41,7 +46,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    speeds = v.positions("speeds", speeds, 0.0, 300.0, unit="m/s")
+    speeds = v.positions("speeds", speeds, 0.0, MAX_SPEED, unit="m/s")
     if np.any(speeds <= 0):
         raise ValueError("speeds must be > 0 m/s")
     tol = v.number("tol", tol, low=0.0, low_open=True)
@@ -66,7 +71,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
             kw = dict(simulate_kwargs)
             if lv.startswith("linear/") and n_modes is not None:
                 kw["n_modes"] = n_modes
-            row = dict(speed=float(speed), speed_kmh=float(speed) * 3.6, level=lv, error="")
+            row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "level": lv, "error": ""}
             try:
                 r = simulate(scene, float(speed), fidelity=lv, **kw)
                 a = analyse(r)
