@@ -328,7 +328,8 @@ def acceleration_terms(results, *, against: str = "position", title: str | None 
     Parameters
     ----------
     results : sequence of Result
-    against : "position" (wheel position X [m]) or "time" (t [ms]).
+    against : str
+        The x axis: "position" (the wheel position X [m]) or "time" (the time [ms]).
     title : str, optional
 
     Returns
