@@ -66,8 +66,10 @@ if _MATHJAX_SPEC is None or not _MATHJAX_SPEC.submodule_search_locations:
 _MATHJAX_DIR = Path(list(_MATHJAX_SPEC.submodule_search_locations)[0]) / "static"
 mathjax_path = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full"
 mathjax2_config = {
+    # MyST marks its pages tex2jax_ignore and its math spans "math": typeset only those
     "tex2jax": {"inlineMath": [["\\(", "\\)"]], "displayMath": [["\\[", "\\]"]],
-                "processRefs": False, "processEnvironments": False},
+                "processRefs": False, "processEnvironments": False,
+                "processClass": "tex2jax_process|mathjax_process|math|output_area"},
     "HTML-CSS": {"availableFonts": ["STIX-Web"], "preferredFont": "STIX-Web",
                  "webFont": "STIX-Web", "imageFont": None},
 }
@@ -76,11 +78,15 @@ html_theme = "pydata_sphinx_theme"
 html_title = f"trackwheel {release}"
 html_theme_options = {
     "navigation_with_keys": False,
+    "header_links_before_dropdown": 6,
     "show_toc_level": 2,
     "navbar_end": ["navbar-icon-links"],
     "secondary_sidebar_items": ["page-toc"],
 }
 html_show_sourcelink = False
+# no empty "Section Navigation" column on the top-level pages (they have no sub-pages); the
+# notebooks keep it, to move between them
+html_sidebars = {"*": []}
 
 
 def _copy_mathjax(app, exception):
