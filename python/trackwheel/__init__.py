@@ -1,7 +1,8 @@
 """trackwheel: a railway wheel rolling at high speed over a flexible rail on elastic supports.
 
 SI units everywhere (m, s, kg, N, Pa, Hz); speeds in m/s -- :func:`kmh` converts from km/h.
-The physics is specified in MODEL.md and follows Kato et al. (2005).
+The physics is described in the documentation ("The model", docs/model.md) and follows
+Kato et al. (2005).
 """
 
 from ._version import __version__

@@ -47,10 +47,10 @@ STORE_NAME = "sweep-store"
 
 
 # --------------------------------------------------------------------------------------------
-# analytic references (MODEL.md §9)
+# analytic references (docs: Model § Validation)
 # --------------------------------------------------------------------------------------------
 def analytic_references(scene: Scene) -> dict[str, float]:
-    """Frequencies [Hz] of MODEL.md §9 for the bare rail of ``scene``:
+    """Frequencies [Hz] of docs: Model § Validation for the bare rail of ``scene``:
 
     - ``winkler_cut_on``: sqrt(k_f / m) / (2 pi), k_f = k_s / d_s (equivalent Winkler foundation);
     - ``pinned_pinned``: f_pp = pi / (2 d_s^2) sqrt(EI / m) (one span between rigid supports);
@@ -193,7 +193,7 @@ def _fig3_eigen(ctx: Context) -> None:
     for k in range(4):
         s.append(f"  {k + 1:>4}  {at.frequencies[0, k]:>10.1f} Hz  {lo[k]:>6.1f} Hz"
                  f"  {hi[k]:>6.1f} Hz")
-    s.append("  analytic references (bare rail, MODEL.md §9):")
+    s.append("  analytic references (bare rail, docs: Model § Validation):")
     s.append(f"    Winkler cut-on sqrt(k_f/m)/(2 pi), k_f = k_s/d_s : "
              f"{ref['winkler_cut_on']:8.1f} Hz")
     s.append(f"    pinned-pinned span f_pp                        : "
@@ -466,7 +466,7 @@ def _fig8_acceleration_terms(ctx: Context) -> None:
     ctx.save(plots.acceleration_terms(runs), "fig8_acceleration_terms.png")
 
     s = ctx.summary
-    s.append(f"Fig. 8 -- terms of the contact-point acceleration (MODEL.md §8), "
+    s.append(f"Fig. 8 -- terms of the contact-point acceleration (docs: Model § Outputs), "
              f"{p.describe_settings()}")
     s.append("  term  " + "  ".join(f"rms at {v:g} km/h" for v in p.fig8_speeds_kmh)
              + "  [m/s²]")
@@ -629,7 +629,7 @@ def build_parser() -> argparse.ArgumentParser:
         "run", help="simulate one passage and print the headline outputs",
         description="Simulate the wheel passing over the rail of Scene.kato2005() at one speed "
                     "and print the amplitude max|d| of the contact-point vibration "
-                    "(d = y_B - y_qs, MODEL.md §8), its main frequency and resolution, the "
+                    "(d = y_B - y_qs, docs: Model § Outputs), its main frequency and resolution, the "
                     "contact-force range, whether the wheel lost contact, and the wall time.")
     p.add_argument("--speed-kmh", type=_positive_float, required=True, metavar="V",
                    help="forward speed [km/h]")

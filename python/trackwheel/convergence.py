@@ -1,14 +1,14 @@
 """Speed against accuracy: stability limits, derived defaults and automatic convergence (issue 6).
 
 - :func:`stability_limit` predicts the largest stable time step of an integrator. For the
-  explicit RK4 scheme (the paper's way, MODEL.md §6) it is ``2 sqrt(2) / omega_max`` with
+  explicit RK4 scheme (the paper's way, docs: Model § Equations of motion) it is ``2 sqrt(2) / omega_max`` with
   omega_max the highest eigenfrequency of the assembled system (rail + supports + wheel on its
   contact spring, linearised at the static state at the start position; power iteration in the
   kernel). ``simulate(..., integrator="explicit", dt=...)`` warns with :class:`StabilityWarning`
   before it runs when dt is above it. benchmarks/stability_map.py measures the limit by bisection
   on real runs: measured/predicted = 1.004-1.013 on 10 to 80 elements at 50-400 km/h.
 - :func:`default_settings` derives a time step and a mesh from the scene and the speed so that
-  the headline outputs (amplitude and main frequency of the contact-point vibration, MODEL.md §8)
+  the headline outputs (amplitude and main frequency of the contact-point vibration, docs: Model § Outputs)
   are within 1 % of a converged run (measured: 0.4 % at 50-400 km/h; see its docstring).
 - :func:`converged` refines dt and n_elements until the estimated errors of amplitude and main
   frequency are below ``tol``, and returns the run, the settings chosen and the estimate.
@@ -82,7 +82,7 @@ def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: i
     ``"explicit"`` (classical RK4, the paper's scheme): the stability interval of RK4 on the
     imaginary axis is |omega dt| <= 2 sqrt(2), so dt_max = 2 sqrt(2) / omega_max, with omega_max
     [rad/s] the highest eigenfrequency of the assembled system -- the ANCF rail on its supports
-    with the wheel mass on its contact spring (MODEL.md §2-§4), linearised at the static state
+    with the wheel mass on its contact spring (docs: Model § Rail, § Wheel, § Contact), linearised at the static state
     with the wheel at ``x_start`` (default: the start of :func:`trackwheel.simulate`, the middle
     of the first support bay) -- found by power iteration in the kernel. omega_max grows as
     1/l_e^2 (the shortest bending wave of an element), so dt_max falls by 4x per mesh doubling
@@ -133,7 +133,7 @@ def warn_above_stability_limit(model, wheel, contact, e, x0: float, y: float, dt
 # headline outputs
 def headline(result) -> tuple[float, float]:
     """(amplitude [m], main frequency [Hz]) of a run: max |d| and the spectral peak of
-    d(t) = y_B(t) - y_qs(X_A(t)) (MODEL.md §8), from :func:`trackwheel.analyse`."""
+    d(t) = y_B(t) - y_qs(X_A(t)) (docs: Model § Outputs), from :func:`trackwheel.analyse`."""
     from .analysis import analyse  # analysis imports simulate, which imports this module
 
     a = analyse(result)
@@ -172,7 +172,7 @@ def default_settings(scene: Scene, speed: float | None = None,
     """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``: what
     :func:`trackwheel.simulate` uses when neither is given (for the ANCF fidelity levels).
 
-    Target (issue 6): at most 1 % error of the amplitude max |d| (MODEL.md §8) against a refined
+    Target (issue 6): at most 1 % error of the amplitude max |d| (docs: Model § Outputs) against a refined
     run. The scene's former defaults (20 elements, dt = 1e-5 s) miss it by up to 5.5 %
     (benchmarks/README.md, "Speed against accuracy").
 
@@ -254,7 +254,7 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
               integrator: str = "generalized_alpha", dt: float | None = None,
               n_elements: int | None = None, max_refinements: int = 6,
               max_wall_time: float = 120.0, **simulate_kwargs) -> Convergence:
-    """Refine dt and n_elements until amplitude and main frequency (MODEL.md §8) are within
+    """Refine dt and n_elements until amplitude and main frequency (docs: Model § Outputs) are within
     ``tol`` (relative, estimated) of their converged values; return the run, the settings and
     the error estimate.
 

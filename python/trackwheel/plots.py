@@ -74,7 +74,7 @@ def _mark_supports(ax: Axes, result: EigenResult, label: str | None = "supports"
 
 def eigen(result: EigenResult, n_modes: int = 4, ax: Axes | None = None) -> Figure:
     """The paper's Fig. 3: the lowest ``n_modes`` vertical natural frequencies [Hz] of the
-    wheel/rail/support system against the wheel position X [m] (MODEL.md §7).
+    wheel/rail/support system against the wheel position X [m] (docs: Model § Eigen analysis).
 
     Parameters
     ----------
@@ -166,11 +166,11 @@ def mode_shapes(result: EigenResult, i_pos: int, modes: Iterable[int] = range(4)
 
 
 # --------------------------------------------------------------------------------------------
-# time simulations (MODEL.md §8): convergence, one run, acceleration terms
+# time simulations (docs: Model § Outputs): convergence, one run, acceleration terms
 # --------------------------------------------------------------------------------------------
 #: display names of the integrators
 _INTEGRATOR_NAMES = {"explicit": "explicit RK4", "generalized_alpha": "generalized-α"}
-#: the acceleration terms of MODEL.md §8 (paper's eq. 21, Fig. 8): field, legend text
+#: the acceleration terms of docs: Model § Outputs (paper's eq. 21, Fig. 8): field, legend text
 _ACC_TERMS = (
     ("acc_A", "A = ρ cosφ θ' v φ_s"),
     ("acc_B", "B = ρ cosφ θ' φ_t"),
@@ -378,8 +378,8 @@ def element_convergence(results, *, labels=None, acceleration: bool = True,
 
 def acceleration_terms(results, *, against: str = "position", title: str | None = None
                        ) -> Figure:
-    """The paper's Fig. 8: the terms A–E of the contact-point vertical acceleration (MODEL.md
-    §8, paper's eq. 21) for each run (the paper: 100 and 300 km/h), one row per run.
+    """The paper's Fig. 8: the terms A–E of the contact-point vertical acceleration (docs:
+    Model § Outputs, paper's eq. 21) for each run (the paper: 100 and 300 km/h), one row per run.
 
     Left column: A = ρ cosφ θ' v φ_s and B = ρ cosφ θ' φ_t (first order in the rail's slope);
     right column: C = ρ cosφ v² φ_s², D = ρ cosφ φ_t², E = 2 ρ cosφ φ_t v φ_s (second order,
@@ -453,7 +453,7 @@ def _check_eigen(eigen, n_modes) -> int:
 
 def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes: int = 4,
             f_max: float | None = None) -> Figure:
-    """One run measured as the paper measures it (MODEL.md §8): the contact-point
+    """One run measured as the paper measures it (docs: Model § Outputs): the contact-point
     displacement y_B and the quasi-static line y_qs [mm] against the wheel position, the
     dynamic part d = y_B - y_qs [µm] with its amplitude max |d| marked, and the amplitude
     spectrum of d [µm] with the main frequency marked.
@@ -575,8 +575,8 @@ def _frequency_panel(ax: Axes, x, grp, label, color, shift: float) -> None:
 
 
 def support_stiffness(df, *, frequency: bool = False, ax: Axes | None = None) -> Figure:
-    """The paper's Fig. 6: the amplitude of the contact-point vibration max |d| [µm] (MODEL.md
-    §8) against the support stiffness k_s [MN/m], one line per speed (the paper: 100 and
+    """The paper's Fig. 6: the amplitude of the contact-point vibration max |d| [µm] (docs: Model §
+    Outputs) against the support stiffness k_s [MN/m], one line per speed (the paper: 100 and
     300 km/h).
 
     Parameters

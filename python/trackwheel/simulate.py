@@ -1,4 +1,4 @@
-"""Time simulation of the wheel rolling over the flexible rail (MODEL.md §3-§6, §8).
+"""Time simulation of the wheel rolling over the flexible rail (docs: Model § Wheel, § Contact, § Rolling and slip, § Equations of motion, §8).
 
 The whole time loop runs in the C++ kernel with the GIL released; Python only prepares the
 initial state and wraps the output arrays.
@@ -82,7 +82,7 @@ class Result:
     #: 0.5 % at 1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type
     #: acceleration studies (the paper, too, needed a smaller step for accelerations).
     acc_contact: np.ndarray
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (MODEL.md §8)
+    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (docs: Model § Outputs)
     acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
     acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
     acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
