@@ -78,7 +78,7 @@ html_theme = "pydata_sphinx_theme"
 html_title = f"trackwheel {release}"
 html_theme_options = {
     "navigation_with_keys": False,
-    "header_links_before_dropdown": 6,
+    "header_links_before_dropdown": 5,
     "show_toc_level": 2,
     "navbar_end": ["navbar-icon-links"],
     "secondary_sidebar_items": ["page-toc"],

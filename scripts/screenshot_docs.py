@@ -14,7 +14,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-PAGES = ["index", "getting-started", "model", "fidelity", "api", "cli", "benchmarks",
+PAGES = ["index", "getting-started", "model", "fidelity", "api", "cli", "benchmarks", "development",
          "notebooks/01_eigen", "notebooks/04_speed"]
 
 
