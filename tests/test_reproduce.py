@@ -204,7 +204,7 @@ def test_reproduce_summary_numbers(quick_run):
     f = tw.eigen(scene, [2.5], n_modes=4).frequencies[0]
     for fk in f:
         assert f"{fk:.1f} Hz" in text
-    # MODEL.md §9, computed here from the formulas, printed to 0.1 Hz
+    # docs: Model § Validation, computed here from the formulas, printed to 0.1 Hz
     m, ei = scene.rail.mass_per_length, scene.rail.bending_stiffness
     cut_on = math.sqrt(scene.supports.stiffness / scene.supports.spacing / m) / (2 * math.pi)
     f_pp = math.pi / (2 * scene.supports.spacing**2) * math.sqrt(ei / m)

@@ -1,7 +1,7 @@
 """trackwheel: a railway wheel rolling at high speed over a flexible rail on elastic supports.
 
 SI units everywhere (m, s, kg, N, Pa, Hz); speeds in m/s -- :func:`kmh` converts from km/h.
-The physics is specified in MODEL.md and follows Kato et al. (2005).
+The physics is described in the documentation (docs: Model) and follows Kato et al. (2005).
 
 Data flow one way: :class:`Scene` -> the C++ kernel (:func:`simulate`, :func:`static`,
 :func:`eigen`) -> :class:`Result` -> :func:`analyse` -> ``trackwheel.plots``; the defaults
@@ -58,7 +58,6 @@ __all__ = [
     "stability_limit",
     "static",
     "sweep",
-    "spectra",
     "Irregularity",
     "Polygon",
     "WheelFlat",

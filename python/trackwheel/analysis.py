@@ -1,5 +1,5 @@
 """Post-processing of a run: the dynamic part of the contact-point displacement, its amplitude and
-main frequency, and the acceleration terms (MODEL.md §8).
+main frequency, and the acceleration terms (docs: Model § Outputs).
 
 ``analyse(result)`` measures the vibration the paper plots in Figs. 6-8:
 
@@ -179,7 +179,7 @@ def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray):
 # --------------------------------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class Analysis:
-    """The measured vibration of one run (MODEL.md §8). Arrays have shape (n_samples,)."""
+    """The measured vibration of one run (docs: Model § Outputs). Arrays have shape (n_samples,)."""
 
     t: np.ndarray  #: time [s]
     x_wheel: np.ndarray  #: X_A, wheel-centre position [m]
@@ -198,7 +198,7 @@ class Analysis:
     max_contact_force: float  #: max N [N]
     lost_contact: bool  #: N = 0 at some kept sample
     acc_contact: np.ndarray  #: d2 y_B/dt2 [m/s^2]
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (MODEL.md §8, eq. 21)
+    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (docs: Model § Outputs, eq. 21)
     acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
     acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
     acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
@@ -220,7 +220,7 @@ class Analysis:
 
 
 def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
-    """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (MODEL.md §8).
+    """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model § Outputs).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
     .n_elements``) at 8 Chebyshev points per element crossed (cached per scene, mesh and

@@ -157,7 +157,7 @@ def _add_run(sub) -> None:
         "run", help="simulate one passage and print the headline outputs",
         description="Simulate the wheel passing over the rail of Scene.kato2005() at one speed "
                     "and print the amplitude max|d| of the contact-point vibration "
-                    "(d = y_B - y_qs, MODEL.md §8), its main frequency and resolution, the "
+                    "(d = y_B - y_qs, docs: Model § Outputs), its main frequency and resolution, the "
                     "contact-force range, whether the wheel lost contact, and the wall time.")
     p.add_argument("--speed-kmh", type=_finite_float, required=True, metavar="V",
                    help=f"forward speed [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")

@@ -4,14 +4,14 @@ The stability limit and the derived defaults live in :mod:`trackwheel.defaults` 
 here); this module adds the automatic refinement.
 
 - :func:`stability_limit` predicts the largest stable time step of an integrator. For the
-  explicit RK4 scheme (the paper's way, MODEL.md §6) it is ``2 sqrt(2) / omega_max`` with
+  explicit RK4 scheme (the paper's way, docs: Model § Equations of motion) it is ``2 sqrt(2) / omega_max`` with
   omega_max the highest eigenfrequency of the assembled system (rail + supports + wheel on its
   contact spring, linearised at the static state at the start position; power iteration in the
   kernel). ``simulate(..., integrator="explicit", dt=...)`` warns with :class:`StabilityWarning`
   before it runs when dt is above it. benchmarks/stability_map.py measures the limit by bisection
   on real runs: measured/predicted = 1.004-1.013 on 10 to 80 elements at 50-400 km/h.
 - :func:`default_settings` derives a time step and a mesh from the scene and the speed so that
-  the headline outputs (amplitude and main frequency of the contact-point vibration, MODEL.md §8)
+  the headline outputs (amplitude and main frequency of the contact-point vibration, docs: Model § Outputs)
   are within 1 % of a converged run (measured: 0.4 % at 50-400 km/h; see its docstring).
 - :func:`converged` refines dt and n_elements until the estimated errors of amplitude and main
   frequency are below ``tol``, and returns the run, the settings chosen and the estimate.
@@ -68,7 +68,7 @@ class ConvergenceWarning(UserWarning):
 
 def headline(result: Result) -> tuple[float, float]:
     """(amplitude [m], main frequency [Hz]) of a run: max |d| and the spectral peak of
-    d(t) = y_B(t) - y_qs(X_A(t)) (MODEL.md §8), from :func:`trackwheel.analyse`."""
+    d(t) = y_B(t) - y_qs(X_A(t)) (docs: Model § Outputs), from :func:`trackwheel.analyse`."""
     a = analyse(result)
     return float(a.amplitude), float(a.main_frequency)
 
@@ -132,7 +132,7 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
               integrator: str = "generalized_alpha", dt: float | None = None,
               n_elements: int | None = None, max_refinements: int = 6,
               max_wall_time: float = 120.0, **simulate_kwargs) -> Convergence:
-    """Refine dt and n_elements until amplitude and main frequency (MODEL.md §8) are within
+    """Refine dt and n_elements until amplitude and main frequency (docs: Model § Outputs) are within
     ``tol`` (relative, estimated) of their converged values; return the run, the settings and
     the error estimate.
 

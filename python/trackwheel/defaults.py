@@ -112,7 +112,7 @@ def default_settings(scene: Scene, speed: float | None = None,
     """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``: what
     :func:`trackwheel.simulate` uses when neither is given, at every fidelity level.
 
-    Target (issue 6): at most 1 % error of the amplitude max |d| (MODEL.md §8) against a refined
+    Target (issue 6): at most 1 % error of the amplitude max |d| (docs: Model § Outputs) against a refined
     run. The scene's former defaults (20 elements, dt = 1e-5 s) miss it by up to 5.5 %
     (benchmarks/README.md, "Speed against accuracy").
 
@@ -182,7 +182,7 @@ def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: i
     ``"explicit"`` (classical RK4, the paper's scheme): the stability interval of RK4 on the
     imaginary axis is |omega dt| <= 2 sqrt(2), so dt_max = 2 sqrt(2) / omega_max, with omega_max
     [rad/s] the highest eigenfrequency of the assembled system -- the ANCF rail on its supports
-    with the wheel mass on its contact spring (MODEL.md §2-§4), linearised at the static state
+    with the wheel mass on its contact spring (docs: Model § Rail, § Wheel, § Contact), linearised at the static state
     with the wheel at ``x_start`` (default :func:`default_start`) -- found by power iteration in
     the kernel. omega_max grows as 1/l_e^2 (the shortest bending wave of an element), so dt_max
     falls by 4x per mesh doubling. The speed does not enter: the linearised system does not

@@ -1,4 +1,4 @@
-"""Natural frequencies of the coupled wheel/rail/support system (paper §3, MODEL.md §7).
+"""Natural frequencies of the coupled wheel/rail/support system (paper §3, docs: Model § Eigen analysis).
 
 The rail is the ANCF rail linearised about the straight reference, which is exactly an
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in

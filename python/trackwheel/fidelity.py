@@ -32,7 +32,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     """Run the fidelity ``levels`` side by side at each of ``speeds`` [m/s].
 
     Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude``
-    [m] (max |d|, MODEL.md §8), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
+    [m] (max |d|, docs: Model § Outputs), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
     relative differences from the ``reference`` level (``d_amplitude``, ``d_main_frequency``,
     ``d_peak_contact_force``), ``wall_time`` [s], ``adequate`` (all three differences <= tol)
     and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the cheapest

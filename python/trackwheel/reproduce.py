@@ -59,9 +59,9 @@ TERM_UNITS = {"max_abs": "m_s2", "rms": "m_s2", "mean": "m_s2"}
 
 
 # --------------------------------------------------------------------------------------------
-# analytic references (MODEL.md §9)
+# analytic references (docs: Model § Validation)
 def analytic_references(scene: Scene) -> dict[str, float]:
-    """Frequencies [Hz] of MODEL.md §9 for the bare rail of ``scene``:
+    """Frequencies [Hz] of docs: Model § Validation for the bare rail of ``scene``:
 
     - ``winkler_cut_on``: sqrt(k_f / m) / (2 pi), k_f = k_s / d_s (equivalent Winkler foundation);
     - ``pinned_pinned``: f_pp = pi / (2 d_s^2) sqrt(EI / m) (one span between rigid supports);
@@ -201,7 +201,7 @@ def _fig3_eigen(ctx: Context) -> None:
     for k in range(4):
         s.append(f"  {k + 1:>4}  {at.frequencies[0, k]:>10.1f} Hz  {lo[k]:>6.1f} Hz"
                  f"  {hi[k]:>6.1f} Hz")
-    s.append("  analytic references (bare rail, MODEL.md §9):")
+    s.append("  analytic references (bare rail, docs: Model § Validation):")
     s.append(f"    Winkler cut-on sqrt(k_f/m)/(2 pi), k_f = k_s/d_s : "
              f"{ref['winkler_cut_on']:8.1f} Hz")
     s.append(f"    pinned-pinned span f_pp                        : "
@@ -572,7 +572,7 @@ def _fig8_acceleration_terms(ctx: Context) -> None:
     ctx.save(plots.acceleration_terms(runs), "fig8_acceleration_terms.png")
 
     s = ctx.summary
-    s.append(f"Fig. 8 -- terms of the contact-point acceleration (MODEL.md §8), "
+    s.append(f"Fig. 8 -- terms of the contact-point acceleration (docs: Model § Outputs), "
              f"{p.describe_settings(ctx.scene)}")
     s.append("  term  " + "  ".join(f"rms at {v:g} km/h" for v in p.fig8_speeds_kmh)
              + "  [m/s²]")

@@ -86,7 +86,7 @@ class Result:
     #: 0.5 % at 1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type
     #: acceleration studies (the paper, too, needed a smaller step for accelerations).
     acc_contact: np.ndarray
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (MODEL.md §8)
+    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (docs: Model § Outputs)
     acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
     acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
     acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]

@@ -1,4 +1,4 @@
-"""Time simulation of the wheel rolling over the flexible rail (MODEL.md §3-§6, §8).
+"""Time simulation of the wheel rolling over the flexible rail (docs: Model § Wheel, § Contact, § Rolling and slip, § Equations of motion, § Outputs).
 
 :func:`simulate` runs in four stages, one function each: resolve the arguments (validation,
 defaults from :mod:`trackwheel.defaults`, the scene rewritten for the fidelity level) into a

@@ -1,4 +1,4 @@
-"""Static equilibrium and the quasi-static contact line (MODEL.md §8).
+"""Static equilibrium and the quasi-static contact line (docs: Model § Outputs).
 
 ``static`` solves the nonlinear ANCF rail on its supports, under its own weight, with the wheel
 held at ``x_wheel`` and pressed down by P = F + M g through the contact law (Newton on the
