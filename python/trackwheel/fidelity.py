@@ -35,8 +35,8 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     [m] (max |d|, docs: Model § Outputs), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
     relative differences from the ``reference`` level (``d_amplitude``, ``d_main_frequency``,
     ``d_peak_contact_force``), ``wall_time`` [s], ``adequate`` (all three differences <= tol)
-    and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the cheapest
-    level (smallest total wall time) adequate at every speed; ``df.attrs["tol"]`` the tolerance.
+    and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the least
+    detailed level adequate at every speed (:func:`recommend`); ``df.attrs["tol"]`` the tolerance.
     ``n_modes`` applies to the linear levels (None: all coordinates). All levels run on the same
     mesh and time step: ``simulate_kwargs``' ``dt``/``n_elements``, or else
     :func:`trackwheel.default_settings` (the derived defaults of the full model).
@@ -95,10 +95,14 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
 
 
 def recommend(df) -> str:
-    """The cheapest level (least total wall time) adequate at every speed in an
-    :func:`adequacy` table; the reference level if none other is."""
-    ok = df.groupby("level").agg(adequate=("adequate", "all"), wall_time=("wall_time", "sum"))
-    ok = ok[ok.adequate]
-    if ok.empty:
+    """The least detailed level (last in :data:`FIDELITY_LEVELS`) adequate at every speed in
+    an :func:`adequacy` table; the reference level if none other is.
+
+    The order of detail, not the measured wall time, decides: the choice is then the same on
+    any machine and under any load (same inputs, same sweep), and the simpler model is the one
+    a scene needs when both are adequate."""
+    adequate = df.groupby("level")["adequate"].all()
+    ok = [lvl for lvl in FIDELITY_LEVELS if adequate.get(lvl, False)]
+    if not ok:
         return df.attrs.get("reference", "full")
-    return str(ok.wall_time.idxmin())
+    return ok[-1]
