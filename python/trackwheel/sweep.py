@@ -591,7 +591,8 @@ def summarise_seeds(df: pd.DataFrame, columns=SEED_COLUMNS, *, by="speed",
         if (mixed > 1).any():
             raise ValueError(f"the rows of one {'/'.join(keys)} hold several support "
                              "stiffnesses; pass by=[..., 'support_stiffness'] or filter the table")
-    ok = df[df["error"] == ""] if "error" in df.columns else df
+    # a table read back from CSV has NaN, not "", where no error was written
+    ok = df[df["error"].isna() | (df["error"] == "")] if "error" in df.columns else df
     out = seed_percentiles(ok, columns, by=by, q=q)
     out[("n_seeds", "")] = ok.groupby(by if isinstance(by, str) else keys).size()
     return out
