@@ -408,6 +408,9 @@ def test_seed_lists_and_ranges(tmp_path, capsys):
     assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store, "--irregularity",
                      "fra:5", "--seeds", "1", "0-2"]) == 2
     assert "twice" in capsys.readouterr().err
+    assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store, "--irregularity",
+                     "fra:5", "--seeds", "0-2", "--seed", "4"]) == 2
+    assert "not both" in capsys.readouterr().err
 
 
 def test_sweep_over_seeds(tmp_path, capsys):

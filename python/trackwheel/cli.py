@@ -260,9 +260,11 @@ def _add_sweep(sub) -> None:
     p = sub.add_parser(
         "sweep", help="run a speed x support-stiffness sweep into a store",
         description="Run every (speed, support stiffness) case of Scene.kato2005() in parallel "
-                    "(trackwheel.sweep), keep each finished case in --store (a re-run skips "
-                    "them) and print the table. Exit code 1 if a case failed (it is recorded "
-                    "with its error).")
+                    "(trackwheel.sweep), with --seeds one case per realisation of the random "
+                    "--irregularity, keep each finished case in --store (a re-run skips them) "
+                    "and print the table (with --seeds also the 5/50/95 %% percentiles over "
+                    "the seeds per speed). Exit code 1 if a case failed (it is recorded with "
+                    "its error).")
     p.add_argument("--speeds-kmh", type=_finite_float, nargs="+", required=True, metavar="V",
                    help=f"forward speeds [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, nargs="+", metavar="K",
