@@ -262,7 +262,7 @@ def _add_sweep(sub) -> None:
         description="Run every (speed, support stiffness) case of Scene.kato2005() in parallel "
                     "(trackwheel.sweep), with --seeds one case per realisation of the random "
                     "--irregularity, keep each finished case in --store (a re-run skips them) "
-                    "and print the table (with --seeds also the 5/50/95 %% percentiles over "
+                    "and print the table (with --seeds also the 5/50/95 % percentiles over "
                     "the seeds per speed). Exit code 1 if a case failed (it is recorded with "
                     "its error).")
     p.add_argument("--speeds-kmh", type=_finite_float, nargs="+", required=True, metavar="V",
