@@ -21,7 +21,7 @@ from .results import Result, RunSettings
 from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .statics import QuasiStatic, StaticResult, quasi_static, static
-from .sweep import load_sweep, sweep
+from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra
 
 __all__ = [
@@ -57,6 +57,7 @@ __all__ = [
     "simulate",
     "stability_limit",
     "static",
+    "summarise_seeds",
     "sweep",
     "Irregularity",
     "Polygon",
