@@ -22,7 +22,7 @@ from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .statics import QuasiStatic, StaticResult, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
-from . import spectra
+from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
 
 __all__ = [
     "FIDELITY_LEVELS",
