@@ -245,7 +245,10 @@ def test_kernel_hostile_values_become_exceptions():
         _core.vertical_modes(MODEL, 10.0, 7e8, [2.5], 10**6)
     with pytest.raises(ValueError, match="n_gauss"):
         _core.gauss_points(0)
-    p = _core.RailParams()  # EA = EI = rhoA = 0 by default
+    p = _core.RailParams()  # no physics defaults: every field 0
+    with pytest.raises(ValueError, match="rail length must be > 0 m"):
+        _core.RailModel(p, _core.SupportParams())
+    p.length, p.n_elements, p.n_gauss = 5.0, 20, 5
     with pytest.raises(ValueError, match="EA must be > 0"):
         _core.RailModel(p, _core.SupportParams())
     s = _core.SupportParams()
@@ -265,6 +268,7 @@ def test_kernel_hostile_values_become_exceptions():
 
 def MODEL_PARAMS():
     p = _core.RailParams()
+    p.length, p.n_elements, p.n_gauss = 5.0, 20, 5
     p.EA, p.EI, p.rhoA = 1.0, 1.0, 1.0
     return p
 
@@ -284,8 +288,10 @@ def _kernel_sim_inputs(**settings):
     st = _core.SimState()
     st.e = E0.copy()
     st.edot = np.zeros_like(E0)
-    st.y = 0.1
-    st.s = 2.5
+    w = _core.WheelState()
+    w.y = 0.1
+    w.s = 2.5
+    st.wheels = [w]
     s = _core.SimSettings()
     s.speed, s.x_start, s.t_end, s.dt = 10.0, 2.5, 1e-4, 1e-5
     for k, v in settings.items():
@@ -297,13 +303,13 @@ def test_kernel_simulate_hostile_settings_and_callbacks():
     s, st = _kernel_sim_inputs()
     st.e = np.zeros(5)
     with pytest.raises(ValueError, match="initial rail state has the wrong size"):
-        _core.simulate(MODEL, WHEEL, CONTACT, s, st, None)
+        _core.simulate(MODEL, [WHEEL], CONTACT, s, st, None)
     for field, value, match in [("dt", 0.0, "dt"), ("dt", NAN, "dt"), ("t_end", INF, "t_end"),
                                 ("output_every", 0, "output_every"),
                                 ("rho_inf", NAN, "rho_inf")]:
         s, st = _kernel_sim_inputs(**{field: value})
         with pytest.raises(ValueError, match=match):
-            _core.simulate(MODEL, WHEEL, CONTACT, s, st, None)
+            _core.simulate(MODEL, [WHEEL], CONTACT, s, st, None)
     # an exception in the progress callback propagates as itself
     s, st = _kernel_sim_inputs(progress_every=1)
 
@@ -311,14 +317,16 @@ def test_kernel_simulate_hostile_settings_and_callbacks():
         raise ZeroDivisionError("from the callback")
 
     with pytest.raises(ZeroDivisionError, match="from the callback"):
-        _core.simulate(MODEL, WHEEL, CONTACT, s, st, boom)
+        _core.simulate(MODEL, [WHEEL], CONTACT, s, st, boom)
     with pytest.raises(TypeError):
-        _core.simulate(MODEL, WHEEL, CONTACT, s, st, 5)
+        _core.simulate(MODEL, [WHEEL], CONTACT, s, st, 5)
     # a non-finite state is a clean error, not NaN output
     s, st = _kernel_sim_inputs()
-    st.y = NAN
+    w = st.wheels[0]
+    w.y = NAN
+    st.wheels = [w]
     with pytest.raises(RuntimeError, match="contact-point search"):
-        _core.simulate(MODEL, WHEEL, CONTACT, s, st, None)
+        _core.simulate(MODEL, [WHEEL], CONTACT, s, st, None)
 
 
 def test_divergence_is_a_runtime_error_subclass_with_fields():
@@ -451,10 +459,13 @@ def test_default_decimation_bounds_the_kept_samples():
 
 
 def test_output_request_above_the_limit_raises_before_allocating():
-    """10^9 samples x 23 fields x 8 bytes = 172 GiB: refused at once (well before any run)."""
+    """10^9 samples x 172 bytes (the output table without energy: 21 float64 fields and the
+    int32 slip state) = 160 GiB: refused at once (well before any run); output_every must be at
+    least ceil(10^9 x 172 / 2^31) = 81."""
+    assert sum(4 if f[4] == "int32" else 8 for f in _core.OUTPUT_FIELDS if f[0] != "energy") == 172
     t0 = time.perf_counter()
     with pytest.raises(ValueError, match=r"GiB\), above the limit of 2 GiB: increase "
-                                         r"output_every to at least 86"):
+                                         r"output_every to at least 81"):
         tw.simulate(KATO, 0.0, x_start=2.5, duration=1000.0, dt=1e-6, output_every=1)
     assert time.perf_counter() - t0 < 1.0
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import dataclasses as dc
 import math
 import time as _time
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
@@ -47,55 +47,19 @@ MAX_STEPS = 10**12
 #: measured costs are 1.6-3.4 us per element and step for generalized-alpha and explicit RK4).
 _PROGRESS_INTERVAL = 0.05
 _STEP_COST_PER_ELEMENT = 4e-6
-_N_FIELDS = 23
+
+#: The kernel's output table, one row per recorded field: (name, unit, doc, per_wheel, dtype).
+#: It defines Result's array fields (below) and the output-size estimate; adding an output is
+#: one row in cpp/output.cpp.
+OUTPUT_FIELDS: tuple[tuple[str, str, str, bool, str], ...] = tuple(
+    tuple(f) for f in _core.OUTPUT_FIELDS)
 
 _INTEGRATORS = {"generalized_alpha": _core.Integrator.generalized_alpha,
                 "explicit": _core.Integrator.explicit}
 
 
-@dataclass(frozen=True)
-class Result:
-    """Output of :func:`simulate`, one entry per kept sample (every ``output_every`` steps).
-
-    All arrays have shape (n_samples,) and SI units.
-    """
-
-    scene: Scene
-    settings: dict  #: the settings used (integrator, dt, n_elements, speed, x_start, ...)
-    t: np.ndarray  #: time [s]
-    x_wheel: np.ndarray  #: X_A, wheel-centre position (prescribed X_0 + v t) [m]
-    y_wheel: np.ndarray  #: Y_A, wheel-centre height [m]
-    ydot_wheel: np.ndarray  #: dY_A/dt [m/s]
-    theta: np.ndarray  #: rolling angle [rad]
-    thetadot: np.ndarray  #: rolling rate [rad/s]
-    contact_s: np.ndarray  #: s*, rail coordinate of the contact point [m]
-    y_contact: np.ndarray  #: y_B = y(s*), rail displacement under the wheel [m]
-    normal_force: np.ndarray  #: N [N] (0 without contact)
-    tangential_force: np.ndarray  #: lambda, tangential contact force on the wheel [N]
-    slip: np.ndarray  #: slip velocity t.(V_A - S edot) - rho thetadot [m/s]
-    slip_state: np.ndarray  #: 0 no contact, 1 stick, 2 slide (int)
-    v_error: np.ndarray  #: paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100 [%]
-    phi: np.ndarray  #: rail obliquity at the contact point [rad]
-    #: vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss
-    #: (s'' y_s neglected) [m/s^2]. Accelerations converge more slowly in dt than displacements
-    #: with generalized-alpha (its algorithmic accelerations lag): about 5 % RMS at 1e-5 s and
-    #: 0.5 % at 1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type
-    #: acceleration studies (the paper, too, needed a smaller step for accelerations).
-    acc_contact: np.ndarray
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (MODEL.md §8)
-    acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
-    acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
-    acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
-    acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
-    reaction: np.ndarray  #: horizontal force holding X_A = X_0 + v t [N]
-    penetration: np.ndarray  #: rho0 - rho [m] (negative: gap)
-    energy: np.ndarray | None  #: total mechanical energy [J] (``energy=True`` only), see below
-    steps: int  #: time steps taken
-    newton_iterations: int  #: total Newton iterations (generalized-alpha)
-    state_changes: int  #: slip/contact state switches
-    stability_limit: float  #: predicted explicit RK4 stability limit at the start [s]
-    wall_time: float  #: [s]
-    final_state: object = field(repr=False)  #: kernel state at the end (for restarts)
+class _ResultMethods:
+    """Derived views of a :class:`Result`."""
 
     @property
     def in_contact(self) -> np.ndarray:
@@ -125,6 +89,43 @@ class Result:
         return out
 
 
+def _result_doc() -> str:
+    lines = ["Output of :func:`simulate`, one entry per kept sample (every ``output_every`` steps).",
+             "", "Array fields (from the kernel's output table ``OUTPUT_FIELDS``), each of shape",
+             "(n_samples,), in SI units:", ""]
+    for name, unit, doc, _per_wheel, dtype in OUTPUT_FIELDS:
+        kind = "int" if dtype.startswith("int") else (f"[{unit}]" if unit else "[-]")
+        lines.append(f"- ``{name}`` {kind}: {doc}")
+    lines += ["", "``energy`` is None unless ``simulate(..., energy=True)``. Accelerations converge",
+              "more slowly in dt than displacements with generalized-alpha (its algorithmic",
+              "accelerations lag): ``acc_contact`` is about 5 % RMS off at 1e-5 s and 0.5 % at",
+              "1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type",
+              "acceleration studies.", "",
+              "Other fields: ``scene``, ``settings`` (integrator, dt, n_elements, speed, x_start,",
+              "...), ``steps``, ``newton_iterations`` (generalized-alpha), ``state_changes``",
+              "(slip/contact switches), ``stability_limit`` (predicted explicit RK4 limit at the",
+              "start) [s], ``wall_time`` [s], ``final_state`` (kernel state at the end, for",
+              "restarts)."]
+    return "\n".join(lines)
+
+
+Result = dc.make_dataclass(
+    "Result",
+    [("scene", Scene), ("settings", dict),
+     *[(f[0], "np.ndarray | None" if f[0] == "energy" else "np.ndarray") for f in OUTPUT_FIELDS],
+     ("steps", int), ("newton_iterations", int), ("state_changes", int),
+     ("stability_limit", float), ("wall_time", float),
+     ("final_state", object, field(repr=False))],
+    bases=(_ResultMethods,), frozen=True,
+    namespace={"__doc__": _result_doc(), "__module__": __name__})
+
+
+def _sample_bytes(energy: bool) -> int:
+    """Bytes one kept sample of a one-wheel run takes, from the output table."""
+    return sum(4 if dtype.startswith("int") else 8 for name, _u, _d, _w, dtype in OUTPUT_FIELDS
+               if energy or name != "energy")
+
+
 def _with_law(scene: Scene, law: str) -> Scene:
     """The scene with its contact law replaced; stiffness None takes the Hertz values."""
     if scene.contact.law == law:
@@ -139,7 +140,6 @@ def _with_law(scene: Scene, law: str) -> Scene:
 def _initial_state(scene, model, speed, x_start, start, drop_height):
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
-    st = _core.SimState()
     if start == "static":
         d = _core.static_solve(model, wheel, contact, x_start)
         e, y = np.asarray(d["e"]), d["y_wheel"] + drop_height
@@ -148,15 +148,18 @@ def _initial_state(scene, model, speed, x_start, start, drop_height):
         y_rail = model.positions(e, [x_start])[0, 1]
         y = y_rail + scene.wheel.radius + drop_height
     c = _core.contact_eval(model, e, x_start, y, x_start, contact, np.zeros(10))
+    w = _core.WheelState()
+    w.y = y
+    w.ydot = 0.0
+    w.theta = 0.0
+    # pure rolling at the start: t . V_A = rho thetadot
+    w.thetadot = float(c["tangent"][0]) * speed / c["rho"]
+    w.s = c["s"]
+    w.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
+    st = _core.SimState()
     st.e = e
     st.edot = np.zeros_like(e)
-    st.y = y
-    st.ydot = 0.0
-    st.theta = 0.0
-    # pure rolling at the start: t . V_A = rho thetadot
-    st.thetadot = float(c["tangent"][0]) * speed / c["rho"]
-    st.s = c["s"]
-    st.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
+    st.wheels = [w]
     return st
 
 
@@ -221,7 +224,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     L = scene.rail.length
-    speed = v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
+    speed = v.number("speed", speed, low=0.0, high=v.MAX_SPEED, unit="m/s")
     v.choice("integrator", integrator, set(_INTEGRATORS))
     v.choice("start", start, {"static", "sudden"})
     # issue 6: derived defaults (convergence.default_settings) for the ANCF levels, <= 1 %
@@ -285,14 +288,14 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         else:
             dt = DEFAULT_DT[integrator]
         if integrator == "explicit" and not linear:
-            omega = _core.highest_frequency(model, wheel, contact, init.e, x0, init.y)
+            omega = _core.highest_frequency(model, wheel, contact, init.e, x0, init.wheels[0].y)
             dt = min(dt, 0.5 * _core.explicit_stability_limit(omega))
     else:
         dt = v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
         if integrator == "explicit" and not linear:  # issue 6: warn before a doomed run
             from .convergence import warn_above_stability_limit
 
-            warn_above_stability_limit(model, wheel, contact, init.e, x0, init.y, dt)
+            warn_above_stability_limit(model, wheel, contact, init.e, x0, init.wheels[0].y, dt)
     n_steps = int(round(t_end / dt))
     if n_steps < 1:
         raise ValueError(f"dt = {dt} s ({'default' if dt_default else 'given'}) is longer than "
@@ -305,12 +308,13 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))
     output_every = v.integer("output_every", output_every, low=1, high=2**31 - 1)
     n_samples = n_steps // output_every + 1
-    if n_samples * _N_FIELDS * 8 > MAX_OUTPUT_BYTES:
+    per_sample = _sample_bytes(v.boolean("energy", energy))
+    if n_samples * per_sample > MAX_OUTPUT_BYTES:
         raise ValueError(
             f"output_every = {output_every} keeps {n_samples} samples "
-            f"({n_samples * _N_FIELDS * 8 / 2**30:.1f} GiB), above the limit of "
+            f"({n_samples * per_sample / 2**30:.1f} GiB), above the limit of "
             f"{MAX_OUTPUT_BYTES / 2**30:.0f} GiB: increase output_every to at least "
-            f"{math.ceil(n_steps * _N_FIELDS * 8 / MAX_OUTPUT_BYTES)}")
+            f"{math.ceil(n_steps * per_sample / MAX_OUTPUT_BYTES)}")
 
     s = _core.SimSettings()
     s.integrator = _INTEGRATORS[integrator]
@@ -320,7 +324,6 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     s.dt = dt
     s.rho_inf = rho_inf
     s.baumgarte = baumgarte
-    s.friction = scene.contact.friction
     s.rolling = rolling
     s.output_every = output_every
     s.max_newton = max_newton
@@ -356,10 +359,9 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
             opt.n_modes = 0 if n_modes is None else n_modes
             opt.sudden = start == "sudden"
             opt.drop_height = drop_height
-            d = _core.simulate_linear(model, wheel, contact, s, opt, callback)
-            d["final_state"] = None
+            d = _core.simulate_linear(model, [wheel], contact, s, opt, callback)
         else:
-            d = _core.simulate(model, wheel, contact, s, init, callback)
+            d = _core.simulate(model, [wheel], contact, s, init, callback)
     finally:
         if bar is not None:
             bar.close()
@@ -369,14 +371,12 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
                     t_end=n_steps * dt, output_every=output_every, rho_inf=rho_inf,
                     baumgarte=baumgarte, rolling=rolling and not linear, start=start,
                     drop_height=drop_height, fidelity=fidelity, n_modes=n_modes)
-    return Result(
-        scene=scene, settings=settings, t=d["t"], x_wheel=d["x_wheel"], y_wheel=d["y_wheel"],
-        ydot_wheel=d["ydot_wheel"], theta=d["theta"], thetadot=d["thetadot"],
-        contact_s=d["contact_s"], y_contact=d["y_contact"], normal_force=d["normal_force"],
-        tangential_force=d["tangential_force"], slip=d["slip"], slip_state=d["state"],
-        v_error=d["v_error"], phi=d["phi"], acc_contact=d["acc_contact"], acc_A=d["acc_A"],
-        acc_B=d["acc_B"], acc_C=d["acc_C"], acc_D=d["acc_D"], acc_E=d["acc_E"],
-        reaction=d["reaction"], penetration=d["penetration"],
-        energy=d["energy"] if energy else None, steps=d["steps"],
-        newton_iterations=d["newton_iterations"], state_changes=d["state_changes"],
-        stability_limit=d["stability_limit"], wall_time=wall, final_state=d["final_state"])
+    # one wheel: the per-wheel (n_samples, 1) columns become (n_samples,)
+    arrays = {name: (d[name][:, 0] if per_wheel else d[name])
+              for name, _unit, _doc, per_wheel, _dtype in OUTPUT_FIELDS}
+    if not energy:
+        arrays["energy"] = None
+    return Result(scene=scene, settings=settings, **arrays, steps=d["steps"],
+                  newton_iterations=d["newton_iterations"], state_changes=d["state_changes"],
+                  stability_limit=d["stability_limit"], wall_time=wall,
+                  final_state=d["final_state"])
