@@ -10,6 +10,7 @@ import numpy as np
 import trackwheel as tw
 from trackwheel import _core
 
+
 def test_result_exposes_exactly_the_table_fields_with_units_in_its_doc():
     table = _core.OUTPUT_FIELDS
     names = [f[0] for f in table]
