@@ -32,7 +32,8 @@ GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& a
 void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Accel& x,
                                SimState& s1) {
   const double h = h_, bet = c_.bet, gam = c_.gam;
-  ae_ = c_.algorithmic(x.edd, acc0.edd, a_e_);
+  // written out (not c_.algorithmic) so that Eigen evaluates it into ae_'s storage
+  ae_ = (c_.af * acc0.edd - c_.am * a_e_ + (1.0 - c_.af) * x.edd) / (1.0 - c_.am);
   s1.e = s0.e + h * s0.edot + h * h * ((0.5 - bet) * a_e_ + bet * ae_);
   s1.edot = s0.edot + h * ((1.0 - gam) * a_e_ + gam * ae_);
   ab_.resize(a_b_.size());

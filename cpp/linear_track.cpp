@@ -60,6 +60,11 @@ class LinearStepper : public Stepper {
   bool damped_;
   Eigen::VectorXd q_, qd_, qdd_, a_;
   std::vector<LinearWheel> wh_;
+  // per-step buffers (no allocation in the time loop)
+  Eigen::VectorXd ah_, qh_, qdh_, g_, Cq_, Kq_, r1_, x1_, tmp_, qdd1_, rhs_, xb_;
+  std::vector<double> aYh_, Yh_, Ydh_;
+  Eigen::MatrixXd S_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };
 
 LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const LinearOptions& opt,
@@ -189,95 +194,97 @@ void LinearStepper::step(long n) {
   const double cq = c_.bp * h * h, cv = c_.gp * h;
   couple(t1);
   // predictors: q_{n+1} = qh + cq qdd_{n+1}, qd_{n+1} = qdh + cv qdd_{n+1}
-  const Eigen::VectorXd ah = (af * qdd_ - am * a_) / (1.0 - am);  // a_{n+1} minus qdd part
-  const Eigen::VectorXd qh = q_ + h * qd_ + h * h * ((0.5 - bet) * a_ + bet * ah);
-  const Eigen::VectorXd qdh = qd_ + h * ((1.0 - gam) * a_ + gam * ah);
-  std::vector<double> aYh(nw_), Yh(nw_), Ydh(nw_);
+  ah_ = (af * qdd_ - am * a_) / (1.0 - am);  // a_{n+1} minus qdd part
+  qh_ = q_ + h * qd_ + h * h * ((0.5 - bet) * a_ + bet * ah_);
+  qdh_ = qd_ + h * ((1.0 - gam) * a_ + gam * ah_);
+  aYh_.resize(nw_);
+  Yh_.resize(nw_);
+  Ydh_.resize(nw_);
   for (int w = 0; w < nw_; ++w) {
     const LinearWheel& lw = wh_[w];
-    aYh[w] = (af * lw.Ydd - am * lw.aY) / (1.0 - am);
-    Yh[w] = lw.Y + h * lw.Yd + h * h * ((0.5 - bet) * lw.aY + bet * aYh[w]);
-    Ydh[w] = lw.Yd + h * ((1.0 - gam) * lw.aY + gam * aYh[w]);
+    aYh_[w] = (af * lw.Ydd - am * lw.aY) / (1.0 - am);
+    Yh_[w] = lw.Y + h * lw.Yd + h * h * ((0.5 - bet) * lw.aY + bet * aYh_[w]);
+    Ydh_[w] = lw.Yd + h * ((1.0 - gam) * lw.aY + gam * aYh_[w]);
   }
   // g = C qdh + K qh - Q_g: r_q(qdd) = (M + cv C + cq K) qdd + g + sum_w s_w N_w
-  Eigen::VectorXd g, Cq, Kq, r1, x1, tmp;
-  tr_.K.multiply(qh, g);
+  tr_.K.multiply(qh_, g_);
   if (damped_) {
-    tr_.C.multiply(qdh, Cq);
-    g += Cq;
+    tr_.C.multiply(qdh_, Cq_);
+    g_ += Cq_;
   }
-  g -= tr_.Qg;
+  g_ -= tr_.Qg;
   // Newton from qdd_{n+1} = 0: exact in one iteration for the linear wheel models
-  Eigen::VectorXd qdd1 = Eigen::VectorXd::Zero(tr_.nq);
+  qdd1_.setZero(tr_.nq);
   for (LinearWheel& lw : wh_) lw.Ydd = 0.0;
   const int m = 2 * nw_;
   for (int it = 0; it < std::max(set_.max_newton, 1); ++it) {
-    q_ = qh + cq * qdd1;
-    qd_ = qdh + cv * qdd1;
+    q_ = qh_ + cq * qdd1_;
+    qd_ = qdh_ + cv * qdd1_;
     for (int w = 0; w < nw_; ++w) {
-      wh_[w].Y = Yh[w] + cq * wh_[w].Ydd;
-      wh_[w].Yd = Ydh[w] + cv * wh_[w].Ydd;
+      wh_[w].Y = Yh_[w] + cq * wh_[w].Ydd;
+      wh_[w].Yd = Ydh_[w] + cv * wh_[w].Ydd;
     }
     // residuals r = inertia + internal - external (solve J dx = -r)
     if (it == 0) {
-      tmp = g;
+      tmp_ = g_;
     } else {
-      tr_.M.multiply(qdd1, r1);
-      tr_.K.multiply(qdd1, Kq);
-      tmp = cq * Kq + g;
+      tr_.M.multiply(qdd1_, r1_);
+      tr_.K.multiply(qdd1_, Kq_);
+      tmp_ = cq * Kq_ + g_;
     }
-    for (const LinearWheel& lw : wh_) tmp += lw.N * lw.s;
+    for (const LinearWheel& lw : wh_) tmp_ += lw.N * lw.s;
     if (it == 0) {
-      r1 = -tmp;
+      r1_ = -tmp_;
     } else {
-      r1 += tmp;
+      r1_ += tmp_;
       if (damped_) {
-        tr_.C.multiply(qdd1, Cq);
-        r1 += cv * Cq;
+        tr_.C.multiply(qdd1_, Cq_);
+        r1_ += cv * Cq_;
       }
-      r1 = -r1;
+      r1_ = -r1_;
     }
     // Schur complement on the 2-wide borders with Z_w = A^-1 s_w from the element cache
-    x1 = r1;
-    A_.solve_in_place(x1);
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);
-    Eigen::VectorXd rhs(m);
+    x1_ = r1_;
+    A_.solve_in_place(x1_);
+    S_.setZero(m, m);
+    rhs_.resize(m);
     for (int w = 0; w < nw_; ++w) {
       Eigen::Matrix2d D;
       Eigen::Vector2d r2;
       double c;
       border(w, cq, D, r2, c);
-      S.block<2, 2>(2 * w, 2 * w) = D;
-      for (int v = 0; v < nw_; ++v) S(2 * w + 1, 2 * v + 1) -= c * wh_[w].s.dot(wh_[v].Z);
-      rhs(2 * w) = r2(0);
-      rhs(2 * w + 1) = r2(1) - c * wh_[w].s.dot(x1);
+      S_.block<2, 2>(2 * w, 2 * w) = D;
+      for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= c * wh_[w].s.dot(wh_[v].Z);
+      rhs_(2 * w) = r2(0);
+      rhs_(2 * w + 1) = r2(1) - c * wh_[w].s.dot(x1_);
     }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(S);
-    const double det = lu.determinant();
+    lu_.compute(S_);
+    const double det = lu_.determinant();
     if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
-    const Eigen::VectorXd xb = lu.solve(rhs);
-    for (int v = 0; v < nw_; ++v) x1 -= xb(2 * v + 1) * wh_[v].Z;
+    xb_ = lu_.solve(rhs_);
+    for (int v = 0; v < nw_; ++v) x1_ -= xb_(2 * v + 1) * wh_[v].Z;
     ++out_.newton_iterations;
-    qdd1 += x1;
-    double dq = x1.lpNorm<Eigen::Infinity>();
+    qdd1_ += x1_;
+    double dq = x1_.lpNorm<Eigen::Infinity>();
     bool small_force = true;
     for (int w = 0; w < nw_; ++w) {
-      wh_[w].Ydd += xb(2 * w);
-      wh_[w].N += xb(2 * w + 1);
-      dq = std::max(dq, std::abs(xb(2 * w)));
-      small_force &= std::abs(xb(2 * w + 1)) <= 1e-6 * std::max(1.0, model_.wheels[w].total_load());
+      wh_[w].Ydd += xb_(2 * w);
+      wh_[w].N += xb_(2 * w + 1);
+      dq = std::max(dq, std::abs(xb_(2 * w)));
+      small_force &=
+          std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, model_.wheels[w].total_load());
     }
     dq *= cq;
     if (opt_.wheel_model != WheelModel::Hertz || (dq <= set_.newton_tol && small_force)) {
-      q_ = qh + cq * qdd1;  // the state at the final accelerations
-      qd_ = qdh + cv * qdd1;
-      a_ = ah + ((1.0 - af) / (1.0 - am)) * qdd1;
-      qdd_ = qdd1;
+      q_ = qh_ + cq * qdd1_;  // the state at the final accelerations
+      qd_ = qdh_ + cv * qdd1_;
+      a_ = ah_ + ((1.0 - af) / (1.0 - am)) * qdd1_;
+      qdd_ = qdd1_;
       for (int w = 0; w < nw_; ++w) {
         LinearWheel& lw = wh_[w];
-        lw.Y = Yh[w] + cq * lw.Ydd;
-        lw.Yd = Ydh[w] + cv * lw.Ydd;
-        lw.aY = aYh[w] + ((1.0 - af) / (1.0 - am)) * lw.Ydd;
+        lw.Y = Yh_[w] + cq * lw.Ydd;
+        lw.Yd = Ydh_[w] + cv * lw.Ydd;
+        lw.aY = aYh_[w] + ((1.0 - af) / (1.0 - am)) * lw.Ydd;
         if (opt_.wheel_model == WheelModel::MovingForce) {
           lw.Y = lw.s.dot(q_) + model_.wheels[w].radius;
           lw.Yd = 0.0;
