@@ -42,30 +42,28 @@ void ExplicitRK4::step(long n) {
     out_.state_changes += n_changed;
     sys_.accelerations(st_, ev_, acc_);
   }
-  const SimState k1 = st_;
-  SimState k = st_;
-  Accel a2, a3, a4;
-  stage(0.5, acc_, k1, k);
-  const SimState k2 = k;
-  derivative(t0 + 0.5 * h, k2, a2);
-  stage(0.5, a2, k2, k);
-  const SimState k3 = k;
-  derivative(t0 + 0.5 * h, k3, a3);
-  stage(1.0, a3, k3, k);
-  const SimState k4 = k;
-  derivative(t1, k4, a4);
+  k1_ = st_;
+  k2_ = st_;
+  stage(0.5, acc_, k1_, k2_);
+  derivative(t0 + 0.5 * h, k2_, a2_);
+  k3_ = st_;
+  stage(0.5, a2_, k2_, k3_);
+  derivative(t0 + 0.5 * h, k3_, a3_);
+  k4_ = st_;
+  stage(1.0, a3_, k3_, k4_);
+  derivative(t1, k4_, a4_);
   const double wt = h / 6.0;
-  st_.e += wt * (k1.edot + 2.0 * k2.edot + 2.0 * k3.edot + k4.edot);
-  st_.edot += wt * (acc_.edd + 2.0 * a2.edd + 2.0 * a3.edd + a4.edd);
+  st_.e += wt * (k1_.edot + 2.0 * k2_.edot + 2.0 * k3_.edot + k4_.edot);
+  st_.edot += wt * (acc_.edd + 2.0 * a2_.edd + 2.0 * a3_.edd + a4_.edd);
   for (int w = 0; w < sys_.n_wheels(); ++w) {
     const int o = kBorderPerWheel * w, ty = o + kY, tt = o + kTheta;
     WheelState& s = st_.wheels[w];
-    s.y += wt * (k1.wheels[w].ydot + 2.0 * k2.wheels[w].ydot + 2.0 * k3.wheels[w].ydot +
-                 k4.wheels[w].ydot);
-    s.ydot += wt * (acc_.x(ty) + 2.0 * a2.x(ty) + 2.0 * a3.x(ty) + a4.x(ty));
-    s.theta += wt * (k1.wheels[w].thetadot + 2.0 * k2.wheels[w].thetadot +
-                     2.0 * k3.wheels[w].thetadot + k4.wheels[w].thetadot);
-    s.thetadot += wt * (acc_.x(tt) + 2.0 * a2.x(tt) + 2.0 * a3.x(tt) + a4.x(tt));
+    s.y += wt * (k1_.wheels[w].ydot + 2.0 * k2_.wheels[w].ydot + 2.0 * k3_.wheels[w].ydot +
+                 k4_.wheels[w].ydot);
+    s.ydot += wt * (acc_.x(ty) + 2.0 * a2_.x(ty) + 2.0 * a3_.x(ty) + a4_.x(ty));
+    s.theta += wt * (k1_.wheels[w].thetadot + 2.0 * k2_.wheels[w].thetadot +
+                     2.0 * k3_.wheels[w].thetadot + k4_.wheels[w].thetadot);
+    s.thetadot += wt * (acc_.x(tt) + 2.0 * a2_.x(tt) + 2.0 * a3_.x(tt) + a4_.x(tt));
   }
   if (!finite_state(st_)) div_.fail(n, "non-finite state");
 }

@@ -22,6 +22,8 @@ class ExplicitRK4 : public FullStepper {
 
   bool start_ready_ = false;  // ev_ and acc_ already hold the evaluation of the current state
   Eval scratch_;
+  SimState k1_, k2_, k3_, k4_;  // stage states (members: no allocation per step)
+  Accel a2_, a3_, a4_;
 };
 
 }  // namespace trackwheel

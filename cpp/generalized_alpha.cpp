@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "slip.hpp"
 
@@ -135,37 +136,37 @@ int GeneralizedAlpha::commit_slip_states(Accel& x, SimState& s1, bool& changed) 
 
 void GeneralizedAlpha::step(long n) {
   const double t1 = n * h_;
-  const SimState s0 = st_;
-  const Accel acc0 = acc_;
+  s0_ = st_;  // members: the copies reuse their storage, nothing is allocated per step
+  acc0_ = acc_;
   for (int attempt = 0; attempt < 4; ++attempt) {
     // predictor: linear extrapolation of the accelerations (constant on the first step and
     // after a state change)
-    Accel x = acc0;
     if (have_prev_ && attempt == 0) {
-      x.edd = 2.0 * acc0.edd - prev_.edd;
-      x.x = 2.0 * acc0.x - prev_.x;
+      x_.edd = 2.0 * acc0_.edd - prev_.edd;
+      x_.x = 2.0 * acc0_.x - prev_.x;
+    } else {
+      x_ = acc0_;
     }
-    SimState s1 = st_;  // carries the slip states of this attempt
-    if (!newton(n, t1, s0, acc0, x, s1))
+    s1_ = st_;  // carries the slip states of this attempt
+    if (!newton(n, t1, s0_, acc0_, x_, s1_))
       div_.fail(n, "Newton did not converge in " + std::to_string(sys_.settings().max_newton) +
                        " iterations");
-    SimState trial = s1;
     bool changed = false;
-    const int n_changed = commit_slip_states(x, trial, changed);
+    const int n_changed = commit_slip_states(x_, s1_, changed);
     if (changed && attempt < 3) {  // redo the step in the new states
       out_.state_changes += n_changed;
       for (int w = 0; w < sys_.n_wheels(); ++w) {
-        st_.wheels[w].state = trial.wheels[w].state;
-        st_.wheels[w].sigma = trial.wheels[w].sigma;
+        st_.wheels[w].state = s1_.wheels[w].state;
+        st_.wheels[w].sigma = s1_.wheels[w].sigma;
       }
       continue;
     }
     have_prev_ = !changed && attempt == 0;
-    prev_ = acc0;
-    st_ = trial;
-    a_e_ = ae_;
-    a_b_ = ab_;
-    acc_ = x;
+    std::swap(prev_, acc0_);
+    std::swap(st_, s1_);
+    std::swap(a_e_, ae_);
+    std::swap(a_b_, ab_);
+    std::swap(acc_, x_);
     return;
   }
 }

@@ -58,6 +58,8 @@ class GeneralizedAlpha : public FullStepper {
   std::vector<MatrixKey> key_;
   bool have_matrix_ = false;
   Eigen::VectorXd r1_, r2_, x1_, x2_, dedd_;
+  SimState s0_, s1_;  // the step's start and its iterate
+  Accel acc0_, x_;    // the start accelerations and the Newton iterate
 };
 
 }  // namespace trackwheel

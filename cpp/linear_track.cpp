@@ -47,6 +47,7 @@ class LinearStepper : public Stepper {
   void initial_state();
   void couple(double t1);
   void border(int w, double cq, Eigen::Matrix2d& D, Eigen::Vector2d& r2, double& c) const;
+  void solve_border(long n, double cq, int m);
 
   const Model& model_;
   const SimSettings& set_;
@@ -189,6 +190,37 @@ void LinearStepper::border(int w, double cq, Eigen::Matrix2d& D, Eigen::Vector2d
   }
 }
 
+// The Schur complement S [dY''; dN]_w = rhs on the 2-wide borders; xb_ gets the solution. One
+// wheel takes a fixed-size 2x2 solve (the common case; a dynamic LU costs more than the rest of
+// the border work).
+void LinearStepper::solve_border(long n, double cq, int m) {
+  Eigen::Matrix2d D;
+  Eigen::Vector2d r2;
+  double c;
+  if (nw_ == 1) {
+    border(0, cq, D, r2, c);
+    D(1, 1) -= c * wh_[0].s.dot(wh_[0].Z);
+    const Eigen::Vector2d rhs(r2(0), r2(1) - c * wh_[0].s.dot(x1_));
+    const double det = D.determinant();
+    if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
+    xb_ = D.partialPivLu().solve(rhs);
+    return;
+  }
+  S_.setZero(m, m);
+  rhs_.resize(m);
+  for (int w = 0; w < nw_; ++w) {
+    border(w, cq, D, r2, c);
+    S_.block<2, 2>(2 * w, 2 * w) = D;
+    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= c * wh_[w].s.dot(wh_[v].Z);
+    rhs_(2 * w) = r2(0);
+    rhs_(2 * w + 1) = r2(1) - c * wh_[w].s.dot(x1_);
+  }
+  lu_.compute(S_);
+  const double det = lu_.determinant();
+  if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
+  xb_ = lu_.solve(rhs_);
+}
+
 void LinearStepper::step(long n) {
   const double h = set_.dt, t1 = n * h, am = c_.am, af = c_.af, gam = c_.gam, bet = c_.bet;
   const double cq = c_.bp * h * h, cv = c_.gp * h;
@@ -246,22 +278,7 @@ void LinearStepper::step(long n) {
     // Schur complement on the 2-wide borders with Z_w = A^-1 s_w from the element cache
     x1_ = r1_;
     A_.solve_in_place(x1_);
-    S_.setZero(m, m);
-    rhs_.resize(m);
-    for (int w = 0; w < nw_; ++w) {
-      Eigen::Matrix2d D;
-      Eigen::Vector2d r2;
-      double c;
-      border(w, cq, D, r2, c);
-      S_.block<2, 2>(2 * w, 2 * w) = D;
-      for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= c * wh_[w].s.dot(wh_[v].Z);
-      rhs_(2 * w) = r2(0);
-      rhs_(2 * w + 1) = r2(1) - c * wh_[w].s.dot(x1_);
-    }
-    lu_.compute(S_);
-    const double det = lu_.determinant();
-    if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
-    xb_ = lu_.solve(rhs_);
+    solve_border(n, cq, m);
     for (int v = 0; v < nw_; ++v) x1_ -= xb_(2 * v + 1) * wh_[v].Z;
     ++out_.newton_iterations;
     qdd1_ += x1_;

@@ -63,17 +63,20 @@ void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd&
 }
 
 void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
-  Eigen::VectorXd lam_p(nw_), lam(nw_);
+  Eigen::VectorXd& lam_p = lam_p_;
+  lam_p.resize(nw_);
   for (int w = 0; w < nw_; ++w) {
     lam_p(w) = prescribed_lambda(st, ev, w);
-    lam(w) = std::isnan(lam_p(w)) ? 0.0 : lam_p(w);
+    lam_(w) = std::isnan(lam_p(w)) ? 0.0 : lam_p(w);
   }
-  Eigen::VectorXd fr, fb;
-  forces(ev, lam, fr, fb);
+  Eigen::VectorXd &fr = fr_, &fb = fb_;
+  forces(ev, lam_, fr, fb);
   Bb_.setZero();
   Cb_.setZero();
   Db_.setZero();
-  Eigen::VectorXd r1 = rail().to_free(fr), r2 = Eigen::VectorXd::Zero(n_border());
+  Eigen::VectorXd &r1 = r1_, &r2 = r2_;
+  r1 = rail().to_free(fr);
+  r2.setZero(n_border());
   const auto& f2f = rail().full_to_free();
   for (int w = 0; w < nw_; ++w) {
     const WheelEval& we = ev.w[w];
@@ -107,10 +110,9 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
   }
   if (!solver_.factorize_border(Mfac_, Bb_, Cb_, Db_))
     throw std::runtime_error("acceleration system is singular");
-  Eigen::VectorXd x1;
-  solver_.solve(r1, r2, x1, acc.x);
-  acc.edd = Eigen::VectorXd::Zero(rail().n_dof());
-  rail().add_from_free(x1, acc.edd);
+  solver_.solve(r1, r2, x1_, acc.x);
+  acc.edd.setZero(rail().n_dof());
+  rail().add_from_free(x1_, acc.edd);
 }
 
 void System::residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,

@@ -106,7 +106,7 @@ class System {
   int nf_, nw_;
   BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
-  Eigen::VectorXd fr_, fb_, lam_, Medd_;
+  Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
   BorderedSolver solver_;
 };
 
