@@ -30,8 +30,9 @@ class GeneralizedAlpha : public FullStepper {
                    const Divergence& div);
   void step(long n) override;
   void record(long n) override { record_sample(n * h_); }
-  // Test hook: the residual r (right-hand side of J dx = -r... as the kernel stores it, -r) and
-  // the assembled iteration matrix at iterate x of the step from the current state to t1.
+  // Test hook: at the iterate x of the step from the current state to t1, the negated residual
+  // -r (the right-hand side of J dx = -r, as the Newton loop solves it) and the assembled
+  // (unfactorised) iteration matrix J = dr/dx, dense.
   void probe(double t1, const Accel& x, Eigen::VectorXd& minus_r, Eigen::MatrixXd& J);
 
  private:
