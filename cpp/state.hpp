@@ -28,7 +28,7 @@ struct SimSettings {
 };
 
 // Throws std::invalid_argument for settings no integrator can run (dt, t_end, output_every,
-// rho_inf out of range).
+// rho_inf or speed out of range; the speed limit is limits::kMaxSpeed).
 void check_settings(const SimSettings& settings);
 
 struct WheelState {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "limits.hpp"
+
 namespace trackwheel {
 
 std::string format3(double x) {
@@ -19,6 +21,8 @@ void check_settings(const SimSettings& set) {
   if (set.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
   if (!(set.rho_inf >= 0.0 && set.rho_inf <= 1.0))
     throw std::invalid_argument("rho_inf must be in [0, 1]");
+  if (!(set.speed >= 0.0 && set.speed <= limits::kMaxSpeed))
+    throw std::invalid_argument("speed must be in [0, " + format3(limits::kMaxSpeed) + "] m/s");
 }
 
 long n_steps_of(const SimSettings& set) {

@@ -114,7 +114,9 @@ def test_kernel_simulate_hostile_settings_and_callbacks():
         _core.simulate(MODEL, [WHEEL], CONTACT, s, st, None)
     for field, value, match in [("dt", 0.0, "dt"), ("dt", NAN, "dt"), ("t_end", INF, "t_end"),
                                 ("output_every", 0, "output_every"),
-                                ("rho_inf", NAN, "rho_inf")]:
+                                ("rho_inf", NAN, "rho_inf"),
+                                ("speed", _core.MAX_SPEED * 1.01, r"speed must be in \[0, 300\]"),
+                                ("speed", -1.0, "speed"), ("speed", NAN, "speed")]:
         s, st = _kernel_sim_inputs(**{field: value})
         with pytest.raises(ValueError, match=match):
             _core.simulate(MODEL, [WHEEL], CONTACT, s, st, None)
