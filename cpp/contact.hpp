@@ -29,18 +29,30 @@ struct ContactParams {
   ContactLaw law = ContactLaw::Linear;
   double stiffness = 0.0;  // k [N/m] (linear) or C_H [N/m^1.5] (Hertz)
   double damping = 0.0;    // contact damping c [N s/m]
-  double radius = 0.1;     // undeformed wheel radius rho0 [m]
+  double radius = 0.0;     // undeformed wheel radius rho0 [m] (Model::contact_of sets it)
+  double friction = 0.0;   // mu, friction coefficient of the slip judgement [-]
 };
 
+// Elastic normal force N_e(delta) [N] and its slope dN_e/d(delta) [N/m] of the law, for the
+// full and linear paths alike: k delta (linear, also for delta < 0: the linear path's bilateral
+// spring) or C_H delta^1.5 (Hertz, 0 for delta <= 0).
+double elastic_normal_force(ContactLaw law, double stiffness, double delta, double& slope);
+// Contact potential V(delta) [J] with dV/d(delta) = N_e: k delta^2/2 or 2/5 C_H delta^2.5.
+double contact_potential(ContactLaw law, double stiffness, double delta);
+// Compression under the static load P [N]: P/k or (P/C_H)^(2/3) [m].
+double static_compression(ContactLaw law, double stiffness, double P);
+// Stiffness of the law linearised at the static load P: k, or 1.5 C_H^(2/3) P^(1/3) [N/m].
+double linearised_stiffness(ContactLaw law, double stiffness, double P);
+
 struct ContactPoint {
-  double s = 0.0;          // contact parameter s* on the rail [m]
-  MeshPoint mp;            // its element and shape functions
+  double s = 0.0;              // contact parameter s* on the rail [m]
+  MeshPoint mp;                // its element and shape functions
   Eigen::Vector2d r, rs, rss;  // r(s*), r_s, r_ss
-  double rho = 0.0;        // |R_A - r(s*)| [m]
-  Eigen::Vector2d n;       // unit normal, rail -> wheel centre
-  Eigen::Vector2d t;       // unit tangent r_s/|r_s|
-  double phi = 0.0;        // obliquity atan2(y_s, x_s) [rad]
-  int iterations = 0;      // Newton iterations of the search
+  double rho = 0.0;            // |R_A - r(s*)| [m]
+  Eigen::Vector2d n;           // unit normal, rail -> wheel centre
+  Eigen::Vector2d t;           // unit tangent r_s/|r_s|
+  double phi = 0.0;            // obliquity atan2(y_s, x_s) [rad]
+  int iterations = 0;          // Newton iterations of the search
   bool converged = false;
 };
 
@@ -49,14 +61,14 @@ ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
                                 const Eigen::Vector2d& RA, double s_guess);
 
 struct ContactForce {
-  double delta = 0.0;       // penetration rho0 - rho [m]
-  double N = 0.0;           // normal force [N] (>= 0)
-  bool active = false;      // N > 0
-  double dN_ddelta = 0.0;   // elastic contact stiffness dN/d(delta) at this penetration [N/m]
-  Vec10 grad_rho;           // d rho / dq
-  Vec10 F;                  // generalised contact force on q = [X_A, Y_A, e_el] [N]
-  Mat10 K;                  // -dF/dq [N/m] (damping's own q-dependence neglected)
-  Mat10 C;                  // -dF/dqdot [N s/m]
+  double delta = 0.0;      // penetration rho0 - rho [m]
+  double N = 0.0;          // normal force [N] (>= 0)
+  bool active = false;     // N > 0
+  double dN_ddelta = 0.0;  // elastic contact stiffness dN/d(delta) at this penetration [N/m]
+  Vec10 grad_rho;          // d rho / dq
+  Vec10 F;                 // generalised contact force on q = [X_A, Y_A, e_el] [N]
+  Mat10 K;                 // -dF/dq [N/m] (damping's own q-dependence neglected)
+  Mat10 C;                 // -dF/dqdot [N s/m]
 };
 
 // Evaluate the contact force at a found contact point; qdot = [V_A; edot_el] (for damping).

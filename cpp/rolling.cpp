@@ -8,8 +8,7 @@ Vec10 contact_parameter_gradient(const ContactPoint& pt) {
   const double fs = -pt.rs.squaredNorm() + d.dot(pt.rss);
   Vec10 fq;
   fq.head<2>() = pt.rs;
-  for (int a = 0; a < 4; ++a)
-    fq.segment<2>(2 + 2 * a) = -pt.mp.h.n[a] * pt.rs + pt.mp.h.ns[a] * d;
+  for (int a = 0; a < 4; ++a) fq.segment<2>(2 + 2 * a) = -pt.mp.h.n[a] * pt.rs + pt.mp.h.ns[a] * d;
   return -fq / fs;
 }
 

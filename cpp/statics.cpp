@@ -60,7 +60,8 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
       res.horizontal_reaction = -cf.F(0);
     }
     for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
-    if (!r1.allFinite() || !r2.allFinite()) throw std::runtime_error("static solve: non-finite residual");
+    if (!r1.allFinite() || !r2.allFinite())
+      throw std::runtime_error("static solve: non-finite residual");
     if (!solver.factorize(K, B, C, D))
       throw std::runtime_error("static solve: singular stiffness (is the wheel off the rail?)");
     solver.solve(r1, r2, dx1, dx2);
@@ -76,8 +77,8 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
       res.x_wheel = x_wheel;
       res.y_wheel = y_wheel;
       if (wheel) {
-        const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_wheel),
-                                                   s_guess);
+        const ContactPoint pt =
+            find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_wheel), s_guess);
         res.contact_s = pt.s;
         res.y_contact = pt.r.y();
         const ContactForce cf = contact_force(*contact, pt, Vec10::Zero(), false);

@@ -12,7 +12,7 @@ from .scene import Scene
 
 
 @lru_cache(maxsize=64)
-def rail_model(scene: Scene, n_elements: int | None = None) -> "_core.RailModel":
+def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     r = scene.rail
     p = _core.RailParams()
     p.length = r.length
@@ -32,7 +32,7 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> "_core.RailModel"
     return _core.RailModel(p, s)
 
 
-def wheel_params(scene: Scene) -> "_core.WheelParams":
+def wheel_params(scene: Scene) -> _core.WheelParams:
     w = scene.wheel
     p = _core.WheelParams()
     p.mass = w.mass
@@ -44,7 +44,7 @@ def wheel_params(scene: Scene) -> "_core.WheelParams":
     return p
 
 
-def contact_params(scene: Scene) -> "_core.ContactParams":
+def contact_params(scene: Scene) -> _core.ContactParams:
     c = scene.contact
     p = _core.ContactParams()
     if c.law == "linear":
@@ -55,4 +55,5 @@ def contact_params(scene: Scene) -> "_core.ContactParams":
         p.stiffness = c.stiffness if c.stiffness is not None else scene.hertz_constant
     p.damping = c.damping
     p.radius = scene.wheel.radius
+    p.friction = c.friction
     return p
