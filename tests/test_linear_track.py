@@ -63,7 +63,7 @@ def test_divergence_names_the_time_position_and_cause():
     scene = tw.Scene.kato2005()
     with pytest.raises(tw.DivergenceError) as info:
         tw.simulate(scene, tw.kmh(300), fidelity="linear/hertz", x_end=1.0, max_newton=1,
-                    start="sudden", drop_height=1e-4, progress=False)
+                    dt=1e-5, n_elements=20, start="sudden", drop_height=1e-4, progress=False)
     msg = str(info.value)
     assert "Newton did not converge in 1 iterations" in msg
     assert "X_A = " in msg and "Likely cause: the time step" in msg

@@ -106,11 +106,12 @@ def test_fewer_elements_than_bays_warn():
 
 
 def test_the_output_size_check_counts_every_recorded_array():
-    """simulate refuses outputs above MAX_OUTPUT_BYTES before running, counting _N_FIELDS
-    float64 arrays per sample: exactly the arrays a run with energy=True returns."""
-    sim = importlib.import_module("trackwheel.simulate")  # (tw.simulate is the function)
+    """simulate refuses outputs above MAX_OUTPUT_BYTES before running, counting
+    results.sample_bytes per sample: exactly the bytes of the arrays a run with energy=True
+    returns (the int32 slip state included)."""
+    results = importlib.import_module("trackwheel.results")
     r = tw.simulate(SCENE, tw.kmh(300), n_elements=20, dt=1e-5, x_end=0.5, energy=True)
-    arrays = [f.name for f in dc.fields(tw.Result)
+    arrays = [getattr(r, f.name) for f in dc.fields(tw.Result)
               if isinstance(getattr(r, f.name), np.ndarray)]
-    assert len(arrays) == sim._N_FIELDS
-    assert all(getattr(r, name).shape == r.t.shape for name in arrays)
+    assert sum(a.itemsize for a in arrays) == results.sample_bytes(True)
+    assert all(a.shape == r.t.shape for a in arrays)
