@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace trackwheel {
 
@@ -13,8 +14,8 @@ void require(bool ok, const std::string& msg) {
 }
 }  // namespace
 
-RailModel::RailModel(const RailParams& rail, const SupportParams& supports)
-    : p_(rail), sup_(supports) {
+RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Profile profile)
+    : p_(rail), sup_(supports), profile_(std::move(profile)) {
   require(std::isfinite(p_.length) && p_.length > 0, "rail length must be > 0 m");
   require(p_.n_elements >= 1 && p_.n_elements <= 100000, "n_elements must be in [1, 100000]");
   require(std::isfinite(p_.EA) && p_.EA > 0, "EA must be > 0 N");

@@ -111,7 +111,7 @@ StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
     double delta = contact.law == ContactLaw::Linear
                        ? wheel.total_load() / contact.stiffness
                        : std::pow(wheel.total_load() / contact.stiffness, 2.0 / 3.0);
-    y = pt.r.y() + wheel.radius - delta;
+    y = pt.p.y() + wheel.radius - delta;
   }
   return newton_static(rail, &wheel, &contact, x_wheel, e, y);
 }
