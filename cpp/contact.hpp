@@ -39,17 +39,17 @@ struct ContactParams {
 };
 
 struct ContactPoint {
-  double s = 0.0;          // contact parameter s* on the rail [m]
-  MeshPoint mp;            // its element and shape functions
+  double s = 0.0;              // contact parameter s* on the rail [m]
+  MeshPoint mp;                // its element and shape functions
   Eigen::Vector2d r, rs, rss;  // centre line r(s*), r_s, r_ss
   Eigen::Vector2d p, ps, pss;  // running surface p(s*), p_s, p_ss (= r, r_s, r_ss without profile)
   ProfileValue profile;        // R, R', R'' at x(s*) (zero without profile)
   bool lifted = false;         // a profile is present (T != S)
-  double rho = 0.0;        // |R_A - p(s*)| [m]
-  Eigen::Vector2d n;       // unit normal, surface -> wheel centre
-  Eigen::Vector2d t;       // unit tangent p_s/|p_s|
-  double phi = 0.0;        // obliquity of the centre line atan2(y_s, x_s) [rad]
-  int iterations = 0;      // Newton iterations of the search
+  double rho = 0.0;            // |R_A - p(s*)| [m]
+  Eigen::Vector2d n;           // unit normal, surface -> wheel centre
+  Eigen::Vector2d t;           // unit tangent p_s/|p_s|
+  double phi = 0.0;            // obliquity of the centre line atan2(y_s, x_s) [rad]
+  int iterations = 0;          // Newton iterations of the search
   bool converged = false;
 };
 
@@ -58,14 +58,14 @@ ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
                                 const Eigen::Vector2d& RA, double s_guess);
 
 struct ContactForce {
-  double delta = 0.0;       // penetration rho0 - rho [m]
-  double N = 0.0;           // normal force [N] (>= 0)
-  bool active = false;      // N > 0
-  double dN_ddelta = 0.0;   // elastic contact stiffness dN/d(delta) at this penetration [N/m]
-  Vec10 grad_rho;           // d rho / dq
-  Vec10 F;                  // generalised contact force on q = [X_A, Y_A, e_el] [N]
-  Mat10 K;                  // -dF/dq [N/m] (damping's own q-dependence neglected)
-  Mat10 C;                  // -dF/dqdot [N s/m]
+  double delta = 0.0;      // penetration rho0 - rho [m]
+  double N = 0.0;          // normal force [N] (>= 0)
+  bool active = false;     // N > 0
+  double dN_ddelta = 0.0;  // elastic contact stiffness dN/d(delta) at this penetration [N/m]
+  Vec10 grad_rho;          // d rho / dq
+  Vec10 F;                 // generalised contact force on q = [X_A, Y_A, e_el] [N]
+  Mat10 K;                 // -dF/dq [N/m] (damping's own q-dependence neglected)
+  Mat10 C;                 // -dF/dqdot [N s/m]
 };
 
 // Evaluate the contact force at a found contact point; qdot = [V_A; edot_el] (for damping).

@@ -13,9 +13,9 @@ import math
 import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
-from trackwheel import _core
-
 from test_contact import K_LIN, RHO0, X_WHEEL, ContactFunction, bent_rail, params
+
+from trackwheel import _core
 
 AMP, WAVELENGTH = 3e-4, 0.1  # a 0.3 mm, 0.1 m corrugation: R'' up to 1.2 1/m [m, m]
 DX = 1e-3  # profile grid [m]: WAVELENGTH / 100
@@ -156,7 +156,7 @@ def test_rolling_jacobians_on_lifted_surface_match_central_differences(lifted, f
 
     q0 = np.concatenate([[xa, ya], e[d0:d0 + 8]])
     for name, key in (("dg_dq", "g"), ("db_dq", "b"), ("ds_dq", "s")):
-        J_fd, tol = fd_tolerance(lambda q: np.atleast_1d(at(q)[key]), q0, 1e-7, fd, rel)
+        J_fd, tol = fd_tolerance(lambda q, k=key: np.atleast_1d(at(q)[k]), q0, 1e-7, fd, rel)
         assert rel(np.atleast_2d(base[name]), J_fd) < tol, name
     # g is linear in the velocities: dg/dqdot = b exactly (theta' coefficient b[10] = -rho)
     J = fd(lambda v: [at(q0, v)["g"]], qdot, 1e-3)[0]
