@@ -16,6 +16,9 @@ from .analysis import Analysis, amplitude_spectrum, analyse, main_frequency
 from .sweep import load_sweep, sweep
 from .fidelity import adequacy, recommend
 from .simulate import FIDELITY_LEVELS
+from . import spectra
+from .irregularity import Irregularity, Polygon, WheelFlat
+from .force_statistics import ForceStatistics, force_statistics
 
 __all__ = [
     "FIDELITY_LEVELS",
@@ -49,4 +52,10 @@ __all__ = [
     "kmh",
     "quasi_static",
     "static",
+    "spectra",
+    "Irregularity",
+    "Polygon",
+    "WheelFlat",
+    "ForceStatistics",
+    "force_statistics",
 ]

@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass, field, fields
 
 from . import _validate as v
+from .irregularity import WHEEL_DEFECTS, Irregularity
 
 #: Most supports a scene may resolve to from ``Supports.spacing`` [-] (a guard against a tiny
 #: spacing exhausting memory; 5 m at 0.5 m spacing has nine).
@@ -139,6 +140,9 @@ class Wheel:
     youngs_modulus: float = 2.058e11  #: E of the wheel [Pa] (Hertz constant)
     poisson_ratio: float = 0.30  #: nu of the wheel [-]
     torque: float = 0.0  #: external torque on the wheel, positive in the rolling direction [N m]
+    #: out-of-roundness, a tuple of :class:`~trackwheel.irregularity.WheelFlat` /
+    #: :class:`~trackwheel.irregularity.Polygon` (MODEL.md §10); () is a round wheel
+    defects: tuple = ()
 
     def __post_init__(self):
         v.positive("Wheel.mass", self.mass, "kg")
@@ -149,6 +153,15 @@ class Wheel:
         v.positive("Wheel.youngs_modulus", self.youngs_modulus, "Pa")
         v.number("Wheel.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
         v.number("Wheel.torque", self.torque, unit="N m")
+        if not isinstance(self.defects, (tuple, list)):
+            raise TypeError(f"Wheel.defects must be a tuple of WheelFlat/Polygon, "
+                            f"got {type(self.defects).__name__}")
+        for d in self.defects:
+            if not isinstance(d, WHEEL_DEFECTS):
+                raise TypeError(f"Wheel.defects must hold WheelFlat or Polygon values, "
+                                f"got {type(d).__name__}")
+            d.check(self.radius)
+        object.__setattr__(self, "defects", tuple(self.defects))
 
     @property
     def polar_inertia(self) -> float:
@@ -191,6 +204,8 @@ class Scene:
     contact: Contact = field(default_factory=Contact)
     gravity: float = GRAVITY  #: g on rail and wheel [m/s^2]; the rail's weight pre-loads supports
     rail_gravity: bool = True  #: apply the rail's own weight
+    #: rail profile r(X) [m] (positive = bump, MODEL.md §10), or None for a smooth rail
+    irregularity: Irregularity | None = None
 
     def __post_init__(self):
         for f in fields(self)[:4]:
@@ -200,6 +215,9 @@ class Scene:
                                 f"got {type(value).__name__}")
         v.number("Scene.gravity", self.gravity, low=0.0, unit="m/s^2")
         v.boolean("Scene.rail_gravity", self.rail_gravity)
+        if self.irregularity is not None and not isinstance(self.irregularity, Irregularity):
+            raise TypeError(f"Scene.irregularity must be a trackwheel.Irregularity or None, "
+                            f"got {type(self.irregularity).__name__}")
         if self.wheel.load == 0.0 and self.gravity == 0.0:  # P = F + M g = 0
             raise ValueError("Wheel.load = 0 N with Scene.gravity = 0 m/s^2 leaves the wheel "
                              "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
