@@ -134,3 +134,61 @@ def test_force_figures_carry_units_and_data():
     (bands,) = ax.get_lines()
     # the 120 Hz sine is in the 125 Hz band (112-141 Hz): its marker is the highest
     assert bands.get_xdata()[np.argmax(bands.get_ydata())] == pytest.approx(10**2.1, rel=1e-12)
+
+
+def test_statistics_of_a_simulated_run():
+    # the paper's smooth track: the statistics read the run's own arrays, against its P0
+    import trackwheel as tw
+    from trackwheel.force_statistics import result_statistics
+
+    scene = tw.Scene.kato2005()
+    r = tw.simulate(scene, tw.kmh(200), x_start=1.5, x_end=2.6, progress=False)
+    st = result_statistics(r, defect_at=2.0)
+    assert st.max_force == r.normal_force.max() and st.min_force == r.normal_force.min()
+    assert st.dynamic_factor == pytest.approx(r.normal_force.max() / (47040 + 10 * 9.8),
+                                              rel=1e-15)
+    td = float(np.interp(2.0, r.x_wheel, r.t))
+    assert st.defect_time == pytest.approx(td, rel=1e-12)
+    assert st.p1_time >= td and st.p2_time > st.p1_time
+    # as many loss intervals as the Result's own contact-free intervals
+    assert len(st.loss_intervals) == len(r.contact_free_intervals())
+    with pytest.raises(TypeError, match="Result"):
+        result_statistics(object())
+
+
+def test_jenkins_p2_by_hand():
+    # illustrative values of the right order for a wheelset on ballasted track: P0 = 112.5 kN,
+    # 2 alpha = 0.02 rad, v = 44.7 m/s, M_u = 1275 kg, M_t = 245 kg, K_t = 1.5e8 N/m,
+    # C_t = 0.76e5 N s/m
+    from trackwheel.force_statistics import jenkins_p2
+
+    root = math.sqrt(1275 / 1520)
+    damp = 1 - 0.76e5 * math.pi / (4 * math.sqrt(1.5e8 * 1520))
+    expected = 112.5e3 + 0.02 * 44.7 * root * damp * math.sqrt(1.5e8 * 1275)
+    got = jenkins_p2(112.5e3, 0.02, 44.7, 1275, 245, 1.5e8, 0.76e5)
+    assert got == pytest.approx(expected, rel=1e-14)
+    assert jenkins_p2(1e5, 0.02, 0.0, 1275, 245, 1.5e8, 0.76e5) == 1e5  # at rest: P0
+    with pytest.raises(ValueError, match="dip_angle"):
+        jenkins_p2(1e5, -0.01, 10.0, 1275, 245, 1.5e8, 0.0)
+
+
+def test_seed_percentiles():
+    import pandas as pd
+
+    from trackwheel.force_statistics import seed_percentiles
+
+    # 101 seeds whose value is 0..100 at one speed, 100..200 at the other: the q-th
+    # percentile of 0..100 is q exactly
+    vals = np.arange(101.0)
+    df = pd.DataFrame({"speed": np.repeat([50.0, 80.0], 101),
+                       "max_force": np.concatenate((vals, vals + 100.0)),
+                       "seed": np.tile(np.arange(101), 2)})
+    df.loc[3, "max_force"] = np.nan  # a failed case is skipped, not propagated
+    p = seed_percentiles(df, "max_force", q=(5, 50, 95))
+    assert list(p.index) == [50.0, 80.0]
+    assert p.loc[80.0, ("max_force", "p5")] == 105.0
+    assert p.loc[80.0, ("max_force", "p95")] == 195.0
+    assert p.loc[80.0, ("max_force", "p50")] == 150.0
+    assert 50.0 < p.loc[50.0, ("max_force", "p50")] < 51.0  # one value (3) removed
+    with pytest.raises(ValueError, match="dynamic_factor"):
+        seed_percentiles(df, ["dynamic_factor"])

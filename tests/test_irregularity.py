@@ -192,6 +192,7 @@ def test_profiles_add():
     x = np.linspace(0.0, 1.0, 51)
     s = a + b
     assert len(s.parts) == 2
+    assert sum([a, b]) == s  # sum() starts from 0, a smooth rail
     for m in ("__call__", "slope", "curvature"):
         assert np.array_equal(getattr(s, m)(x), getattr(a, m)(x) + getattr(b, m)(x))
 

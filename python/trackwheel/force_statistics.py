@@ -179,3 +179,66 @@ def force_statistics(t, x, n, static_load: float, *, defect_at: float | None = N
         max_force=float(n.max()), min_force=float(n.min()), dynamic_factor=float(n.max()) / p0,
         loss_duration=loss, loss_intervals=intervals, band_centres=centres, band_rms=rms,
         frequency=f, amplitude=amp, **peaks)
+
+
+def result_statistics(result, *, defect_at: float | None = None, p1_period: float = P1_PERIOD,
+                      p2_period: float = P2_PERIOD, loss_threshold: float = 0.0
+                      ) -> ForceStatistics:
+    """:func:`force_statistics` of a :class:`trackwheel.Result`: t, X_A = ``x_wheel`` and
+    N = ``normal_force`` of the run against its scene's static load P0 = F + M g [N]."""
+    for name in ("t", "x_wheel", "normal_force", "scene"):
+        if not hasattr(result, name):
+            raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
+    return force_statistics(result.t, result.x_wheel, result.normal_force,
+                            result.scene.static_load, defect_at=defect_at, p1_period=p1_period,
+                            p2_period=p2_period, loss_threshold=loss_threshold)
+
+
+def jenkins_p2(static_load: float, dip_angle: float, speed: float, unsprung_mass: float,
+               track_mass: float, track_stiffness: float, track_damping: float) -> float:
+    """Dipped-joint P2 force [N] by the empirical formula of Jenkins et al. (1974), for trends:
+
+    P2 = P0 + 2 alpha v sqrt(M_u / (M_u + M_t)) [1 - C_t pi / (4 sqrt(K_t (M_u + M_t)))]
+         sqrt(K_t M_u)
+
+    P0 = ``static_load`` [N], 2 alpha = ``dip_angle`` the total joint dip angle [rad],
+    v = ``speed`` [m/s], M_u = ``unsprung_mass`` [kg], and the track's equivalent mass M_t [kg],
+    stiffness K_t [N/m] and damping C_t [N s/m] per wheel.
+    """
+    p0 = v.number("static_load", static_load, low=0.0, unit="N")
+    a2 = v.number("dip_angle", dip_angle, low=0.0, unit="rad")
+    sp = v.number("speed", speed, low=0.0, unit="m/s")
+    mu = v.positive("unsprung_mass", unsprung_mass, "kg")
+    mt = v.positive("track_mass", track_mass, "kg")
+    kt = v.positive("track_stiffness", track_stiffness, "N/m")
+    ct = v.number("track_damping", track_damping, low=0.0, unit="N s/m")
+    damping = 1.0 - ct * math.pi / (4.0 * math.sqrt(kt * (mu + mt)))
+    return p0 + a2 * sp * math.sqrt(mu / (mu + mt)) * damping * math.sqrt(kt * mu)
+
+
+def seed_percentiles(df, columns, *, by: str = "speed", q=(5.0, 50.0, 95.0)):
+    """Percentiles over Monte Carlo realisations: for each value of ``by`` (a column, e.g. the
+    speed), the ``q`` percentiles [%] of each of ``columns`` over the rows (one per seed).
+    Returns a pandas DataFrame indexed by ``by`` with columns (column, "p<q>"); numpy's
+    linear interpolation between order statistics; NaN rows (failed cases) are skipped."""
+    import pandas as pd
+
+    if not isinstance(df, pd.DataFrame):
+        raise TypeError(f"df must be a pandas DataFrame, got {type(df).__name__}")
+    cols = [columns] if isinstance(columns, str) else list(columns)
+    missing = [c for c in [by, *cols] if c not in df.columns]
+    if missing:
+        raise ValueError(f"columns {missing} are not in the table; it has {list(df.columns)}")
+    qs = [v.number("q", x, low=0.0, high=100.0, unit="%") for x in np.atleast_1d(q)]
+    out = {}
+    for key, grp in df.groupby(by, sort=True):
+        row = {}
+        for c in cols:
+            vals = grp[c].to_numpy(float)
+            vals = vals[np.isfinite(vals)]
+            for x in qs:
+                row[(c, f"p{x:g}")] = float(np.percentile(vals, x)) if vals.size else math.nan
+        out[key] = row
+    frame = pd.DataFrame.from_dict(out, orient="index")
+    frame.index.name = by
+    return frame

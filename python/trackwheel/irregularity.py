@@ -7,7 +7,10 @@ Sign conventions
   fixed to the track.
 - Wheel out-of-roundness Delta rho(psi) [m]: change of the wheel radius at wheel angle psi
   [rad], measured on the wheel from a mark and advancing with the rolling angle theta; it is
-  periodic in 2 pi. **Negative Delta rho is a flat.**
+  periodic in 2 pi. **Negative Delta rho is a flat.** Convention for the kernel: the mark
+  (psi = 0) is the wheel point in contact at rolling angle theta = 0, so the point in contact at
+  theta is psi = theta, and a defect at ``at_angle`` psi_f meets the rail at
+  theta = psi_f + 2 pi k: every 2 pi rho0 of *rolled* distance.
 
 Every object here is a frozen, hashable, picklable dataclass whose fields are plain numbers,
 strings and tuples (the recipe, never sampled arrays of a generated profile), so
@@ -299,6 +302,12 @@ class Irregularity:
         if not isinstance(other, Irregularity):
             return NotImplemented
         return Irregularity(self.parts + other.parts)
+
+    def __radd__(self, other):
+        # sum([...]) starts from 0: a smooth rail
+        if isinstance(other, int) and other == 0:
+            return self
+        return NotImplemented
 
     def _sum(self, x, method: str) -> np.ndarray:
         xa = _x(x)
