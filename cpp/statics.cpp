@@ -60,7 +60,8 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
       res.horizontal_reaction = -cf.F(0);
     }
     for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
-    if (!r1.allFinite() || !r2.allFinite()) throw std::runtime_error("static solve: non-finite residual");
+    if (!r1.allFinite() || !r2.allFinite())
+      throw std::runtime_error("static solve: non-finite residual");
     if (!solver.factorize(K, B, C, D))
       throw std::runtime_error("static solve: singular stiffness (is the wheel off the rail?)");
     solver.solve(r1, r2, dx1, dx2);
@@ -76,8 +77,8 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
       res.x_wheel = x_wheel;
       res.y_wheel = y_wheel;
       if (wheel) {
-        const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_wheel),
-                                                   s_guess);
+        const ContactPoint pt =
+            find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_wheel), s_guess);
         res.contact_s = pt.s;
         res.y_contact = pt.r.y();
         const ContactForce cf = contact_force(*contact, pt, Vec10::Zero(), false);
@@ -107,7 +108,10 @@ StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
   double y = y_guess;
   if (!std::isfinite(y)) {
     // just touching the rail below, pressed in by the static load of a linear contact
-    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, 1.0), x_wheel);
+    // from a centre one radius above the rail (far above, a corrugated surface can curve more
+    // than the distance: the foot of the normal is then a maximum of the distance)
+    const double y_above = rail.position(e, rail.locate(x_wheel)).y() + wheel.radius;
+    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_above), x_wheel);
     double delta = contact.law == ContactLaw::Linear
                        ? wheel.total_load() / contact.stiffness
                        : std::pow(wheel.total_load() / contact.stiffness, 2.0 / 3.0);

@@ -72,3 +72,21 @@ def test_steady_force_under_sine_profile_matches_receptance_formula(wavelength):
     # 1 % (the issue allows 2 %): the discrete supports (spacing 1/7 of the decay length) and
     # v > 0 each shift the amplitude by well under 1 %, most at the shortest wavelength
     assert got == pytest.approx(expected, rel=0.01)
+
+
+def test_profile_sharper_than_the_wheel_is_refused_and_the_patch_filter_rounds_it():
+    """A Kabo dipped joint has a cusp (r'' -> infinity): a wheel of radius rho0 bridges it on
+    two points, so the model refuses it unless the contact patch averages it (the patch
+    length 2a ~ 12 mm for the paper's wheel smooths the 9.4 mrad slope change to r'' ~ 1.3
+    1/m < 1/rho0 = 10 1/m)."""
+    base = tw.Scene.kato2005()
+    joint = dc.replace(base, irregularity=tw.Irregularity.dipped_joint(1e-3, 0.4, 2.3))
+    with pytest.raises(ValueError, match=r"Scene.irregularity curves upwards .* X = 2.5 m"):
+        tw.static(joint, 1.0)
+    filtered = dc.replace(joint, contact=dc.replace(joint.contact, patch_filter=True))
+    rest = tw.static(filtered, 2.5)  # at the bottom of the dip
+    # the static wheel sits in the dip: its centre is lower by the depth d than on the smooth
+    # rail, less what the filter rounds off the cusp (~ slope change x a / 4 ~ 1.4e-5 m, 1.4 %
+    # of d) and the wheel's bridging of the rounded bottom: within 5 % of d
+    smooth = tw.static(base, 2.5)
+    assert smooth.y_wheel - rest.y_wheel == pytest.approx(1e-3, rel=0.05)
