@@ -8,7 +8,7 @@ cached in benchmarks/.cache/: generalized-alpha, 80 elements, dt = 6.25e-7 s. It
 checked against a second reference with 160 elements at dt = 1.25e-6 s (the difference is printed
 and recorded in work_precision_reference.csv). Three errors:
 
-- relative error of the amplitude max |d| (d = y_B - y_qs(X_A), MODEL.md §8),
+- relative error of the amplitude max |d| (d = y_B - y_qs(X_A), docs: Model § Outputs),
 - relative error of the main frequency of d(t),
 - RMS of d(t) - d_ref(t) over the passage, divided by max |d_ref|.
 

@@ -1,7 +1,7 @@
 """Shared fixtures: the paper's rail section, a direct RailModel factory and central differences.
 
 The low-level tests build ``trackwheel._core`` objects directly, so that a rail without supports
-(the simply supported beam of MODEL.md §9), without gravity or with supports at arbitrary
+(the simply supported beam of docs: Model § Validation), without gravity or with supports at arbitrary
 positions can be set up independently of the Scene layer.
 """
 
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from trackwheel import Rail, _core
 
-# The paper's rail section (MODEL.md §1; the preset values themselves are checked in
+# The paper's rail section (docs: Model § Scene; the preset values themselves are checked in
 # test_scene.py): EA [N], EI [N m^2], rho A [kg/m].
 EA = Rail().axial_stiffness
 EI = Rail().bending_stiffness

@@ -1,5 +1,5 @@
 """Analysis of a run: spectra, main frequency, the quasi-static line and the dynamic part
-(issue 5 part 1, MODEL.md §8). Each test asserts a fact with a justified tolerance."""
+(issue 5 part 1, docs: Model § Outputs). Each test asserts a fact with a justified tolerance."""
 
 from __future__ import annotations
 
@@ -127,7 +127,7 @@ def test_quasi_static_line_matches_direct_static_solves(run300):
 
 def test_analysis_outputs_are_consistent(run300):
     """Amplitude = max |d| at its time; frequency resolution = 1/(N dt); contact force extremes
-    and the acceleration terms are the run's own (MODEL.md §8)."""
+    and the acceleration terms are the run's own (docs: Model § Outputs)."""
     a = tw.analyse(run300)
     n = run300.t.size
     assert a.amplitude == np.max(np.abs(a.dynamic))

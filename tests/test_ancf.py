@@ -1,4 +1,4 @@
-"""The planar ANCF cable element (MODEL.md §2): energies, forces, Jacobians, mass, quadrature.
+"""The planar ANCF cable element (docs: Model § Rail): energies, forces, Jacobians, mass, quadrature.
 
 Element vector e = [x1, y1, x1_s, y1_s, x2, y2, x2_s, y2_s]; positions in m, slopes in m/m.
 Random states are the straight element of length l = 0.25 m (the paper's mesh) perturbed by

@@ -1,11 +1,10 @@
-"""The ``trackwheel`` command: what ``reproduce`` writes is what the library computes, and bad
-arguments are argparse errors (exit code 2)."""
+"""The ``trackwheel`` command: ``run``, ``sweep`` and ``eigen`` print what the library computes;
+bad arguments and unusable output paths are one-line errors (exit code 2) found before anything
+is computed, in the command line's units. (``reproduce``: tests/test_reproduce.py.)"""
 
 from __future__ import annotations
 
-import io
-import math
-import shutil
+import dataclasses
 import subprocess
 import sys
 
@@ -19,148 +18,11 @@ from trackwheel.simulate import FIDELITY_LEVELS
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
-#: what `reproduce` writes, figure by figure
-FILES = {
-    "fig3": ["fig3_eigen.csv", "fig3_eigen.png", "fig3_mode_shapes_x2.5m.png"],
-    "fig4": ["fig4_time_step.csv", "fig4_time_step.png"],
-    "fig5": ["fig5_elements.csv", "fig5_elements.png"],
-    "fig6": ["fig6_support_stiffness.csv", "fig6_support_stiffness.png"],
-    "fig7": ["fig7_speed.csv", "fig7_speed.png", "fig7_dynamic_300kmh.png"],
-    "fig8": ["fig8_acceleration_terms.csv", "fig8_acceleration_terms.png"],
-}
-
-
-@pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    """The whole ``trackwheel reproduce --quick`` (about 20 s on two cores), run once."""
-    out = tmp_path_factory.mktemp("paper-figures")
-    code = cli.main(["reproduce", "--quick", "--out", str(out)])
-    return code, out
-
-
 def _csv(path):
     import pandas as pd
 
     # the python engine parses with float(): the shortest repr written by to_csv round-trips
     return pd.read_csv(path, engine="python", keep_default_na=False, na_values=[""])
-
-
-def test_reproduce_writes_the_files(quick_run):
-    code, out = quick_run
-    assert code == 0
-    for names in FILES.values():
-        for name in names:
-            if name.endswith(".png"):
-                assert (out / name).read_bytes()[:8] == PNG_MAGIC, name
-            else:
-                assert len((out / name).read_text(encoding="utf-8").splitlines()) > 1, name
-    text = (out / "summary.txt").read_text(encoding="utf-8")
-    for fig in range(3, 9):
-        assert f"Fig. {fig} --" in text
-    assert "FAILED" not in text
-    assert (out / cli.STORE_NAME).is_dir()
-
-
-def test_reproduce_sweep_tables_cover_the_plan(quick_run):
-    _, out = quick_run
-    plan = cli.QUICK
-    fig6 = _csv(out / "fig6_support_stiffness.csv")
-    assert sorted(zip(fig6.speed_kmh, fig6.support_stiffness)) == sorted(
-        (v, k) for v in plan.fig6_speeds_kmh for k in plan.stiffness)
-    fig7 = _csv(out / "fig7_speed.csv")
-    assert list(fig7.speed_kmh) == list(plan.speeds_kmh)
-    assert set(fig7.support_stiffness) == {tw.Scene.kato2005().supports.stiffness}
-    for df in (fig6, fig7):
-        assert (df.error.isna() | (df.error == "")).all()
-        assert set(df.n_elements) == {plan.simulate["n_elements"]}
-        assert set(df.dt) == {plan.simulate["dt"]}
-
-
-def test_reproduce_sweep_csv_equals_api(quick_run):
-    """A row of the written table is exactly what simulate + analyse give for that case."""
-    _, out = quick_run
-    fig7 = _csv(out / "fig7_speed.csv")
-    row = fig7[fig7.speed_kmh == 300.0].iloc[0]
-    a = tw.analyse(tw.simulate(tw.Scene.kato2005(), tw.kmh(300), **cli.QUICK.simulate))
-    assert row.amplitude == a.amplitude  # CSV floats are written to round-trip exactly
-    assert row.main_frequency == a.main_frequency
-    assert row.frequency_resolution == a.frequency_resolution
-    assert row.max_contact_force == a.max_contact_force
-
-
-def test_reproduce_convergence_tables(quick_run):
-    _, out = quick_run
-    plan = cli.QUICK
-    fig4 = _csv(out / "fig4_time_step.csv")
-    assert list(fig4.dt) == [*plan.fig4_explicit_dt, *plan.fig4_alpha_dt]
-    assert list(fig4.integrator) == (["explicit"] * len(plan.fig4_explicit_dt)
-                                     + ["generalized_alpha"] * len(plan.fig4_alpha_dt))
-    v = tw.kmh(plan.fig4_speed_kmh)
-    np.testing.assert_array_equal(fig4.steps, np.round(plan.fig4_stretch / v / fig4.dt))
-    ref = fig4.dt == min(plan.fig4_explicit_dt)  # the reference: zero difference from itself
-    assert (fig4.loc[ref, ["diff_y_contact", "diff_acc_contact"]].to_numpy() == 0.0).all()
-    assert (fig4.loc[~ref, "diff_y_contact"] > 0.0).all()
-    fig5 = _csv(out / "fig5_elements.csv")
-    assert list(fig5.n_elements) == [*plan.fig5_n_elements] * 2
-    finest = fig5.n_elements == max(plan.fig5_n_elements)
-    assert (fig5.loc[finest, "diff_dynamic"] == 0.0).all()
-
-
-def test_reproduce_acceleration_table_equals_api(quick_run):
-    _, out = quick_run
-    fig8 = _csv(out / "fig8_acceleration_terms.csv")
-    assert sorted(set(fig8.speed_kmh)) == sorted(cli.QUICK.fig8_speeds_kmh)
-    r = tw.simulate(tw.Scene.kato2005(), tw.kmh(100), **cli.QUICK.simulate)
-    for term in "ABCDE":
-        row = fig8[(fig8.speed_kmh == 100.0) & (fig8.term == term)].iloc[0]
-        x = getattr(r, f"acc_{term}")
-        assert row.max_abs == np.max(np.abs(x))
-        assert row.rms == np.sqrt(np.mean(x**2))
-
-
-def test_reproduce_resumes_from_the_store(quick_run, tmp_path):
-    """A second run finds every sweep case in OUT/sweep-store and computes none."""
-    _, out = quick_run
-    again = tmp_path / "again"  # a copy of the store: the first run's files stay as they are
-    shutil.copytree(out / cli.STORE_NAME, again / cli.STORE_NAME)
-    log = io.StringIO()
-    ctx = cli.reproduce(again, quick=True, only=["fig7"], stream=log)
-    n = len(cli.QUICK.speeds_kmh)
-    assert f"{n} cases (0 computed, {n} from" in log.getvalue()
-    assert [p.name for p in ctx.written] == FILES["fig7"] + ["summary.txt"]
-
-
-def test_reproduce_csv_equals_library(quick_run):
-    _, out = quick_run
-    csv = out / "fig3_eigen.csv"
-    header = csv.read_text(encoding="utf-8").splitlines()[0]
-    assert header == "position_m,f1_hz,f2_hz,f3_hz,f4_hz"
-    table = np.loadtxt(csv, delimiter=",", skiprows=1)
-    scene = tw.Scene.kato2005()
-    x = table[:, 0]
-    # the sweep covers the whole rail, evenly
-    assert x[0] == 0.0 and x[-1] == pytest.approx(scene.rail.length, abs=1e-12)
-    np.testing.assert_allclose(np.diff(x), x[1] - x[0], rtol=1e-9)
-    ref = tw.eigen(scene, x, n_modes=4).frequencies
-    # written with 12 significant digits: relative rounding <= 5e-13
-    np.testing.assert_allclose(table[:, 1:], ref, rtol=1e-11)
-    assert np.all(np.diff(table[:, 1:], axis=1) >= 0.0)  # ascending modes in every row
-
-
-def test_reproduce_summary_numbers(quick_run):
-    _, out = quick_run
-    text = (out / "summary.txt").read_text(encoding="utf-8")
-    scene = tw.Scene.kato2005()
-    f = tw.eigen(scene, [2.5], n_modes=4).frequencies[0]
-    for fk in f:
-        assert f"{fk:.1f} Hz" in text
-    # MODEL.md §9, computed here from the formulas, printed to 0.1 Hz
-    m, ei = scene.rail.mass_per_length, scene.rail.bending_stiffness
-    cut_on = math.sqrt(scene.supports.stiffness / scene.supports.spacing / m) / (2 * math.pi)
-    f_pp = math.pi / (2 * scene.supports.spacing**2) * math.sqrt(ei / m)
-    f_1 = math.pi / (2 * scene.rail.length**2) * math.sqrt(ei / m)
-    for ref in (cut_on, f_pp, f_1):
-        assert f"{ref:.1f} Hz" in text
 
 
 def test_eigen_command_prints_the_frequencies(capsys):
@@ -202,12 +64,15 @@ def test_run_prints_the_headline_outputs(tmp_path, capsys):
 
 
 def test_run_reports_divergence_with_exit_1(capsys):
-    # explicit RK4 far above its stability limit (about 1e-5 s for 20 elements)
-    with pytest.warns(tw.StabilityWarning):
-        code = cli.main(["run", "--speed-kmh", "100", "--integrator", "explicit", "--dt", "1e-4",
-                         "--n-elements", "20", "--x-end", "0.75"])
+    # explicit RK4 far above its stability limit (about 1e-5 s for 20 elements): the warning is
+    # printed, one line, before the divergence
+    code = cli.main(["run", "--speed-kmh", "100", "--integrator", "explicit", "--dt", "1e-4",
+                     "--n-elements", "20", "--x-end", "0.75"])
     assert code == 1
-    assert "diverged" in capsys.readouterr().err
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith("trackwheel run: warning: dt = 0.0001 s is above the predicted "
+                             "stability limit")
+    assert "diverged" in err[1] and len(err) == 2
 
 
 def test_run_fidelity_option(capsys):
@@ -252,13 +117,14 @@ def test_sweep_command_fidelity_auto(tmp_path, capsys):
      "--fidelity auto"),
     (["run", "--speed-kmh", "100", "--fidelity", "auto"], "fidelity"),  # sweep only
     (["run"], "--speed-kmh"),
-    (["run", "--speed-kmh", "0"], "positive"),
+    (["run", "--speed-kmh", "0"], "positive speed"),
     (["run", "--speed-kmh", "100", "--dt", "1"], "dt"),                # longer than the run
     (["run", "--speed-kmh", "100", "--x-end", "9"], "--x-end"),        # beyond the rail
     (["run", "--speed-kmh", "100", "--fidelity", "bogus"], "fidelity"),
     (["run", "--speed-kmh", "100", "--integrator", "euler"], "integrator"),
     (["sweep", "--speeds-kmh", "100"], "--store"),
-    (["sweep", "--speeds-kmh", "2000", "--store", "{tmp}"], "km/h"),
+    (["sweep", "--speeds-kmh", "2000", "--store", "{tmp}"],
+     "speed 2000 km/h is outside the allowed range 0–1080 km/h"),
     (["sweep", "--speeds-kmh", "100", "100", "--store", "{tmp}"], "duplicate"),
     (["reproduce", "--out", "{tmp}", "--only", "fig9"], "fig9"),
 ])
@@ -267,6 +133,7 @@ def test_bad_run_sweep_arguments_exit_2(argv, word, tmp_path, capsys):
     assert cli.main(argv) == 2
     err = capsys.readouterr().err
     assert "error:" in err and word in err
+    assert len(err.splitlines()) == 1  # one line, no usage block
 
 
 @pytest.mark.parametrize("argv", [
@@ -282,7 +149,8 @@ def test_bad_run_sweep_arguments_exit_2(argv, word, tmp_path, capsys):
 ])
 def test_bad_arguments_exit_2(argv, capsys):
     assert cli.main(argv) == 2
-    assert "error:" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "error:" in err and len(err.splitlines()) == 1
 
 
 def test_out_must_be_a_folder(tmp_path, capsys):
@@ -310,3 +178,130 @@ def test_module_entry_point_exit_code():
                          capture_output=True, text=True, check=False)
     assert run.returncode == 2
     assert "outside the rail" in run.stderr
+
+
+# ---- issue 16: what a new user met ----------------------------------------------------------
+def test_speed_error_in_km_h(capsys):
+    assert cli.main(["run", "--speed-kmh", "5000"]) == 2
+    err = capsys.readouterr().err
+    assert err == ("trackwheel run: error: --speed-kmh: speed 5000 km/h is outside the allowed "
+                   "range 0–1080 km/h (a passage needs a positive speed)\n")
+
+
+@pytest.mark.parametrize("value", ["-1e6", "-1E+6", "-2.5e7", "-.5e3", "-1000000"])
+def test_negative_numbers_reach_validation(value, capsys):
+    """argparse reads -1e6 as a value, and the library's range check answers, in one line."""
+    assert cli.main(["run", "--speed-kmh", "100", "--support-stiffness", value, *CHEAP]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("trackwheel run: error: --support-stiffness = -")
+    assert "is outside the allowed range (0.0, inf] N/m" in err and len(err.splitlines()) == 1
+
+
+def test_negative_x_start_reaches_validation(capsys):
+    assert cli.main(["run", "--speed-kmh", "100", "--x-start", "-1e-1", *CHEAP]) == 2
+    assert "--x-start = -0.1 is outside the allowed range [0.0, 5.0] m" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["run", "--speed-kmh", "300", "--plot", "run.xyz"], "unknown file format 'xyz'"),
+    (["run", "--speed-kmh", "300", "--plot", "run"], "unknown file format '(none)'"),
+    (["run", "--speed-kmh", "300", "--plot", "{tmp}/missing/run.png"], "does not exist"),
+    (["run", "--speed-kmh", "300", "--plot", "/proc/run.png"], "cannot write in this folder"),
+    (["run", "--speed-kmh", "300", "--plot", "{tmp}"], "is a folder"),
+    (["reproduce", "--out", "/proc"], "cannot write in this folder"),
+    (["reproduce", "--out", "/proc/x/y"], "cannot create the folder"),
+    (["sweep", "--speeds-kmh", "100", "--store", "/proc"], "cannot write in this folder"),
+    (["sweep", "--speeds-kmh", "100", "--store", "{tmp}/s", "--out", "/proc/t.csv"],
+     "cannot write in this folder"),
+    (["sweep", "--speeds-kmh", "100", "--store", "{tmp}/s", "--out", "{tmp}/no/t.csv"],
+     "does not exist"),
+])
+def test_output_paths_are_checked_before_computing(argv, words, tmp_path, capsys, monkeypatch):
+    """Each bad path is a one-line error, exit code 2, and nothing was computed."""
+    calls = []
+    monkeypatch.setattr(cli, "simulate", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(cli, "sweep", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(cli, "reproduce", lambda *a, **k: calls.append(a))
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.splitlines()) == 1
+    assert calls == []
+
+
+def test_no_traceback_from_the_shell():
+    """The console entry point: one line on stderr, exit code 2, no traceback."""
+    run = subprocess.run([sys.executable, "-m", "trackwheel.cli", "run", "--speed-kmh", "300",
+                          "--plot", "run.xyz"], capture_output=True, text=True, check=False)
+    assert run.returncode == 2
+    lines = [ln for ln in run.stderr.splitlines() if ln.startswith("trackwheel")]
+    assert len(lines) == 1 and "Traceback" not in run.stderr
+
+
+def test_mesh_warning_is_printed(capsys):
+    assert cli.main(["run", "--speed-kmh", "300", "--n-elements", "5", "--dt", "1e-5",
+                     "--x-end", "0.75"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err.startswith("trackwheel run: warning: --n-elements = 5 cannot resolve "
+                                   "the 10 support bays")
+    assert "5 elements" in captured.out
+
+
+@pytest.mark.parametrize("speed_kmh", ["100", "300"])
+def test_linear_sprung_uses_the_full_models_settings(speed_kmh, capsys):
+    """issue 16, item 1: every level uses the derived mesh and step; with them linear/sprung
+    reproduces the full model within the README's 0.03 % on the amplitude."""
+    printed = {}
+    for level in ("full", "linear/sprung"):
+        assert cli.main(["run", "--speed-kmh", speed_kmh, "--fidelity", level]) == 0
+        printed[level] = capsys.readouterr().out
+    d = tw.default_settings(tw.Scene.kato2005())
+    for out in printed.values():
+        (line,) = [ln for ln in out.splitlines() if "settings" in ln]
+        assert f"dt = {d['dt']:.3g} s, {d['n_elements']} elements" in line
+    full, lin = (_value(printed[k], "amplitude") for k in ("full", "linear/sprung"))
+    assert abs(lin / full - 1.0) < 3e-4
+
+
+def test_version_is_written_once():
+    """pyproject.toml takes the version from _version.py (scikit-build-core's regex provider)
+    and declares none of its own; the installed metadata agrees with the package."""
+    import importlib.metadata
+    import re
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    project = (root / "pyproject.toml").read_text(encoding="utf-8")
+    table = project.split("[project]", 1)[1].split("\n[", 1)[0]
+    assert re.search(r'^dynamic = \["version"\]', table, re.M)
+    assert not re.search(r"^version\s*=", table, re.M)
+    assert 'metadata.version.input = "python/trackwheel/_version.py"' in project
+    source = (root / "python" / "trackwheel" / "_version.py").read_text(encoding="utf-8")
+    assert re.findall(r'__version__ = "([^"]+)"', source) == [tw.__version__]
+    assert importlib.metadata.version("trackwheel") == tw.__version__
+
+
+@pytest.mark.parametrize("stiffness, message", [
+    (1e6, "the simulation could not start: static solve: the wheel lost contact with the rail"),
+    (140e6, "the analysis failed: static solve: the wheel lost contact with the rail"),
+])
+def test_a_failed_static_solve_is_one_line(stiffness, message, capsys, monkeypatch):
+    """A wheel load of 2e7 N pushes the rail through 1 MN/m supports at the start (the kernel's
+    static solve fails), and through 140 MN/m ones somewhere along the quasi-static line of the
+    analysis: exit code 1 and one line, not a traceback."""
+    scene = tw.Scene.kato2005()
+    heavy = dataclasses.replace(scene, wheel=dataclasses.replace(scene.wheel, load=2e7),
+                                supports=dataclasses.replace(scene.supports, stiffness=stiffness))
+    monkeypatch.setattr(cli, "_scene", lambda stiffness=None: heavy)
+    assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
+    assert capsys.readouterr().err == f"trackwheel run: {message}\n"
+
+
+@pytest.mark.parametrize("command", ["reproduce", "run", "sweep"])
+def test_help_has_no_hand_typed_timings(command, capsys):
+    """issue 16, item 9: timings come from the run or from benchmarks/, never the help text."""
+    import re
+
+    assert cli.main([command, "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert not re.search(r"\b(minutes?|hours?|seconds)\b|about \d+ ?s\b|µs", text), text

@@ -1,4 +1,4 @@
-"""Wheel/rail contact (MODEL.md §4): foot-of-normal search, normal force, analytic Jacobians.
+"""Wheel/rail contact (docs: Model § Contact): foot-of-normal search, normal force, analytic Jacobians.
 
 ``contact_eval`` returns the generalised force F on q = [X_A, Y_A, e_el(8)] (wheel centre and
 the 8 coordinates of the rail element holding s*), K = -dF/dq and C = -dF/dqdot.

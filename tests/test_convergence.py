@@ -111,7 +111,7 @@ def test_default_settings_within_one_percent(kmh):
     on the full passage). Full passages at 50-400 km/h: within 0.8 % (benchmarks/README.md)."""
     v = tw.kmh(kmh)
     r = tw.simulate(SCENE, v, x_end=1.75)
-    assert r.settings["n_elements"] == 80
+    assert r.settings.n_elements == 80
     assert r.settings["dt"] == pytest.approx(tw.default_settings(SCENE)["dt"])
     amp, freq = headline(r)
     ref_amp, ref_freq = headline(tw.simulate(SCENE, v, dt=2.5e-6, n_elements=160, x_end=1.75,

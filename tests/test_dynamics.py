@@ -1,4 +1,4 @@
-"""Dynamics: wheel, contact, rolling constraint, integrators (issue 4, MODEL.md §3-§6).
+"""Dynamics: wheel, contact, rolling constraint, integrators (issue 4, docs: Model § Wheel, § Contact, § Rolling and slip, § Equations of motion).
 
 Each test asserts a physical or numerical fact; tolerances are justified next to them.
 """
@@ -17,7 +17,7 @@ from trackwheel import _core, _kernel
 
 def fryba(x, t, P, v, L, EI, m, n_terms=60):
     """Deflection (positive down) of a simply supported beam under a constant force P moving at
-    v from rest (Fryba; MODEL.md §9)."""
+    v from rest (Fryba; docs: Model § Validation)."""
     w = np.zeros_like(np.asarray(t, dtype=float))
     for n in range(1, n_terms + 1):
         wn = (n * math.pi / L) ** 2 * math.sqrt(EI / m)

@@ -1,4 +1,4 @@
-"""Eigenvalue analysis (MODEL.md §7) against the analytic references of MODEL.md §9."""
+"""Eigenvalue analysis (docs: Model § Eigen analysis) against the analytic references of docs: Model § Validation."""
 
 from __future__ import annotations
 

@@ -257,7 +257,8 @@ def test_eigen(scene, fracs, n_modes):
 
 #: model levels whose wheel is held on the rail (their contact force may be negative)
 BILATERAL = {"linear/moving_mass", "linear/sprung"}
-EXPECTED_WARNINGS = {"StabilityWarning", "ConvergenceWarning"}
+#: MeshWarning: a drawn mesh with fewer elements than support bays
+EXPECTED_WARNINGS = {"StabilityWarning", "ConvergenceWarning", "MeshWarning"}
 INTEGRATORS = st.sampled_from(["generalized_alpha", "explicit"])
 FIDELITY = st.sampled_from(getattr(SIM, "FIDELITY_LEVELS", ("full",)))
 

@@ -1,4 +1,4 @@
-"""Rail profiles, wheel defects and the contact filter (MODEL.md §10, issue 13)."""
+"""Rail profiles, wheel defects and the contact filter (docs: Model § Irregularities, issue 13)."""
 
 import math
 import multiprocessing

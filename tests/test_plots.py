@@ -119,7 +119,7 @@ def test_import_trackwheel_does_not_import_matplotlib():
 # ------------------------------------------------------------------------------------------
 # time simulations and sweeps. Short, coarse runs: the figures must show exactly the arrays
 # they are given, whatever their physics.
-SHORT = dict(n_elements=20, x_start=0.25, x_end=0.30)
+SHORT = {"n_elements": 20, "x_start": 0.25, "x_end": 0.30}
 
 
 @pytest.fixture(scope="module")
@@ -142,9 +142,10 @@ def _labelled(ax, label):
 def test_convergence_figures_show_each_run(runs, func):
     fig = func(list(runs))
     assert isinstance(fig, Figure)
-    ax_y, ax_v, ax_a = fig.axes
+    ax_y, ax_v, ax_a, ax_diff = fig.axes
     assert "[mm]" in ax_y.get_ylabel() and "[%]" in ax_v.get_ylabel()
-    assert "[m/s²]" in ax_a.get_ylabel() and "[m]" in ax_a.get_xlabel()
+    assert "[m/s²]" in ax_a.get_ylabel() and "[m/s²]" in ax_diff.get_ylabel()
+    assert "[m]" in ax_diff.get_xlabel()
     legend = [t.get_text() for t in ax_y.get_legend().get_texts()]
     assert len(legend) == 3
     for r, label in zip(runs, legend):
@@ -152,6 +153,48 @@ def test_convergence_figures_show_each_run(runs, func):
             line = _labelled(ax, label)
             np.testing.assert_array_equal(line.get_xdata(), r.x_wheel)
             np.testing.assert_array_equal(line.get_ydata(), y)
+
+
+def test_v_e_is_defined_on_the_convergence_figures(runs):
+    """The velocity error's definition (the paper's eq. 28) is written on the figure."""
+    for fig in (plots.time_step_convergence(runs), plots.element_convergence(runs[:2],
+                                                                              acceleration=False)):
+        title = fig.axes[1].get_title(loc="left")
+        assert "v_e" in title and r"\dot{X}_A" in title and r"\rho\,\dot{\theta}" in title
+        assert "100" in title and "eq. 28" in title
+
+
+@pytest.mark.parametrize("func, finest", [(plots.time_step_convergence, 1),  # dt = 5e-6 s
+                                          (plots.element_convergence, 1)])  # 20 el., 5e-6 s
+def test_convergence_difference_panel_is_from_the_finest_run(runs, func, finest):
+    """Bottom panel: each other run's acceleration minus the finest run's, the latter linearly
+    interpolated at the run's wheel positions; the finest run itself is not drawn there."""
+    fig = func(list(runs))
+    ax_diff = fig.axes[3]
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert labels[finest] in ax_diff.get_title(loc="left")
+    drawn = [ln for ln in ax_diff.get_lines() if ln.get_gid() == "difference"]
+    assert [ln.get_label() for ln in drawn] == [lab for i, lab in enumerate(labels)
+                                                if i != finest]
+    ref = runs[finest]
+    for ln in drawn:
+        r = runs[labels.index(ln.get_label())]
+        np.testing.assert_array_equal(ln.get_xdata(), r.x_wheel)
+        # independent check of the interpolation at every sample inside the reference stretch:
+        # between reference samples x0 <= x <= x1 the reference is the straight line through
+        # them (exact up to round-off of the interpolation weights)
+        inside = (r.x_wheel >= ref.x_wheel[0]) & (r.x_wheel <= ref.x_wheel[-1])
+        j = np.clip(np.searchsorted(ref.x_wheel, r.x_wheel[inside]), 1, ref.x_wheel.size - 1)
+        x0, x1 = ref.x_wheel[j - 1], ref.x_wheel[j]
+        w = (r.x_wheel[inside] - x0) / (x1 - x0)
+        a_ref = (1 - w) * ref.acc_contact[j - 1] + w * ref.acc_contact[j]
+        scale = np.max(np.abs(ref.acc_contact))
+        np.testing.assert_allclose(ln.get_ydata()[inside], r.acc_contact[inside] - a_ref,
+                                   rtol=0, atol=1e-12 * scale)
+        assert np.all(np.isnan(ln.get_ydata()[~inside]))
+    # an explicit reference overrides the finest
+    other = func(list(runs), reference=0)
+    assert labels[0] in other.axes[3].get_title(loc="left")
 
 
 def test_convergence_legends_name_the_setting(runs):
@@ -166,6 +209,7 @@ def test_convergence_legends_name_the_setting(runs):
     labels = [t.get_text() for t in mixed.axes[0].get_legend().get_texts()]
     assert labels == ["20 elements, generalized-α, dt = 5e-6 s",
                       "10 elements, generalized-α, dt = 1e-5 s"]
+    assert len(el.axes) == 4  # y_B, v_e, acceleration, difference from the finest
     own = plots.time_step_convergence(runs[:2], labels=["a", "b"], title="T")
     assert [t.get_text() for t in own.axes[0].get_legend().get_texts()] == ["a", "b"]
     assert own._suptitle.get_text() == "T"
@@ -198,6 +242,14 @@ def test_acceleration_terms_show_A_to_E(runs, against, scale):
     # one y scale per column, so the growth with speed is seen directly
     assert fig.axes[0].get_ylim() == fig.axes[2].get_ylim()
     assert fig.axes[1].get_ylim() == fig.axes[3].get_ylim()
+    # C and D are nearly equal (D ~ C for a travelling bowl): C wide underneath, D thin on top
+    c, d = _labelled_start(fig.axes[1], "C"), _labelled_start(fig.axes[1], "D")
+    assert c.get_linewidth() >= 3 * d.get_linewidth() and c.get_zorder() < d.get_zorder()
+
+
+def _labelled_start(ax, start):
+    (line,) = [ln for ln in ax.get_lines() if ln.get_label().startswith(start)]
+    return line
 
 
 def test_dynamic_figure_shows_the_analysis(runs):
@@ -241,10 +293,10 @@ def _table():
     rows = []
     for v in (300.0, 100.0):
         for k in (140e6, 20e6, 70e6):
-            rows.append(dict(speed=v / 3.6, speed_kmh=v, support_stiffness=k,
-                             amplitude=1e-6 * v / 100 * 140e6 / k,
-                             main_frequency=340.0 * np.sqrt(k / 140e6),
-                             frequency_resolution=v / 16.0, error=""))
+            rows.append({"speed": v / 3.6, "speed_kmh": v, "support_stiffness": k,
+                             "amplitude": 1e-6 * v / 100 * 140e6 / k,
+                             "main_frequency": 340.0 * np.sqrt(k / 140e6),
+                             "frequency_resolution": v / 16.0, "error": ""})
     rows[1].update(amplitude=np.nan, main_frequency=np.nan, error="DivergenceError: x")
     return pd.DataFrame(rows)
 
@@ -255,14 +307,37 @@ def test_support_stiffness_figure_shows_the_table():
     ax_a, ax_f = fig.axes
     assert "[µm]" in ax_a.get_ylabel() and "[Hz]" in ax_f.get_ylabel()
     assert "[MN/m]" in ax_f.get_xlabel()
-    for v in (100.0, 300.0):
+    span = (140e6 - 20e6) / 1e6  # the table's k_s range [MN/m]
+    for i, v in enumerate((100.0, 300.0)):
         ref = df[df.speed_kmh == v].sort_values("support_stiffness")
-        for ax, y in ((ax_a, ref.amplitude * 1e6), (ax_f, ref.main_frequency)):
+        x = ref.support_stiffness.to_numpy() / 1e6
+        shift = (i - 0.5) * plots.DODGE * span  # two series: half a dodge either side
+        for ax, y, dx in ((ax_a, ref.amplitude * 1e6, 0.0), (ax_f, ref.main_frequency, shift)):
             line = _labelled(ax, f"{v:g} km/h")
-            np.testing.assert_array_equal(line.get_xdata(), ref.support_stiffness / 1e6)
+            np.testing.assert_allclose(line.get_xdata(), x + dx, rtol=1e-15)
             np.testing.assert_array_equal(line.get_ydata(), y)  # NaN where the case failed
     single = plots.support_stiffness(df)
     assert len(single.axes) == 1
+
+
+def test_support_stiffness_error_bars_are_not_hidden_by_the_other_speed():
+    """Fig. 6's frequency panel: at each stiffness the two speeds' points stand further apart
+    than a marker's radius, so neither series' error bar runs through the other's marker; the
+    markers are open and the bars drawn over them."""
+    fig = plots.support_stiffness(_table(), frequency=True)
+    fig.draw_without_rendering()
+    ax_f = fig.axes[1]
+    slow, fast = _labelled(ax_f, "100 km/h"), _labelled(ax_f, "300 km/h")
+    radius_px = 0.5 * slow.get_markersize() * fig.dpi / 72.0
+    to_px = ax_f.transData.transform
+    xs = to_px(np.column_stack([slow.get_xdata(), slow.get_ydata()]))[:, 0]
+    xf = to_px(np.column_stack([fast.get_xdata(), fast.get_ydata()]))[:, 0]
+    both = np.isfinite(xs) & np.isfinite(xf)  # the failed case has no point
+    assert both.sum() == 2 and np.all(np.abs(xf - xs)[both] > radius_px)
+    for line in (slow, fast):
+        assert line.get_markerfacecolor() == "none"
+    bars = [c for c in ax_f.collections if len(c.get_segments()) > 0]
+    assert len(bars) == 2 and all(c.get_zorder() > slow.get_zorder() for c in bars)
 
 
 def test_speed_figure_shows_the_table_and_the_eigen_bands():
@@ -328,3 +403,34 @@ def test_new_figures_leave_no_pyplot_state(runs):
 def test_bad_arguments_of_the_new_figures(runs, call, exc, word):
     with pytest.raises(exc, match=word):
         call(runs)
+
+
+def _figures_with_legends(runs, sweep):
+    df = _table()
+    eig = tw.eigen(tw.Scene.kato2005(), np.linspace(0.0, 5.0, 11), n_modes=5)
+    return {
+        "fig3": plots.eigen(sweep),
+        "mode shapes": plots.mode_shapes(sweep, 10),
+        "fig4": plots.time_step_convergence(runs),
+        "fig5": plots.element_convergence(runs),
+        "fig6": plots.support_stiffness(df, frequency=True),
+        "fig7": plots.speed(df[df.support_stiffness == 140e6], eig),
+        "fig7 dynamic": plots.dynamic(runs[0], eigen=eig),
+        "fig8": plots.acceleration_terms([runs[0], runs[2]]),
+    }
+
+
+def test_legends_hide_no_data(runs, sweep):
+    """Every legend lies outside every axes of its figure (touching allowed), so it covers no
+    data, whatever the data; the legends are in the figure (not clipped away)."""
+    for name, fig in _figures_with_legends(runs, sweep).items():
+        fig.draw_without_rendering()
+        legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+        assert legends, name
+        fig_box = fig.bbox
+        for leg in legends:
+            box = leg.get_window_extent()
+            for ax in fig.axes:
+                assert not box.overlaps(ax.get_window_extent()), (name, leg.get_texts()[0])
+            assert fig_box.x0 <= box.x0 + 0.5 and box.x1 <= fig_box.x1 + 0.5, name
+            assert fig_box.y0 <= box.y0 + 0.5 and box.y1 <= fig_box.y1 + 0.5, name

@@ -1,4 +1,4 @@
-"""The assembled rail (MODEL.md §1-§2): mass, gravity, boundary conditions, supports, tangent."""
+"""The assembled rail (docs: Model § Scene, § Rail): mass, gravity, boundary conditions, supports, tangent."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Scene description (MODEL.md §1): the paper's preset and input validation."""
+"""Scene description (docs: Model § Scene): the paper's preset and input validation."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ def test_kato2005_is_model_md_section_1():
 
 
 def test_kato2005_contact_stiffness_is_linearised_hertz():
-    """MODEL.md §4, recomputed here: E* = E / (2 (1 - nu^2)) for the same steel on both sides,
+    """docs: Model § Contact, recomputed here: E* = E / (2 (1 - nu^2)) for the same steel on both sides,
     C_H = 4/3 E* sqrt(rho0), k = 1.5 C_H^(2/3) P^(1/3) at P = F + M g."""
     E, nu, rho0 = 2.058e11, 0.30, 0.1
     P = 47040.0 + 10.0 * 9.8
@@ -171,6 +171,6 @@ def test_public_functions_validate_their_arguments():
 
 def test_empty_positions_give_a_bare_beam():
     """positions=() is the simply supported rail without intermediate supports (the moving-force
-    validation case of MODEL.md §9)."""
+    validation case of docs: Model § Validation)."""
     s = tw.Scene(supports=tw.Supports(positions=()))
     assert s.support_positions == ()

@@ -1,4 +1,4 @@
-"""Published spectra against hand arithmetic from the published constants (MODEL.md §10)."""
+"""Published spectra against hand arithmetic from the published constants (docs: Model § Irregularities)."""
 
 import itertools
 import math

@@ -1,4 +1,4 @@
-"""Statics (MODEL.md §8): the wheel resting on the rail, y_qs(X), against analytic references."""
+"""Statics (docs: Model § Outputs): the wheel resting on the rail, y_qs(X), against analytic references."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ def winkler_scene(spacing, stiffness, length=30.0):
 
 
 def winkler_deflection(scene):
-    """P beta / (2 k_f), beta = (k_f / (4 EI))^(1/4) (MODEL.md §9) [m], and beta [1/m]."""
+    """P beta / (2 k_f), beta = (k_f / (4 EI))^(1/4) (docs: Model § Validation) [m], and beta [1/m]."""
     kf = scene.winkler_modulus
     beta = (kf / (4.0 * scene.rail.bending_stiffness)) ** 0.25
     return scene.static_load * beta / (2.0 * kf), beta

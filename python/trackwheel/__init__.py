@@ -1,58 +1,63 @@
 """trackwheel: a railway wheel rolling at high speed over a flexible rail on elastic supports.
 
 SI units everywhere (m, s, kg, N, Pa, Hz); speeds in m/s -- :func:`kmh` converts from km/h.
-The physics is specified in MODEL.md and follows Kato et al. (2005).
+The physics is described in the documentation (docs: Model) and follows Kato et al. (2005).
+
+Data flow one way: :class:`Scene` -> the C++ kernel (:func:`simulate`, :func:`static`,
+:func:`eigen`) -> :class:`Result` -> :func:`analyse` -> ``trackwheel.plots``; the defaults
+derived from a scene live in ``trackwheel.defaults``.
 """
 
-from ._version import __version__
-from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
-from .statics import QuasiStatic, StaticResult, quasi_static, static
-from .eigen import EigenResult, eigen
 from ._errors import DivergenceError
-from .simulate import Result, simulate
-from .convergence import (Convergence, ConvergenceWarning, StabilityWarning, converged,
-                          default_settings, stability_limit)
+from ._version import __version__
 from .analysis import Analysis, amplitude_spectrum, analyse, main_frequency
-from .sweep import load_sweep, sweep
+from .convergence import Convergence, ConvergenceWarning, converged
+from .defaults import MeshWarning, StabilityWarning, default_settings, stability_limit
+from .eigen import EigenResult, eigen
 from .fidelity import adequacy, recommend
-from .simulate import FIDELITY_LEVELS
-from . import spectra
-from .irregularity import Irregularity, Polygon, WheelFlat
 from .force_statistics import ForceStatistics, force_statistics
+from .irregularity import Irregularity, Polygon, WheelFlat
+from .results import Result, RunSettings
+from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
+from .simulate import FIDELITY_LEVELS, simulate
+from .statics import QuasiStatic, StaticResult, quasi_static, static
+from .sweep import load_sweep, sweep
+from . import spectra
 
 __all__ = [
     "FIDELITY_LEVELS",
-    "adequacy",
-    "recommend",
     "Analysis",
-    "amplitude_spectrum",
-    "analyse",
-    "main_frequency",
-    "load_sweep",
-    "sweep",
     "Contact",
     "Convergence",
     "ConvergenceWarning",
-    "StabilityWarning",
-    "converged",
-    "default_settings",
-    "stability_limit",
     "DivergenceError",
-    "Result",
-    "simulate",
     "EigenResult",
+    "MeshWarning",
     "QuasiStatic",
     "Rail",
+    "Result",
+    "RunSettings",
     "Scene",
+    "StabilityWarning",
     "StaticResult",
     "Supports",
     "Wheel",
     "__version__",
+    "adequacy",
+    "amplitude_spectrum",
+    "analyse",
+    "converged",
+    "default_settings",
     "eigen",
     "kmh",
+    "load_sweep",
+    "main_frequency",
     "quasi_static",
+    "recommend",
+    "simulate",
+    "stability_limit",
     "static",
-    "spectra",
+    "sweep",
     "Irregularity",
     "Polygon",
     "WheelFlat",

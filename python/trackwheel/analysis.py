@@ -1,5 +1,5 @@
 """Post-processing of a run: the dynamic part of the contact-point displacement, its amplitude and
-main frequency, and the acceleration terms (MODEL.md §8).
+main frequency, and the acceleration terms (docs: Model § Outputs).
 
 ``analyse(result)`` measures the vibration the paper plots in Figs. 6-8:
 
@@ -24,8 +24,8 @@ import numpy as np
 from numpy.polynomial import chebyshev
 
 from . import _validate as v
+from .results import Result
 from .scene import Scene
-from .simulate import Result
 from .statics import quasi_static
 
 __all__ = [
@@ -179,7 +179,7 @@ def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray):
 # --------------------------------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class Analysis:
-    """The measured vibration of one run (MODEL.md §8). Arrays have shape (n_samples,)."""
+    """The measured vibration of one run (docs: Model § Outputs). Arrays have shape (n_samples,)."""
 
     t: np.ndarray  #: time [s]
     x_wheel: np.ndarray  #: X_A, wheel-centre position [m]
@@ -198,11 +198,20 @@ class Analysis:
     max_contact_force: float  #: max N [N]
     lost_contact: bool  #: N = 0 at some kept sample
     acc_contact: np.ndarray  #: d2 y_B/dt2 [m/s^2]
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (MODEL.md §8, eq. 21)
+    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (docs: Model § Outputs, eq. 21)
     acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
     acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
     acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
     acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
+
+    def __repr__(self) -> str:
+        return (f"<trackwheel.Analysis: {self.t.size} samples, "
+                f"X = {self.x_wheel[0]:.4g} -> {self.x_wheel[-1]:.4g} m>\n"
+                f"  amplitude max|d| = {self.amplitude:.4g} m at t = {self.amplitude_time:.4g} s, "
+                f"main frequency {self.main_frequency:.1f} Hz "
+                f"(resolution {self.frequency_resolution:.2g} Hz)\n"
+                f"  contact force {self.min_contact_force:.6g}..{self.max_contact_force:.6g} N, "
+                f"lost contact: {'yes' if self.lost_contact else 'no'}")
 
     @property
     def sample_spacing(self) -> float:
@@ -211,15 +220,15 @@ class Analysis:
 
 
 def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
-    """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (MODEL.md §8).
+    """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model § Outputs).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
-    ["n_elements"]``) at 8 Chebyshev points per element crossed (cached per scene, mesh and
+    .n_elements``) at 8 Chebyshev points per element crossed (cached per scene, mesh and
     range) and interpolated by each element's degree-8 Chebyshev series (see
     :data:`QS_DEGREE`): the error (< 2e-13 m for the paper's scene, ``Analysis.y_qs_error``
-    estimates it for any scene) is negligible against the dynamic part. The spectrum and main frequency are those
-    of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling interval is
-    ``dt x output_every``.
+    estimates it for any scene) is negligible against the dynamic part. The spectrum and main
+    frequency are those of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling
+    interval is ``dt x output_every``.
 
     Raises ValueError if the run kept fewer than 4 samples.
     """
@@ -230,9 +239,9 @@ def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
         raise ValueError(f"result has {n} samples; the analysis needs at least 4 "
                          "(lower output_every or run longer)")
     s = result.settings
-    dt = float(s["dt"]) * int(s["output_every"])
+    dt = float(s.dt) * int(s.output_every)
     x = np.asarray(result.x_wheel, dtype=float)
-    y_qs, qs_err = _quasi_static_line(result.scene, int(s["n_elements"]), x)
+    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), x)
     d = result.y_contact - y_qs
     i_max = int(np.argmax(np.abs(d)))
     nf = _n_fft(n_fft, n)

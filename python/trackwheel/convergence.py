@@ -1,14 +1,17 @@
 """Speed against accuracy: stability limits, derived defaults and automatic convergence (issue 6).
 
+The stability limit and the derived defaults live in :mod:`trackwheel.defaults` (re-exported
+here); this module adds the automatic refinement.
+
 - :func:`stability_limit` predicts the largest stable time step of an integrator. For the
-  explicit RK4 scheme (the paper's way, MODEL.md §6) it is ``2 sqrt(2) / omega_max`` with
+  explicit RK4 scheme (the paper's way, docs: Model § Equations of motion) it is ``2 sqrt(2) / omega_max`` with
   omega_max the highest eigenfrequency of the assembled system (rail + supports + wheel on its
   contact spring, linearised at the static state at the start position; power iteration in the
   kernel). ``simulate(..., integrator="explicit", dt=...)`` warns with :class:`StabilityWarning`
   before it runs when dt is above it. benchmarks/stability_map.py measures the limit by bisection
   on real runs: measured/predicted = 1.004-1.013 on 10 to 80 elements at 50-400 km/h.
 - :func:`default_settings` derives a time step and a mesh from the scene and the speed so that
-  the headline outputs (amplitude and main frequency of the contact-point vibration, MODEL.md §8)
+  the headline outputs (amplitude and main frequency of the contact-point vibration, docs: Model § Outputs)
   are within 1 % of a converged run (measured: 0.4 % at 50-400 km/h; see its docstring).
 - :func:`converged` refines dt and n_elements until the estimated errors of amplitude and main
   frequency are below ``tol``, and returns the run, the settings chosen and the estimate.
@@ -21,11 +24,20 @@ import time as _time
 import warnings
 from dataclasses import dataclass, field
 
-import numpy as np
-
-from . import _core, _kernel
 from . import _validate as v
+from .analysis import analyse
+from .defaults import (
+    MeshWarning,
+    StabilityWarning,
+    check_speed,
+    default_settings,
+    derived_dt,
+    derived_mesh,
+    stability_limit,
+)
+from .results import Result
 from .scene import MAX_ELEMENTS, Scene
+from .simulate import simulate
 
 __all__ = [
     "Convergence",
@@ -50,158 +62,15 @@ ORDER = {"generalized_alpha": 2, "explicit": 4}
 MESH_ORDER = 2
 
 
-class StabilityWarning(UserWarning):
-    """The requested time step is above the predicted stability limit of the integrator."""
-
-
 class ConvergenceWarning(UserWarning):
     """:func:`converged` ran out of budget before the outputs met the tolerance."""
 
 
-# --------------------------------------------------------------------------------------------
-# stability limits
-def _start_state(scene: Scene, ne: int, x0: float):
-    model = _kernel.rail_model(scene, ne)
-    wheel = _kernel.wheel_params(scene)
-    contact = _kernel.contact_params(scene)
-    st = _core.static_solve(model, wheel, contact, x0)
-    return model, wheel, contact, np.asarray(st["e"]), float(st["y_wheel"])
-
-
-def _explicit_limit(model, wheel, contact, e, x0: float, y: float) -> tuple[float, float]:
-    """(dt_max [s], omega_max [rad/s]) of explicit RK4 at the given state."""
-    omega = _core.highest_frequency(model, wheel, contact, e, x0, y)
-    return _core.explicit_stability_limit(omega), omega
-
-
-def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: int | None = None,
-                    speed: float = 0.0, rho_inf: float = 0.8,
-                    x_start: float | None = None) -> float:
-    """Predicted largest stable time step [s] of ``integrator`` for ``scene``.
-
-    ``"explicit"`` (classical RK4, the paper's scheme): the stability interval of RK4 on the
-    imaginary axis is |omega dt| <= 2 sqrt(2), so dt_max = 2 sqrt(2) / omega_max, with omega_max
-    [rad/s] the highest eigenfrequency of the assembled system -- the ANCF rail on its supports
-    with the wheel mass on its contact spring (MODEL.md §2-§4), linearised at the static state
-    with the wheel at ``x_start`` (default: the start of :func:`trackwheel.simulate`, the middle
-    of the first support bay) -- found by power iteration in the kernel. omega_max grows as
-    1/l_e^2 (the shortest bending wave of an element), so dt_max falls by 4x per mesh doubling
-    (about 1.0e-5 s for the paper's 20 elements, 6.4e-7 s for 80). The speed does not enter: the
-    linearised system does not depend on it (the convective terms of the moving contact are
-    small), which benchmarks/stability_map.py confirms from 50 to 400 km/h; ``speed`` [m/s] is
-    accepted for symmetry with :func:`trackwheel.simulate` and checked only.
-
-    ``"generalized_alpha"``: unconditionally stable for linear problems for every ``rho_inf`` in
-    [0, 1] (Chung & Hulbert 1993), so the result is ``math.inf``. What fails first at large steps
-    is Newton's iteration at contact loss/landing and stick/slip transitions, which no linear
-    analysis predicts; benchmarks/stability_map.py measures where it stops converging.
-
-    Raises ValueError / TypeError naming the parameter for bad arguments.
-    """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
-    v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
-    v.number("rho_inf", rho_inf, low=0.0, high=1.0)
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    L, ds = scene.rail.length, scene.supports.spacing
-    x0 = (0.5 * ds if 0.5 * ds < L else 0.5 * L) if x_start is None else v.number(
-        "x_start", x_start, low=0.0, high=L, unit="m")
-    if integrator == "generalized_alpha":
-        return math.inf
-    dt_max, _ = _explicit_limit(*_start_state(scene, ne, x0), x0)
-    return dt_max
-
-
-def warn_above_stability_limit(model, wheel, contact, e, x0: float, y: float, dt: float,
-                               stacklevel: int = 3) -> float:
-    """Warn (:class:`StabilityWarning`) if the explicit time step ``dt`` [s] is above the
-    predicted RK4 limit at the given state; returns the limit [s]. Used by ``simulate``."""
-    dt_max, omega = _explicit_limit(model, wheel, contact, e, x0, y)
-    if dt > dt_max:
-        warnings.warn(StabilityWarning(
-            f"dt = {dt:.3g} s is above the predicted stability limit of the explicit RK4 scheme, "
-            f"{dt_max:.3g} s (2 sqrt(2)/omega_max, highest eigenfrequency "
-            f"{omega / (2 * math.pi):.4g} Hz for this mesh): the run will almost certainly "
-            f"diverge. Use dt <= {dt_max:.3g} s, fewer elements, or "
-            f"integrator='generalized_alpha' (unconditionally stable)"), stacklevel=stacklevel)
-    return dt_max
-
-
-# --------------------------------------------------------------------------------------------
-# headline outputs
-def headline(result) -> tuple[float, float]:
+def headline(result: Result) -> tuple[float, float]:
     """(amplitude [m], main frequency [Hz]) of a run: max |d| and the spectral peak of
-    d(t) = y_B(t) - y_qs(X_A(t)) (MODEL.md §8), from :func:`trackwheel.analyse`."""
-    from .analysis import analyse  # analysis imports simulate, which imports this module
-
+    d(t) = y_B(t) - y_qs(X_A(t)) (docs: Model § Outputs), from :func:`trackwheel.analyse`."""
     a = analyse(result)
     return float(a.amplitude), float(a.main_frequency)
-
-
-# --------------------------------------------------------------------------------------------
-# derived defaults
-#: Elements per support bay of the derived default mesh (see :func:`default_settings`).
-ELEMENTS_PER_BAY = 8
-#: Time steps per period of the highest frequency of interest (see :func:`default_settings`).
-STEPS_PER_PERIOD = 150
-
-
-def _wheel_frequency(scene: Scene) -> float:
-    """sqrt(k/M) / 2 pi [Hz]: the wheel mass on the (linearised) contact spring -- the highest
-    physical frequency the paper's outputs resolve (about 1.34 kHz for its scene)."""
-    return math.sqrt(scene.contact_stiffness / scene.wheel.mass) / (2.0 * math.pi)
-
-
-def derived_mesh(scene: Scene) -> int:
-    """Default number of rail elements: ELEMENTS_PER_BAY per support bay, at least the scene's
-    own ``rail.n_elements`` (80 for the paper's scene). See :func:`default_settings`."""
-    bays = max(1, round(scene.rail.length / scene.supports.spacing))
-    return int(max(scene.rail.n_elements, ELEMENTS_PER_BAY * bays))
-
-
-def derived_dt(scene: Scene) -> float:
-    """Default generalized-alpha time step [s]: STEPS_PER_PERIOD steps per period of the wheel
-    on its contact spring (4.96e-6 s for the paper's scene). See :func:`default_settings`."""
-    return 1.0 / (STEPS_PER_PERIOD * _wheel_frequency(scene))
-
-
-def default_settings(scene: Scene, speed: float | None = None,
-                     integrator: str = "generalized_alpha") -> dict:
-    """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``: what
-    :func:`trackwheel.simulate` uses when neither is given (for the ANCF fidelity levels).
-
-    Target (issue 6): at most 1 % error of the amplitude max |d| (MODEL.md §8) against a refined
-    run. The scene's former defaults (20 elements, dt = 1e-5 s) miss it by up to 5.5 %
-    (benchmarks/README.md, "Speed against accuracy").
-
-    - ``n_elements``: ELEMENTS_PER_BAY = 8 elements per support bay (l_e = d_s / 8; at least
-      the scene's own mesh). Reason: the cubic ANCF element interpolates the rail under a moving
-      point contact with a contact-point stiffness that varies across each element, so the wheel
-      is excited at the element-passing frequency v / l_e and its harmonics. With l_e = d_s / 2
-      (20 elements) or d_s / 4 (40) this spurious excitation meets the track's main resonance
-      (about 340 Hz for the paper's scene) within 50-400 km/h -- at 300 km/h for 20 elements,
-      150 km/h for 40 -- and moves the amplitude by 4-5 %; with d_s / 8 the effect stays below
-      0.5 % (160-element runs as reference).
-    - ``dt``: STEPS_PER_PERIOD = 150 steps per period of the highest frequency of interest, the
-      wheel on its contact spring f_w = sqrt(k/M)/2 pi (1.34 kHz for the paper's scene, so
-      dt = 4.96e-6 s). Phase errors of generalized-alpha grow with the passage time, so the
-      slowest speed (50 km/h) sets the step: 1e-5 s gives -0.9 % there, 2.5e-6 s -0.2 %.
-      The explicit scheme takes at most half its stability limit on the derived mesh.
-
-    ``speed`` [m/s] is checked and otherwise unused: the rule holds from 50 to 400 km/h.
-    """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
-    if speed is not None:
-        v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
-    ne = derived_mesh(scene)
-    dt = derived_dt(scene)
-    if integrator == "explicit":
-        dt = min(dt, 0.5 * stability_limit(scene, "explicit", n_elements=ne))
-    return dict(dt=float(dt), n_elements=int(ne))
 
 
 # --------------------------------------------------------------------------------------------
@@ -210,7 +79,7 @@ def default_settings(scene: Scene, speed: float | None = None,
 class Convergence:
     """Outcome of :func:`converged`."""
 
-    result: object  #: the accepted run (trackwheel.Result) at ``dt``, ``n_elements``
+    result: Result  #: the accepted run at ``dt``, ``n_elements``
     dt: float  #: time step chosen [s]
     n_elements: int  #: mesh chosen [-]
     amplitude: float  #: max |d| of the accepted run [m]
@@ -221,6 +90,15 @@ class Convergence:
     tol: float  #: the tolerance asked for [-]
     wall_time: float  #: total wall time of all runs [s]
     history: list = field(default_factory=list)  #: one dict per run: dt, n_elements, outputs
+
+    def __repr__(self) -> str:
+        return (f"<trackwheel.Convergence: {'converged' if self.converged else 'NOT converged'} "
+                f"to tol = {self.tol:g} after {len(self.history)} runs "
+                f"({self.wall_time:.3g} s)>\n"
+                f"  dt = {self.dt:.3g} s, {self.n_elements} elements\n"
+                f"  amplitude {self.amplitude:.6g} m (est. error {self.amplitude_error:.2g}), "
+                f"main frequency {self.main_frequency:.6g} Hz "
+                f"(est. error {self.frequency_error:.2g})")
 
     @property
     def error(self) -> float:
@@ -254,7 +132,7 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
               integrator: str = "generalized_alpha", dt: float | None = None,
               n_elements: int | None = None, max_refinements: int = 6,
               max_wall_time: float = 120.0, **simulate_kwargs) -> Convergence:
-    """Refine dt and n_elements until amplitude and main frequency (MODEL.md §8) are within
+    """Refine dt and n_elements until amplitude and main frequency (docs: Model § Outputs) are within
     ``tol`` (relative, estimated) of their converged values; return the run, the settings and
     the error estimate.
 
@@ -280,15 +158,13 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
     :func:`trackwheel.simulate` (e.g. ``x_end`` for a shorter stretch, ``rho_inf``);
     ``output_every`` is fixed to 1 and ``progress`` off unless given.
     """
-    from .simulate import simulate
-
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     tol = v.number("tol", tol, low=0.0, low_open=True, high=0.5)
     v.choice("integrator", integrator, set(ORDER))
     max_refinements = v.integer("max_refinements", max_refinements, low=0, high=20)
     max_wall_time = v.number("max_wall_time", max_wall_time, low=0.0, low_open=True, unit="s")
-    speed = v.number("speed", speed, low=0.0, low_open=True, high=300.0, unit="m/s")
+    speed = check_speed(speed, positive=True)
     for bad in ("dt", "n_elements", "integrator"):
         if bad in simulate_kwargs:
             raise TypeError(f"converged() takes {bad} as its own argument")
@@ -313,13 +189,15 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
     def run(h_, ne_):
         key = (float(h_), int(ne_))
         if key not in runs:
-            r = simulate(scene, speed, integrator=integrator, dt=h_, n_elements=ne_,
-                         **simulate_kwargs)
+            with warnings.catch_warnings():  # the n/4 estimation level may be below 1 per bay
+                warnings.simplefilter("ignore", MeshWarning)
+                r = simulate(scene, speed, integrator=integrator, dt=h_, n_elements=ne_,
+                             **simulate_kwargs)
             amp, freq = headline(r)
             spent[0] += r.wall_time
             runs[key] = (r, amp, freq)
-            history.append(dict(dt=h_, n_elements=ne_, amplitude=amp, main_frequency=freq,
-                                wall_time=r.wall_time))
+            history.append({"dt": h_, "n_elements": ne_, "amplitude": amp, "main_frequency": freq,
+                                "wall_time": r.wall_time})
         return runs[key]
 
     def estimate(h_, ne_):

@@ -1,4 +1,4 @@
-"""Natural frequencies of the coupled wheel/rail/support system (paper §3, MODEL.md §7).
+"""Natural frequencies of the coupled wheel/rail/support system (paper §3, docs: Model § Eigen analysis).
 
 The rail is the ANCF rail linearised about the straight reference, which is exactly an
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
@@ -29,6 +29,19 @@ class EigenResult:
     shapes: np.ndarray  #: (n_pos, n_dof + 1, n_modes): rail ANCF coords then wheel Y [-]
     axial_frequencies: np.ndarray  #: lowest axial (x) modes, (min(n_axial, axial dofs),) [Hz]
     n_elements: int  #: mesh used
+
+    def __repr__(self) -> str:
+        n_pos, n_modes = self.frequencies.shape
+        lo, hi = self.frequencies.min(axis=0), self.frequencies.max(axis=0)
+        shown = min(n_modes, 4)
+        bands = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in zip(lo[:shown], hi[:shown]))
+        more = f" (+{n_modes - shown} more)" if n_modes > shown else ""
+        axial = ", ".join(f"{f:.1f}" for f in self.axial_frequencies[:3])
+        return (f"<trackwheel.EigenResult: {n_modes} vertical modes at {n_pos} wheel positions "
+                f"X = {self.positions.min():.4g}..{self.positions.max():.4g} m, "
+                f"{self.n_elements} elements>\n"
+                f"  vertical [Hz]: {bands}{more}\n"
+                f"  axial [Hz]: {axial or '-'}")
 
     def rail_mode_shape(self, i_pos: int, mode: int, n_points: int = 201):
         """Vertical mode shape along the rail: (s [m], y(s) [-], wheel Y [-]), scaled so that the

@@ -8,13 +8,18 @@ the cheapest level whose outputs stay within ``tol`` of it at every speed.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import _validate as v
 from .analysis import analyse
-from .convergence import default_settings
+from .defaults import MAX_SPEED, default_settings
 from .scene import Scene
 from .simulate import FIDELITY_LEVELS, simulate
+
+if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
+    import pandas as pd
 
 __all__ = ["adequacy", "recommend"]
 
@@ -27,11 +32,11 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     """Run the fidelity ``levels`` side by side at each of ``speeds`` [m/s].
 
     Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude``
-    [m] (max |d|, MODEL.md §8), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
+    [m] (max |d|, docs: Model § Outputs), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
     relative differences from the ``reference`` level (``d_amplitude``, ``d_main_frequency``,
     ``d_peak_contact_force``), ``wall_time`` [s], ``adequate`` (all three differences <= tol)
-    and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the cheapest
-    level (smallest total wall time) adequate at every speed; ``df.attrs["tol"]`` the tolerance.
+    and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the least
+    detailed level adequate at every speed (:func:`recommend`); ``df.attrs["tol"]`` the tolerance.
     ``n_modes`` applies to the linear levels (None: all coordinates). All levels run on the same
     mesh and time step: ``simulate_kwargs``' ``dt``/``n_elements``, or else
     :func:`trackwheel.default_settings` (the derived defaults of the full model).
@@ -41,7 +46,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    speeds = v.positions("speeds", speeds, 0.0, 300.0, unit="m/s")
+    speeds = v.positions("speeds", speeds, 0.0, MAX_SPEED, unit="m/s")
     if np.any(speeds <= 0):
         raise ValueError("speeds must be > 0 m/s")
     tol = v.number("tol", tol, low=0.0, low_open=True)
@@ -66,7 +71,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
             kw = dict(simulate_kwargs)
             if lv.startswith("linear/") and n_modes is not None:
                 kw["n_modes"] = n_modes
-            row = dict(speed=float(speed), speed_kmh=float(speed) * 3.6, level=lv, error="")
+            row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "level": lv, "error": ""}
             try:
                 r = simulate(scene, float(speed), fidelity=lv, **kw)
                 a = analyse(r)
@@ -90,10 +95,14 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
 
 
 def recommend(df) -> str:
-    """The cheapest level (least total wall time) adequate at every speed in an
-    :func:`adequacy` table; the reference level if none other is."""
-    ok = df.groupby("level").agg(adequate=("adequate", "all"), wall_time=("wall_time", "sum"))
-    ok = ok[ok.adequate]
-    if ok.empty:
+    """The least detailed level (last in :data:`FIDELITY_LEVELS`) adequate at every speed in
+    an :func:`adequacy` table; the reference level if none other is.
+
+    The order of detail, not the measured wall time, decides: the choice is then the same on
+    any machine and under any load (same inputs, same sweep), and the simpler model is the one
+    a scene needs when both are adequate."""
+    adequate = df.groupby("level")["adequate"].all()
+    ok = [lvl for lvl in FIDELITY_LEVELS if adequate.get(lvl, False)]
+    if not ok:
         return df.attrs.get("reference", "full")
-    return str(ok.wall_time.idxmin())
+    return ok[-1]

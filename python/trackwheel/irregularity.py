@@ -1,4 +1,4 @@
-"""Rail profiles and wheel out-of-roundness: the excitation (MODEL.md §10).
+"""Rail profiles and wheel out-of-roundness: the excitation (docs: Model § Irregularities).
 
 Sign conventions
 ----------------
@@ -426,7 +426,7 @@ def contact_half_width(scene) -> float:
 
 
 def contact_filter(x, r, half_width: float) -> tuple[np.ndarray, np.ndarray]:
-    """Patch-length average of a sampled profile (MODEL.md §10, the 1D form):
+    """Patch-length average of a sampled profile (docs: Model § Irregularities, the 1D form):
     r_f(X) = (1 / 2a) integral_{X-a}^{X+a} r dX', a = ``half_width`` [m].
 
     ``x`` [m] uniform, increasing; ``r`` [m]. The integral is the trapezoid rule on the samples

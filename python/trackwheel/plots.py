@@ -42,6 +42,13 @@ __all__ = [
 _SUPPORT_STYLE = {"color": "0.6", "linewidth": 0.8, "linestyle": ":", "zorder": 0}
 
 
+def _legend_outside(ax: Axes, **kw) -> None:
+    """The legend to the right of the axes, outside them, so that it hides no data (the
+    constrained layout makes room for it)."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+              fontsize="small", **kw)
+
+
 def _root_figure(ax: Axes) -> Figure:
     fig = ax.figure
     while isinstance(fig, SubFigure):
@@ -67,7 +74,7 @@ def _mark_supports(ax: Axes, result: EigenResult, label: str | None = "supports"
 
 def eigen(result: EigenResult, n_modes: int = 4, ax: Axes | None = None) -> Figure:
     """The paper's Fig. 3: the lowest ``n_modes`` vertical natural frequencies [Hz] of the
-    wheel/rail/support system against the wheel position X [m] (MODEL.md §7).
+    wheel/rail/support system against the wheel position X [m] (docs: Model § Eigen analysis).
 
     Parameters
     ----------
@@ -102,7 +109,7 @@ def eigen(result: EigenResult, n_modes: int = 4, ax: Axes | None = None) -> Figu
     ax.set_ylabel("natural frequency [Hz]")
     ax.set_xlim(0.0, result.scene.rail.length)
     ax.set_title("Natural frequencies against wheel position (Kato et al. 2005, Fig. 3)")
-    ax.legend(loc="best", fontsize="small")
+    _legend_outside(ax)
     ax.grid(True, axis="y", alpha=0.3)
     return fig
 
@@ -151,7 +158,7 @@ def mode_shapes(result: EigenResult, i_pos: int, modes: Iterable[int] = range(4)
         ax.set_ylabel("deflection [-]")
         ax.set_title(f"mode {m + 1}: {result.frequencies[i_pos, m]:.1f} Hz", fontsize="medium",
                      loc="left")
-    axes[0].legend(loc="upper right", fontsize="small", ncols=2)
+    _legend_outside(axes[0])
     axes[-1].set_xlabel("position along the rail s [m]")
     axes[-1].set_xlim(0.0, result.scene.rail.length)
     fig.suptitle(f"Vertical mode shapes, wheel at X = {x_wheel:g} m")
@@ -159,11 +166,11 @@ def mode_shapes(result: EigenResult, i_pos: int, modes: Iterable[int] = range(4)
 
 
 # --------------------------------------------------------------------------------------------
-# time simulations (MODEL.md §8): convergence, one run, acceleration terms
+# time simulations (docs: Model § Outputs): convergence, one run, acceleration terms
 # --------------------------------------------------------------------------------------------
 #: display names of the integrators
 _INTEGRATOR_NAMES = {"explicit": "explicit RK4", "generalized_alpha": "generalized-α"}
-#: the acceleration terms of MODEL.md §8 (paper's eq. 21, Fig. 8): field, legend text
+#: the acceleration terms of docs: Model § Outputs (paper's eq. 21, Fig. 8): field, legend text
 _ACC_TERMS = (
     ("acc_A", "A = ρ cosφ θ' v φ_s"),
     ("acc_B", "B = ρ cosφ θ' φ_t"),
@@ -171,6 +178,17 @@ _ACC_TERMS = (
     ("acc_D", "D = ρ cosφ φ_t²"),
     ("acc_E", "E = 2 ρ cosφ φ_t v φ_s"),
 )
+
+
+#: line style per term: C and D are nearly equal (for the deflection bowl travelling with the
+#: wheel phi_t ~ -v phi_s, so D ~ C), so C is drawn wide and pale under a thin D
+_ACC_STYLE = {
+    "acc_A": {"linewidth": 1.0, "zorder": 2},
+    "acc_B": {"linewidth": 1.0, "zorder": 2},
+    "acc_C": {"linewidth": 3.0, "alpha": 0.45, "zorder": 2},
+    "acc_D": {"linewidth": 0.8, "zorder": 3},
+    "acc_E": {"linewidth": 1.0, "zorder": 2},
+}
 
 
 def _check_results(name: str, results) -> list:
@@ -236,36 +254,71 @@ def _run_label(r, *, dt: bool, n_elements: bool) -> str:
     return ", ".join(parts)
 
 
-def _convergence(results, labels, acceleration: bool, title: str) -> Figure:
-    n_rows = 3 if acceleration else 2
-    fig = Figure(figsize=(8.0, 2.0 + 2.2 * n_rows), layout="constrained")
+#: the paper's eq. 28 as drawn on Figs. 4-5
+_V_E_DEFINITION = (r"$v_e = (\dot{X}_A - \rho\,\dot{\theta})\,/\,\dot{X}_A \cdot 100\,\%$"
+                   " (the paper's eq. 28: slip of the rolling contact)")
+
+
+def _difference(r, ref, field: str) -> np.ndarray:
+    """``r.field - ref.field`` at r's wheel positions, ``ref`` interpolated linearly (the
+    reference is the finest run, so its samples are the densest); NaN outside ref's stretch."""
+    x, xr = r.x_wheel, ref.x_wheel
+    diff = getattr(r, field) - np.interp(x, xr, getattr(ref, field))
+    return np.where((x >= xr[0]) & (x <= xr[-1]), diff, np.nan)
+
+
+def _convergence(results, labels, acceleration: bool, title: str, reference: int) -> Figure:
+    n_rows = 4 if acceleration else 2
+    fig = Figure(figsize=(8.0, 2.4 + 2.2 * n_rows), layout="constrained")
     axes = fig.subplots(n_rows, 1, sharex=True, squeeze=False)[:, 0]
     styles = ["-", "--", "-.", ":"]
+    ref = results[reference]
     for i, (r, label) in enumerate(zip(results, labels)):
         # the first run drawn widest, so that curves lying on top of each other stay visible
-        kw = dict(label=label, color=f"C{i % 10}", linestyle=styles[i % len(styles)],
-                  linewidth=max(0.8, 2.4 - 0.4 * i))
+        kw = {"label": label, "color": f"C{i % 10}", "linestyle": styles[i % len(styles)],
+              "linewidth": max(0.8, 2.4 - 0.4 * i)}
         axes[0].plot(r.x_wheel, r.y_contact * 1e3, **kw)
         axes[1].plot(r.x_wheel, r.v_error, **kw)
         if acceleration:
             axes[2].plot(r.x_wheel, r.acc_contact, **kw)
+            if i != reference:
+                axes[3].plot(r.x_wheel, _difference(r, ref, "acc_contact"), gid="difference",
+                             **kw)
     axes[0].set_ylabel("contact point y_B [mm]")
-    axes[1].set_ylabel("calculation error v_e [%]")
+    axes[1].set_ylabel("velocity error v_e [%]")
+    axes[1].set_title(_V_E_DEFINITION, loc="left", fontsize="small")
     if acceleration:
-        axes[2].set_ylabel("contact point d²y_B/dt² [m/s²]")
+        axes[2].set_ylabel("d²y_B/dt² [m/s²]")
+        axes[2].set_title("vertical acceleration of the contact point", loc="left",
+                          fontsize="small")
+        axes[3].set_ylabel("difference [m/s²]")
+        axes[3].set_title(f"acceleration minus that of the finest run ({labels[reference]})",
+                          loc="left", fontsize="small")
+        axes[3].axhline(0.0, color="0.5", linewidth=0.8, zorder=0)
     axes[-1].set_xlabel("wheel position X [m]")
     for ax in axes:
         ax.grid(True, alpha=0.3)
-    axes[0].legend(loc="best", fontsize="small")
+    # above the panels, outside them: the traces fill the axes
+    axes[0].legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), borderaxespad=0.0,
+                   ncols=2, fontsize="small")
     fig.suptitle(title)
     return fig
 
 
+def _reference(name: str, reference, results, finest) -> int:
+    """Index of the run the differences are taken from: ``reference`` or the finest run."""
+    if reference is None:
+        return min(range(len(results)), key=lambda i: finest(results[i].settings))
+    return v.integer(name, reference, low=-len(results), high=len(results) - 1) % len(results)
+
+
 def time_step_convergence(results, *, labels=None, acceleration: bool = True,
-                          title: str | None = None) -> Figure:
+                          title: str | None = None, reference: int | None = None) -> Figure:
     """The paper's Fig. 4, effect of the time step: the contact-point displacement y_B [mm],
-    the calculation error v_e [%] (eq. 28) and, with ``acceleration``, the contact-point
-    vertical acceleration [m/s²] against the wheel position X [m], one line per run.
+    the velocity error v_e = (dX_A/dt - rho dtheta/dt) / (dX_A/dt) x 100 [%] (the paper's
+    "calculation error", eq. 28) and, with ``acceleration``, the contact-point vertical
+    acceleration [m/s²] and its difference from the finest run's (whose traces would otherwise
+    lie on top of each other), against the wheel position X [m], one line per run.
 
     Parameters
     ----------
@@ -278,12 +331,18 @@ def time_step_convergence(results, *, labels=None, acceleration: bool = True,
         Add the acceleration panel (the quantity the paper says needs 1e-7 s).
     title : str, optional
         Figure title; default names the figure, the speed(s) and the stretch of track.
+    reference : int, optional
+        Index of the run the acceleration differences are taken from; default the finest run
+        (the smallest dt here; the most elements, then the smallest dt, in
+        :func:`element_convergence`).
 
     Returns
     -------
     matplotlib.figure.Figure
-        Axes from top: y_B [mm] (``y_contact * 1e3``), v_e [%], acceleration [m/s²], each line
-        against ``x_wheel`` and labelled as in the legend.
+        Axes from top: y_B [mm] (``y_contact * 1e3``), v_e [%], acceleration [m/s²] and the
+        difference ``acc_contact`` minus the reference's, interpolated linearly at the run's
+        wheel positions (lines with gid "difference"; the reference itself is not drawn
+        there), each line against ``x_wheel`` and labelled as in the legend above the panels.
     """
     results = _check_results("results", results)
     labels = _labels("labels", labels, len(results)) or [
@@ -292,11 +351,12 @@ def time_step_convergence(results, *, labels=None, acceleration: bool = True,
         speeds = ", ".join(sorted({f"{_speed_kmh(r):g}" for r in results}, key=float))
         title = (f"Effect of the time step (Kato et al. 2005, Fig. 4): {speeds} km/h, "
                  f"{_stretch(results)}")
-    return _convergence(results, labels, v.boolean("acceleration", acceleration), title)
+    ref = _reference("reference", reference, results, lambda s: s["dt"])
+    return _convergence(results, labels, v.boolean("acceleration", acceleration), title, ref)
 
 
 def element_convergence(results, *, labels=None, acceleration: bool = True,
-                        title: str | None = None) -> Figure:
+                        title: str | None = None, reference: int | None = None) -> Figure:
     """The paper's Fig. 5, effect of the number of elements: as
     :func:`time_step_convergence`, with the legend naming the mesh of each run
     ("<n> elements", plus integrator and dt if they differ between the runs)."""
@@ -312,23 +372,27 @@ def element_convergence(results, *, labels=None, acceleration: bool = True,
             how = ", " + _run_label(results[0], dt=True, n_elements=False)
         title = (f"Effect of the number of elements (Kato et al. 2005, Fig. 5): {speeds} km/h"
                  f"{how}, {_stretch(results)}")
-    return _convergence(results, labels, v.boolean("acceleration", acceleration), title)
+    ref = _reference("reference", reference, results, lambda s: (-s["n_elements"], s["dt"]))
+    return _convergence(results, labels, v.boolean("acceleration", acceleration), title, ref)
 
 
 def acceleration_terms(results, *, against: str = "position", title: str | None = None
                        ) -> Figure:
-    """The paper's Fig. 8: the terms A–E of the contact-point vertical acceleration (MODEL.md
-    §8, paper's eq. 21) for each run (the paper: 100 and 300 km/h), one row per run.
+    """The paper's Fig. 8: the terms A–E of the contact-point vertical acceleration (docs:
+    Model § Outputs, paper's eq. 21) for each run (the paper: 100 and 300 km/h), one row per run.
 
     Left column: A = ρ cosφ θ' v φ_s and B = ρ cosφ θ' φ_t (first order in the rail's slope);
     right column: C = ρ cosφ v² φ_s², D = ρ cosφ φ_t², E = 2 ρ cosφ φ_t v φ_s (second order,
     about 10⁻⁴ of A and B for the paper's scene, hence their own axes). Each column shares its
-    y axis between the runs, so the growth with speed is seen directly.
+    y axis between the runs, so the growth with speed is seen directly. C and D are nearly equal
+    (the deflection bowl travels with the wheel, so φ_t ≈ -v φ_s): C is drawn wide and pale
+    under a thin D. The legends stand to the right of the top row, outside the data.
 
     Parameters
     ----------
     results : sequence of Result
-    against : "position" (wheel position X [m]) or "time" (t [ms]).
+    against : str
+        The x axis: "position" (the wheel position X [m]) or "time" (the time [ms]).
     title : str, optional
 
     Returns
@@ -346,7 +410,9 @@ def acceleration_terms(results, *, against: str = "position", title: str | None 
         x = r.x_wheel if against == "position" else r.t * 1e3
         for k, (name, text) in enumerate(_ACC_TERMS):
             ax = ax_l if k < 2 else ax_r
-            ax.plot(x, getattr(r, name), color=f"C{k}", linewidth=1.0, label=text)
+            if name == "acc_C":
+                text += " (wide, under D)"
+            ax.plot(x, getattr(r, name), color=f"C{k}", label=text, **_ACC_STYLE[name])
         head = (f"{_speed_kmh(r):g} km/h, k_s = {r.scene.supports.stiffness / 1e6:g} MN/m")
         ax_l.set_title(f"{head}: terms A, B", loc="left", fontsize="medium")
         ax_r.set_title(f"{head}: terms C, D, E", loc="left", fontsize="medium")
@@ -357,8 +423,8 @@ def acceleration_terms(results, *, against: str = "position", title: str | None 
     xlabel = "wheel position X [m]" if against == "position" else "time t [ms]"
     for ax in axes[-1]:
         ax.set_xlabel(xlabel)
-    axes[0, 0].legend(loc="upper right", fontsize="small")
-    axes[0, 1].legend(loc="upper right", fontsize="small")
+    _legend_outside(axes[0, 0])
+    _legend_outside(axes[0, 1])
     fig.suptitle("Terms of the contact-point acceleration (Kato et al. 2005, Fig. 8)"
                  if title is None else title)
     return fig
@@ -371,7 +437,7 @@ def _eigen_bands(ax: Axes, eigen: EigenResult, n_modes: int, *, horizontal: bool
     f = eigen.frequencies[:, :n_modes]
     for k in range(n_modes):
         lo, hi = float(f[:, k].min()), float(f[:, k].max())
-        style = dict(color=f"C{(k + 5) % 10}", linewidth=0.8, linestyle="--", zorder=0)
+        style = {"color": f"C{(k + 5) % 10}", "linewidth": 0.8, "linestyle": "--", "zorder": 0}
         line = ax.axhline if horizontal else ax.axvline
         span = ax.axhspan if horizontal else ax.axvspan
         line(lo, gid=f"eigen mode {k + 1} min", **style)
@@ -387,7 +453,7 @@ def _check_eigen(eigen, n_modes) -> int:
 
 def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes: int = 4,
             f_max: float | None = None) -> Figure:
-    """One run measured as the paper measures it (MODEL.md §8): the contact-point
+    """One run measured as the paper measures it (docs: Model § Outputs): the contact-point
     displacement y_B and the quasi-static line y_qs [mm] against the wheel position, the
     dynamic part d = y_B - y_qs [µm] with its amplitude max |d| marked, and the amplitude
     spectrum of d [µm] with the main frequency marked.
@@ -437,7 +503,7 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     ax_y.plot(a.x_wheel, a.y_qs * 1e3, color="C1", linestyle="--", label="y_qs")
     ax_y.set_ylabel("displacement [mm]")
     ax_y.set_xlabel("wheel position X [m]")
-    ax_y.legend(loc="best", fontsize="small")
+    _legend_outside(ax_y)
 
     ax_d.plot(a.x_wheel, a.dynamic * 1e6, color="C2", linewidth=0.9, label="d")
     i_max = int(np.argmax(np.abs(a.dynamic)))
@@ -446,7 +512,7 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     ax_d.axhline(0.0, color="0.7", linewidth=0.8, zorder=0)
     ax_d.set_ylabel("dynamic part d = y_B - y_qs [µm]")
     ax_d.set_xlabel("wheel position X [m]")
-    ax_d.legend(loc="best", fontsize="small")
+    _legend_outside(ax_d)
 
     freqs, amps = a.spectrum
     keep = freqs <= f_max
@@ -460,7 +526,7 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     ax_f.set_xlim(0.0, f_max)
     ax_f.set_xlabel("frequency [Hz]")
     ax_f.set_ylabel("amplitude spectrum of d [µm]")
-    ax_f.legend(loc="upper right", fontsize="small")
+    _legend_outside(ax_f)
     for ax in (ax_y, ax_d, ax_f):
         ax.grid(True, alpha=0.3)
     fig.suptitle(f"{_speed_kmh(result):g} km/h, k_s = {result.scene.supports.stiffness / 1e6:g}"
@@ -486,17 +552,31 @@ def _groups(df, key):
     return [(val, grp) for val, grp in df.groupby(key, sort=True)]
 
 
-def _frequency_panel(ax: Axes, x, grp, label, color) -> None:
+#: the frequency panels shift series i of n sideways by (i - (n - 1) / 2) x DODGE x the x span,
+#: so that neither series' error bars (the frequency resolution) hide behind the other's marks
+DODGE = 0.015
+
+
+def _dodge(x_all, i: int, n: int) -> float:
+    """Sideways shift [x units] of series ``i`` of ``n`` in a frequency panel (see DODGE)."""
+    x_all = np.asarray(x_all, dtype=float)
+    return (i - (n - 1) / 2) * DODGE * float(np.ptp(x_all)) if x_all.size else 0.0
+
+
+def _frequency_panel(ax: Axes, x, grp, label, color, shift: float) -> None:
+    """Main frequency against x, shifted by ``shift``, open markers with the resolution as
+    error bars drawn over them."""
     f = grp["main_frequency"].to_numpy(float)
-    ax.plot(x, f, marker="o", color=color, label=label)
+    ax.plot(x + shift, f, marker="o", markerfacecolor="none", color=color, label=label,
+            zorder=2)
     if "frequency_resolution" in grp.columns:
-        ax.errorbar(x, f, yerr=grp["frequency_resolution"].to_numpy(float), fmt="none",
-                    ecolor=color, elinewidth=0.8, capsize=2)
+        ax.errorbar(x + shift, f, yerr=grp["frequency_resolution"].to_numpy(float), fmt="none",
+                    ecolor=color, elinewidth=1.0, capsize=3, zorder=3)
 
 
 def support_stiffness(df, *, frequency: bool = False, ax: Axes | None = None) -> Figure:
-    """The paper's Fig. 6: the amplitude of the contact-point vibration max |d| [µm] (MODEL.md
-    §8) against the support stiffness k_s [MN/m], one line per speed (the paper: 100 and
+    """The paper's Fig. 6: the amplitude of the contact-point vibration max |d| [µm] (docs: Model §
+    Outputs) against the support stiffness k_s [MN/m], one line per speed (the paper: 100 and
     300 km/h).
 
     Parameters
@@ -507,7 +587,8 @@ def support_stiffness(df, *, frequency: bool = False, ax: Axes | None = None) ->
         Failed cases (NaN amplitude) leave gaps.
     frequency : bool
         Add a second panel with the main frequency [Hz] against k_s (bars: the frequency
-        resolution of each run).
+        resolution of each run; each speed's points shifted sideways by :data:`DODGE` of the
+        k_s span per series, so that no error bar hides behind another speed's marker).
     ax : Axes, optional
         Draw the amplitude panel here (not with ``frequency``).
 
@@ -531,14 +612,16 @@ def support_stiffness(df, *, frequency: bool = False, ax: Axes | None = None) ->
         raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
     else:
         fig, axes = _root_figure(ax), [ax]
-    for i, (speed, grp) in enumerate(_groups(df, "speed_kmh")):
+    groups = _groups(df, "speed_kmh")
+    x_all = df["support_stiffness"].to_numpy(float) / 1e6
+    for i, (speed, grp) in enumerate(groups):
         grp = grp.sort_values("support_stiffness")
         x = grp["support_stiffness"].to_numpy(float) / 1e6
         label = f"{speed:g} km/h"
         axes[0].plot(x, grp["amplitude"].to_numpy(float) * 1e6, marker="o", color=f"C{i}",
                      label=label)
         if frequency:
-            _frequency_panel(axes[1], x, grp, label, f"C{i}")
+            _frequency_panel(axes[1], x, grp, label, f"C{i}", _dodge(x_all, i, len(groups)))
     axes[0].set_ylabel("amplitude max |d| [µm]")
     title = "Amplitude against support stiffness (Kato et al. 2005, Fig. 6)"
     if ax is None:
@@ -547,9 +630,9 @@ def support_stiffness(df, *, frequency: bool = False, ax: Axes | None = None) ->
         ax.set_title(title)
     if frequency:
         axes[1].set_ylabel("main frequency [Hz]")
-        axes[1].legend(loc="best", fontsize="small")
+        _legend_outside(axes[1])
     axes[-1].set_xlabel("support stiffness k_s [MN/m]")
-    axes[0].legend(loc="best", fontsize="small")
+    _legend_outside(axes[0])
     for a in axes:
         a.grid(True, alpha=0.3)
     return fig
@@ -575,7 +658,8 @@ def speed(df, eigen: EigenResult | None = None, *, n_modes: int = 4) -> Figure:
     -------
     matplotlib.figure.Figure
         Two axes, lines labelled "k_s = <k> MN/m": x = ``speed_kmh``, y = ``amplitude * 1e6``
-        and ``main_frequency``; the eigen bands are lines with gid "eigen mode k min/max".
+        and ``main_frequency`` (with several stiffnesses, shifted sideways as in
+        :func:`support_stiffness`); the eigen bands are lines with gid "eigen mode k min/max".
     """
     _check_frame(df, ["speed_kmh", "support_stiffness", "amplitude", "main_frequency"])
     if eigen is not None:
@@ -588,20 +672,22 @@ def speed(df, eigen: EigenResult | None = None, *, n_modes: int = 4) -> Figure:
                              f"k_s = {other[0]:g} N/m; give eigen for the table's scene")
     fig = Figure(figsize=(7.0, 7.5), layout="constrained")
     ax_a, ax_f = fig.subplots(2, 1, sharex=True)
-    for i, (k, grp) in enumerate(_groups(df, "support_stiffness")):
+    groups = _groups(df, "support_stiffness")
+    for i, (k, grp) in enumerate(groups):
         grp = grp.sort_values("speed_kmh")
         x = grp["speed_kmh"].to_numpy(float)
         label = f"k_s = {k / 1e6:g} MN/m"
         ax_a.plot(x, grp["amplitude"].to_numpy(float) * 1e6, marker="o", color=f"C{i}",
                   label=label)
-        _frequency_panel(ax_f, x, grp, label, f"C{i}")
+        _frequency_panel(ax_f, x, grp, label, f"C{i}",
+                         _dodge(df["speed_kmh"].to_numpy(float), i, len(groups)))
     if eigen is not None:
         _eigen_bands(ax_f, eigen, n_modes, horizontal=True)
     ax_a.set_ylabel("amplitude max |d| [µm]")
     fig.suptitle("Amplitude and main frequency against speed (Kato et al. 2005, Fig. 7)")
     ax_f.set_ylabel("main frequency [Hz]")
     ax_f.set_xlabel("speed v [km/h]")
-    ax_a.legend(loc="best", fontsize="small")
+    _legend_outside(ax_a)
     ax_f.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize="small",
                 title="data / eigenfrequencies\nover wheel positions", title_fontsize="small")
     for a in (ax_a, ax_f):

@@ -1,4 +1,4 @@
-"""Scene description: frozen dataclasses in SI units (MODEL.md §1).
+"""Scene description: frozen dataclasses in SI units (docs: Model § Scene).
 
 Every field carries its unit; every value is validated on construction, so a scene that
 exists is a scene the kernel can run. Variations are made with :func:`dataclasses.replace`::
@@ -34,9 +34,9 @@ def kmh(speed_kmh: float) -> float:
 
 @dataclass(frozen=True)
 class Rail:
-    """The rail: a planar ANCF beam simply supported at both ends (MODEL.md §2).
+    """The rail: a planar ANCF beam simply supported at both ends (docs: Model § Rail).
 
-    Defaults are the paper's rail (Kato et al. 2005, Table 1, made consistent in MODEL.md §1).
+    Defaults are the paper's rail (Kato et al. 2005, Table 1, made consistent in docs: Model § Scene).
     """
 
     length: float = 5.0  #: L, rail length between the end supports [m]
@@ -81,7 +81,7 @@ class Rail:
 
 @dataclass(frozen=True)
 class Supports:
-    """Discrete elastic supports (rail pads/sleepers) under the rail (MODEL.md §1-§2).
+    """Discrete elastic supports (rail pads/sleepers) under the rail (docs: Model § Scene, § Rail).
 
     By default ``n = round(L / spacing) - 1`` equal supports at ``spacing, 2 spacing, ...,
     L - spacing`` (nine for the paper's scene), between the two rigid end supports. Give
@@ -131,7 +131,7 @@ class Supports:
 
 @dataclass(frozen=True)
 class Wheel:
-    """The wheel: a rigid disc loaded by the car body (MODEL.md §3)."""
+    """The wheel: a rigid disc loaded by the car body (docs: Model § Wheel)."""
 
     mass: float = 10.0  #: M [kg]
     radius: float = 0.1  #: rho0, undeformed radius [m]
@@ -141,7 +141,7 @@ class Wheel:
     poisson_ratio: float = 0.30  #: nu of the wheel [-]
     torque: float = 0.0  #: external torque on the wheel, positive in the rolling direction [N m]
     #: out-of-roundness, a tuple of :class:`~trackwheel.irregularity.WheelFlat` /
-    #: :class:`~trackwheel.irregularity.Polygon` (MODEL.md §10); () is a round wheel
+    #: :class:`~trackwheel.irregularity.Polygon` (docs: Model § Irregularities); () is a round wheel
     defects: tuple = ()
 
     def __post_init__(self):
@@ -171,7 +171,7 @@ class Wheel:
 
 @dataclass(frozen=True)
 class Contact:
-    """Wheel/rail contact (MODEL.md §4-§5).
+    """Wheel/rail contact (docs: Model § Contact, § Rolling and slip).
 
     ``law="linear"``: N = k (rho0 - rho) (the paper's eq. 22); ``law="hertz"``:
     N = C_H (rho0 - rho)^1.5. ``stiffness=None`` takes the Hertz constant for the wheel on a flat
@@ -208,7 +208,7 @@ class Scene:
     contact: Contact = field(default_factory=Contact)
     gravity: float = GRAVITY  #: g on rail and wheel [m/s^2]; the rail's weight pre-loads supports
     rail_gravity: bool = True  #: apply the rail's own weight
-    #: rail profile r(X) [m] (positive = bump, MODEL.md §10), or None for a smooth rail
+    #: rail profile r(X) [m] (positive = bump, docs: Model § Irregularities), or None for a smooth rail
     irregularity: Irregularity | None = None
 
     def __post_init__(self):
@@ -230,7 +230,7 @@ class Scene:
 
     @classmethod
     def kato2005(cls) -> "Scene":
-        """The paper's scene exactly as MODEL.md §1 fixes it (L = 5 m, nine supports of
+        """The paper's scene exactly as docs: Model § Scene fixes it (L = 5 m, nine supports of
         140 MN/m every 0.5 m, 10 kg wheel of radius 0.1 m under 47040 N, 20 elements)."""
         return cls()
 
@@ -254,7 +254,7 @@ class Scene:
 
     @property
     def hertz_constant(self) -> float:
-        """C_H = 4/3 E* sqrt(rho0) [N/m^1.5] (MODEL.md §4)."""
+        """C_H = 4/3 E* sqrt(rho0) [N/m^1.5] (docs: Model § Contact)."""
         return 4.0 / 3.0 * self.effective_modulus * math.sqrt(self.wheel.radius)
 
     @property
@@ -269,5 +269,5 @@ class Scene:
 
     @property
     def winkler_modulus(self) -> float:
-        """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (MODEL.md §9)."""
+        """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (docs: Model § Validation)."""
         return self.supports.stiffness / self.supports.spacing

@@ -1,7 +1,10 @@
-"""Time simulation of the wheel rolling over the flexible rail (MODEL.md §3-§6, §8).
+"""Time simulation of the wheel rolling over the flexible rail (docs: Model § Wheel, § Contact, § Rolling and slip, § Equations of motion, § Outputs).
 
-The whole time loop runs in the C++ kernel with the GIL released; Python only prepares the
-initial state and wraps the output arrays.
+:func:`simulate` runs in four stages, one function each: resolve the arguments (validation,
+defaults from :mod:`trackwheel.defaults`, the scene rewritten for the fidelity level) into a
+:class:`RunPlan`; build the kernel's settings; run the kernel (the whole time loop in C++ with
+the GIL released, progress and Ctrl-C through a callback); wrap its output as a
+:class:`~trackwheel.results.Result`.
 """
 
 from __future__ import annotations
@@ -9,17 +12,34 @@ from __future__ import annotations
 import dataclasses as dc
 import math
 import time as _time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from . import _core, _kernel
 from . import _validate as v
 from ._errors import DivergenceError
+from .defaults import (
+    check_speed,
+    default_end,
+    derived_dt,
+    derived_mesh,
+    explicit_limit,
+    start_position,
+    warn_above_stability_limit,
+    warn_unresolved_mesh,
+)
+from .results import Result, RunSettings, result_from_kernel
 from .scene import MAX_ELEMENTS, Scene
 
-__all__ = ["DivergenceError", "Result", "simulate", "DEFAULT_DT", "FIDELITY_LEVELS",
-           "MAX_OUTPUT_BYTES"]
+__all__ = [
+    "FIDELITY_LEVELS",
+    "MAX_OUTPUT_BYTES",
+    "DivergenceError",
+    "Result",
+    "RunSettings",
+    "simulate",
+]
 
 #: Model fidelity levels, most to least detailed (issue 7). "full" is the paper's model: the
 #: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
@@ -30,10 +50,6 @@ __all__ = ["DivergenceError", "Result", "simulate", "DEFAULT_DT", "FIDELITY_LEVE
 FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
                    "linear/moving_mass", "linear/moving_force")
 
-#: Default time steps [s]. Generalized-alpha: 1e-5 s resolves the highest physical frequency of
-#: the paper's scene (the wheel on its contact spring, ~1.4 kHz) with ~70 steps per period;
-#: explicit RK4: half its stability limit, at most 1e-6 s.
-DEFAULT_DT = {"generalized_alpha": 1e-5, "explicit": 1e-6}
 #: Output arrays larger than this raise before the run starts [bytes].
 MAX_OUTPUT_BYTES = 2 * 1024**3
 #: Default number of kept samples: output_every is chosen so that at most this many are kept.
@@ -47,82 +63,30 @@ MAX_STEPS = 10**12
 #: measured costs are 1.6-3.4 us per element and step for generalized-alpha and explicit RK4).
 _PROGRESS_INTERVAL = 0.05
 _STEP_COST_PER_ELEMENT = 4e-6
-_N_FIELDS = 23
+#: float64 arrays the kernel records per sample (the Result's array fields)
+_N_FIELDS = sum(1 for f in dc.fields(Result) if f.type in ("np.ndarray", "np.ndarray | None"))
 
 _INTEGRATORS = {"generalized_alpha": _core.Integrator.generalized_alpha,
                 "explicit": _core.Integrator.explicit}
 
 
 @dataclass(frozen=True)
-class Result:
-    """Output of :func:`simulate`, one entry per kept sample (every ``output_every`` steps).
+class RunPlan:
+    """A resolved run: everything the kernel needs, and the settings the Result reports."""
 
-    All arrays have shape (n_samples,) and SI units.
-    """
-
-    scene: Scene
-    settings: dict  #: the settings used (integrator, dt, n_elements, speed, x_start, ...)
-    t: np.ndarray  #: time [s]
-    x_wheel: np.ndarray  #: X_A, wheel-centre position (prescribed X_0 + v t) [m]
-    y_wheel: np.ndarray  #: Y_A, wheel-centre height [m]
-    ydot_wheel: np.ndarray  #: dY_A/dt [m/s]
-    theta: np.ndarray  #: rolling angle [rad]
-    thetadot: np.ndarray  #: rolling rate [rad/s]
-    contact_s: np.ndarray  #: s*, rail coordinate of the contact point [m]
-    y_contact: np.ndarray  #: y_B = y(s*), rail displacement under the wheel [m]
-    normal_force: np.ndarray  #: N [N] (0 without contact)
-    tangential_force: np.ndarray  #: lambda, tangential contact force on the wheel [N]
-    slip: np.ndarray  #: slip velocity t.(V_A - S edot) - rho thetadot [m/s]
-    slip_state: np.ndarray  #: 0 no contact, 1 stick, 2 slide (int)
-    v_error: np.ndarray  #: paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100 [%]
-    phi: np.ndarray  #: rail obliquity at the contact point [rad]
-    #: vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss
-    #: (s'' y_s neglected) [m/s^2]. Accelerations converge more slowly in dt than displacements
-    #: with generalized-alpha (its algorithmic accelerations lag): about 5 % RMS at 1e-5 s and
-    #: 0.5 % at 1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type
-    #: acceleration studies (the paper, too, needed a smaller step for accelerations).
-    acc_contact: np.ndarray
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (MODEL.md §8)
-    acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
-    acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
-    acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
-    acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
-    reaction: np.ndarray  #: horizontal force holding X_A = X_0 + v t [N]
-    penetration: np.ndarray  #: rho0 - rho [m] (negative: gap)
-    energy: np.ndarray | None  #: total mechanical energy [J] (``energy=True`` only), see below
-    steps: int  #: time steps taken
-    newton_iterations: int  #: total Newton iterations (generalized-alpha)
-    state_changes: int  #: slip/contact state switches
-    stability_limit: float  #: predicted explicit RK4 stability limit at the start [s]
-    wall_time: float  #: [s]
-    final_state: object = field(repr=False)  #: kernel state at the end (for restarts)
+    scene: Scene  #: the scene, its contact law replaced for the "*/sprung", "*/hertz" levels
+    settings: RunSettings
+    model: object  #: _core.RailModel of the scene on settings.n_elements
+    init: object  #: _core.SimState at the start (None for the linear levels)
+    n_steps: int
+    energy: bool  #: record the total mechanical energy
+    max_newton: int
+    newton_tol: float  #: [m]
+    rolling: bool  #: the rolling flag as given (the linear kernel path has no constraint)
 
     @property
-    def in_contact(self) -> np.ndarray:
-        """Boolean mask of samples with N > 0."""
-        return self.normal_force > 0.0
-
-    @property
-    def lost_contact(self) -> bool:
-        """True if the wheel left the rail at any kept sample."""
-        return bool(np.any(~self.in_contact))
-
-    def contact_free_intervals(self) -> list[tuple[float, float]]:
-        """[(t_lift, t_land), ...] of the kept samples without contact [s]."""
-        free = ~self.in_contact
-        out = []
-        i = 0
-        n = len(free)
-        while i < n:
-            if free[i]:
-                j = i
-                while j + 1 < n and free[j + 1]:
-                    j += 1
-                out.append((float(self.t[i]), float(self.t[j])))
-                i = j + 1
-            else:
-                i += 1
-        return out
+    def linear(self) -> bool:
+        return self.settings.fidelity.startswith("linear/")
 
 
 def _with_law(scene: Scene, law: str) -> Scene:
@@ -134,6 +98,14 @@ def _with_law(scene: Scene, law: str) -> Scene:
         # a given linear k becomes the Hertz constant with the same stiffness at the static load
         k = (scene.contact.stiffness / (1.5 * scene.static_load ** (1 / 3))) ** 1.5
     return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+
+
+def _scene_for(scene: Scene, fidelity: str) -> Scene:
+    if fidelity in ("ancf/sprung", "linear/sprung"):
+        return _with_law(scene, "linear")
+    if fidelity in ("ancf/hertz", "linear/hertz"):
+        return _with_law(scene, "hertz")
+    return scene
 
 
 def _initial_state(scene, model, speed, x_start, start, drop_height):
@@ -174,21 +146,24 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     Parameters
     ----------
     scene : Scene
-    speed : forward speed v >= 0 [m/s] (``trackwheel.kmh(300)`` converts from km/h).
+    speed : forward speed 0 <= v <= ``defaults.MAX_SPEED`` (300) [m/s]
+        (``trackwheel.kmh(300)`` converts from km/h).
     integrator : "generalized_alpha" (default; Chung-Hulbert/Arnold-Bruls, Newton on the analytic
         Jacobian, velocity-level rolling constraint) or "explicit" (the paper's way: acceleration
         -level constraint, classical RK4, optional Baumgarte stabilisation).
     dt : time step [s]; default derived from the scene, ``trackwheel.default_settings``: 150
         steps per period of the wheel on its contact spring (4.96e-6 s for the paper's scene;
-        explicit: also at most half the predicted stability limit); the "linear/..." levels
-        use ``DEFAULT_DT[integrator]``. An explicit dt above the predicted stability limit
+        explicit: also at most half the predicted stability limit), the same at every
+        fidelity level. An explicit dt above the predicted stability limit
         warns (``trackwheel.StabilityWarning``) before the run.
     n_elements : rail elements; default: with dt also unset, derived from the scene (8 per
         support bay, at least ``scene.rail.n_elements``: 80 for the paper's scene), which keeps
         the amplitude within 1 % of a refined run at 50-400 km/h (benchmarks/README.md); with
-        dt given, or for the "linear/..." levels, ``scene.rail.n_elements``.
+        dt given, ``scene.rail.n_elements``. The same at every fidelity level. Fewer elements
+        than support bays warn (``trackwheel.MeshWarning``).
     x_start, x_end : wheel-centre start and end [m]; default the middle of the first support bay
-        and the middle of the last (0.25 m and 4.75 m for the paper's scene). With ``speed = 0``
+        and the middle of the last (``trackwheel.defaults.default_start`` / ``default_end``:
+        0.25 m and 4.75 m for the paper's scene). With ``speed = 0``
         give ``duration`` instead of ``x_end``.
     duration : simulated time [s] (overrides ``x_end``).
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
@@ -218,45 +193,18 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     DivergenceError : the solution diverged; carries ``time``, ``step`` and ``cause``.
     ValueError, TypeError : bad arguments, naming the parameter and the allowed range.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    L = scene.rail.length
-    speed = v.number("speed", speed, low=0.0, high=300.0, unit="m/s")
-    v.choice("integrator", integrator, set(_INTEGRATORS))
-    v.choice("start", start, {"static", "sudden"})
-    # issue 6: derived defaults (convergence.default_settings) for the ANCF levels, <= 1 %
-    # amplitude error at 50-400 km/h; a given dt keeps the scene's mesh it was chosen for
-    derived = not str(fidelity).startswith("linear/")
-    if n_elements is None:
-        from .convergence import derived_mesh
+    plan = resolve(scene, speed, integrator=integrator, dt=dt, n_elements=n_elements,
+                   x_start=x_start, x_end=x_end, duration=duration, output_every=output_every,
+                   rho_inf=rho_inf, baumgarte=baumgarte, rolling=rolling, start=start,
+                   drop_height=drop_height, energy=energy, fidelity=fidelity, n_modes=n_modes,
+                   max_newton=max_newton, newton_tol=newton_tol)
+    show = None if progress is None else v.boolean("progress", progress)
+    out, wall = _run(plan, kernel_settings(plan), show)
+    return result_from_kernel(out, plan.scene, plan.settings, wall, plan.energy)
 
-        ne = derived_mesh(scene) if (derived and dt is None) else scene.rail.n_elements
-    else:
-        ne = v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    ds = scene.supports.spacing
-    x0 = (0.5 * ds if 0.5 * ds < L else 0.5 * L) if x_start is None else v.number(
-        "x_start", x_start, low=0.0, high=L, unit="m")
-    if duration is not None:
-        t_end = v.number("duration", duration, low=0.0, low_open=True, unit="s")
-        if x0 + speed * t_end > L:
-            raise ValueError(f"duration = {duration} s takes the wheel to "
-                             f"X = {x0 + speed * t_end:.4g} m, beyond the rail end {L} m")
-    else:
-        if speed == 0.0:
-            raise ValueError("speed = 0: give duration [s] (x_end cannot be reached)")
-        x1 = max(L - 0.5 * ds, x0) if x_end is None else v.number(
-            "x_end", x_end, low=0.0, high=L, unit="m")
-        if x1 <= x0:
-            raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m")
-        t_end = (x1 - x0) / speed
-    rho_inf = v.number("rho_inf", rho_inf, low=0.0, high=1.0)
-    baumgarte = v.number("baumgarte", baumgarte, low=0.0, unit="1/s")
-    drop_height = v.number("drop_height", drop_height, low=0.0, high=scene.wheel.radius,
-                           unit="m")
-    max_newton = v.integer("max_newton", max_newton, low=1, high=1000)
-    newton_tol = v.number("newton_tol", newton_tol, low=0.0, low_open=True, unit="m")
-    if not isinstance(rolling, bool):
-        raise TypeError("rolling must be True or False")
+
+def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
+    """(fidelity, n_modes) checked against each other, the integrator and the mesh."""
     v.choice("fidelity", fidelity, set(FIDELITY_LEVELS))
     linear = fidelity.startswith("linear/")
     if linear and integrator != "generalized_alpha":
@@ -267,33 +215,46 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
             raise ValueError(f"n_modes is only used with the linear fidelity levels, not "
                              f"{fidelity!r}")
         n_modes = v.integer("n_modes", n_modes, low=1, high=2 * (ne + 1) - 2)
-    if fidelity in ("ancf/sprung", "linear/sprung"):
-        scene = _with_law(scene, "linear")
-    elif fidelity in ("ancf/hertz", "linear/hertz"):
-        scene = _with_law(scene, "hertz")
+    return fidelity, n_modes
 
-    model = _kernel.rail_model(scene, ne)
-    init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
-    wheel = _kernel.wheel_params(scene)
-    contact = _kernel.contact_params(scene)
-    dt_default = dt is None
+
+def _passage(scene: Scene, speed: float, x_start, x_end, duration) -> tuple[float, float]:
+    """(X_0 [m], simulated time [s]) from the start and either the end or the duration."""
+    L = scene.rail.length
+    x0 = start_position(scene, x_start)
+    if duration is not None:
+        t_end = v.number("duration", duration, low=0.0, low_open=True, unit="s")
+        if x0 + speed * t_end > L:
+            raise ValueError(f"duration = {duration} s takes the wheel to "
+                             f"X = {x0 + speed * t_end:.4g} m, beyond the rail end {L} m")
+        return x0, t_end
+    if speed == 0.0:
+        raise ValueError("speed = 0: give duration [s] (x_end cannot be reached)")
+    x1 = default_end(scene, x0) if x_end is None else v.number(
+        "x_end", x_end, low=0.0, high=L, unit="m")
+    if x1 <= x0:
+        raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m")
+    return x0, (x1 - x0) / speed
+
+
+def _time_step(scene: Scene, dt, integrator: str, linear: bool, model, init, x0: float) -> float:
+    """The time step [s]: ``dt`` checked, or the derived default (explicit: at most half the
+    predicted stability limit). An explicit ``dt`` above the limit warns before the run."""
+    explicit = integrator == "explicit" and not linear
+    wheel, contact = _kernel.wheel_params(scene), _kernel.contact_params(scene)
     if dt is None:
-        if derived:
-            from .convergence import derived_dt
+        dt = derived_dt(scene)
+        if explicit:
+            dt = min(dt, 0.5 * explicit_limit(model, wheel, contact, init.e, x0, init.y)[0])
+        return dt
+    dt = v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
+    if explicit:  # issue 6: warn before a doomed run (stack: here, resolve, simulate, caller)
+        warn_above_stability_limit(model, wheel, contact, init.e, x0, init.y, dt, stacklevel=5)
+    return dt
 
-            dt = derived_dt(scene)
-        else:
-            dt = DEFAULT_DT[integrator]
-        if integrator == "explicit" and not linear:
-            omega = _core.highest_frequency(model, wheel, contact, init.e, x0, init.y)
-            dt = min(dt, 0.5 * _core.explicit_stability_limit(omega))
-    else:
-        dt = v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
-        if integrator == "explicit" and not linear:  # issue 6: warn before a doomed run
-            from .convergence import warn_above_stability_limit
 
-            warn_above_stability_limit(model, wheel, contact, init.e, x0, init.y, dt)
-    n_steps = int(round(t_end / dt))
+def _steps(dt: float, t_end: float, dt_default: bool) -> int:
+    n_steps = round(t_end / dt)
     if n_steps < 1:
         raise ValueError(f"dt = {dt} s ({'default' if dt_default else 'given'}) is longer than "
                          f"the simulated time {t_end:.6g} s; allowed range (0, {t_end:.6g}] s")
@@ -301,6 +262,12 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s, above "
                          f"the limit of {MAX_STEPS:.0e} steps; allowed range "
                          f"[{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s")
+    return n_steps
+
+
+def _output_every(output_every, n_steps: int) -> int:
+    """``output_every`` checked (default: at most DEFAULT_MAX_SAMPLES samples) against the
+    output size limit MAX_OUTPUT_BYTES."""
     if output_every is None:
         output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))
     output_every = v.integer("output_every", output_every, low=1, high=2**31 - 1)
@@ -311,72 +278,106 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
             f"({n_samples * _N_FIELDS * 8 / 2**30:.1f} GiB), above the limit of "
             f"{MAX_OUTPUT_BYTES / 2**30:.0f} GiB: increase output_every to at least "
             f"{math.ceil(n_steps * _N_FIELDS * 8 / MAX_OUTPUT_BYTES)}")
+    return output_every
 
+
+def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, x_end, duration,
+            output_every, rho_inf, baumgarte, rolling, start, drop_height, energy, fidelity,
+            n_modes, max_newton, newton_tol) -> RunPlan:
+    """Validate the arguments of :func:`simulate`, resolve its defaults (the same derived mesh
+    and step at every fidelity level) and rewrite the scene for the fidelity level."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    speed = check_speed(speed)
+    v.choice("integrator", integrator, set(_INTEGRATORS))
+    v.choice("start", start, {"static", "sudden"})
+    ne = (derived_mesh(scene) if dt is None else scene.rail.n_elements) if n_elements is None \
+        else v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
+    x0, t_end = _passage(scene, speed, x_start, x_end, duration)
+    rho_inf = v.number("rho_inf", rho_inf, low=0.0, high=1.0)
+    baumgarte = v.number("baumgarte", baumgarte, low=0.0, unit="1/s")
+    drop_height = v.number("drop_height", drop_height, low=0.0, high=scene.wheel.radius,
+                           unit="m")
+    max_newton = v.integer("max_newton", max_newton, low=1, high=1000)
+    newton_tol = v.number("newton_tol", newton_tol, low=0.0, low_open=True, unit="m")
+    if not isinstance(rolling, bool):
+        raise TypeError("rolling must be True or False")
+    fidelity, n_modes = _check_fidelity(fidelity, integrator, n_modes, ne)
+    linear = fidelity.startswith("linear/")
+    energy = v.boolean("energy", energy)
+    warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
+    scene = _scene_for(scene, fidelity)
+    model = _kernel.rail_model(scene, ne)
+    init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
+    h = _time_step(scene, dt, integrator, linear, model, init, x0)
+    n_steps = _steps(h, t_end, dt is None)
+    output_every = _output_every(output_every, n_steps)
+    settings = RunSettings(
+        integrator=integrator, dt=h, n_elements=ne, speed=speed, x_start=x0,
+        t_end=n_steps * h, output_every=output_every, rho_inf=rho_inf, baumgarte=baumgarte,
+        rolling=rolling and not linear, start=start, drop_height=drop_height, fidelity=fidelity,
+        n_modes=n_modes)
+    return RunPlan(scene=scene, settings=settings, model=model, init=init, n_steps=n_steps,
+                   energy=energy, max_newton=max_newton, newton_tol=newton_tol,
+                   rolling=rolling)
+
+
+def kernel_settings(plan: RunPlan) -> _core.SimSettings:
+    """The kernel's settings struct for ``plan`` (progress_every is set by the runner)."""
+    st = plan.settings
     s = _core.SimSettings()
-    s.integrator = _INTEGRATORS[integrator]
-    s.speed = speed
-    s.x_start = x0
-    s.t_end = n_steps * dt
-    s.dt = dt
-    s.rho_inf = rho_inf
-    s.baumgarte = baumgarte
-    s.friction = scene.contact.friction
-    s.rolling = rolling
-    s.output_every = output_every
-    s.max_newton = max_newton
-    s.newton_tol = newton_tol
-    s.record_energy = v.boolean("energy", energy)
+    s.integrator = _INTEGRATORS[st.integrator]
+    s.speed = st.speed
+    s.x_start = st.x_start
+    s.t_end = st.t_end
+    s.dt = st.dt
+    s.rho_inf = st.rho_inf
+    s.baumgarte = st.baumgarte
+    s.friction = plan.scene.contact.friction
+    s.rolling = plan.rolling
+    s.output_every = st.output_every
+    s.max_newton = plan.max_newton
+    s.newton_tol = plan.newton_tol
+    s.record_energy = plan.energy
+    return s
 
-    bar = None
-    callback = None
-    # a bar for runs estimated (conservatively) to take more than a few seconds
-    est = n_steps * _STEP_COST_PER_ELEMENT * (ne + 10)
-    show = (est > 5.0) if progress is None else v.boolean("progress", progress)
-    # Ctrl-C is checked at every callback: about every _PROGRESS_INTERVAL seconds of wall time
+
+def _progress(plan: RunPlan, s, show: bool | None):
+    """(callback, bar) for the kernel; sets ``s.progress_every``. The callback is where the
+    kernel checks for Ctrl-C, so there is always one, about every _PROGRESS_INTERVAL seconds."""
+    n_steps, ne = plan.n_steps, plan.settings.n_elements
+    est = n_steps * _STEP_COST_PER_ELEMENT * (ne + 10)  # conservative wall-time estimate [s]
     every = max(1, min(20_000, int(_PROGRESS_INTERVAL / (_STEP_COST_PER_ELEMENT * (ne + 10)))))
-    if show:
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=n_steps, unit="step", desc=f"simulate {speed * 3.6:.0f} km/h")
-        s.progress_every = max(1, min(every, n_steps // 100 or 1))
-
-        def callback(step, total):
-            bar.update(step - bar.n)
-    else:
+    if not (est > 5.0 if show is None else show):
         s.progress_every = every
+        return (lambda step, total: None), None
+    from tqdm.auto import tqdm
 
-        def callback(step, total):  # still lets Ctrl-C through every progress_every steps
-            return None
+    bar = tqdm(total=n_steps, unit="step", desc=f"simulate {plan.settings.speed * 3.6:.0f} km/h")
+    s.progress_every = max(1, min(every, n_steps // 100 or 1))
 
+    def callback(step, total):
+        bar.update(step - bar.n)
+
+    return callback, bar
+
+
+def _run(plan: RunPlan, s, show: bool | None) -> tuple[dict, float]:
+    """Run the kernel on ``plan`` with settings ``s``: (its output dict, wall time [s])."""
+    callback, bar = _progress(plan, s, show)
+    wheel, contact = _kernel.wheel_params(plan.scene), _kernel.contact_params(plan.scene)
     t0 = _time.perf_counter()
     try:
-        if linear:
+        if plan.linear:
             opt = _core.LinearOptions()
-            opt.wheel_model = getattr(_core.WheelModel, fidelity.split("/")[1])
-            opt.n_modes = 0 if n_modes is None else n_modes
-            opt.sudden = start == "sudden"
-            opt.drop_height = drop_height
-            d = _core.simulate_linear(model, wheel, contact, s, opt, callback)
-            d["final_state"] = None
+            opt.wheel_model = getattr(_core.WheelModel, plan.settings.fidelity.split("/")[1])
+            opt.n_modes = plan.settings.n_modes or 0
+            opt.sudden = plan.settings.start == "sudden"
+            opt.drop_height = plan.settings.drop_height
+            out = _core.simulate_linear(plan.model, wheel, contact, s, opt, callback)
         else:
-            d = _core.simulate(model, wheel, contact, s, init, callback)
+            out = _core.simulate(plan.model, wheel, contact, s, plan.init, callback)
     finally:
         if bar is not None:
             bar.close()
-    wall = _time.perf_counter() - t0
-
-    settings = dict(integrator=integrator, dt=dt, n_elements=ne, speed=speed, x_start=x0,
-                    t_end=n_steps * dt, output_every=output_every, rho_inf=rho_inf,
-                    baumgarte=baumgarte, rolling=rolling and not linear, start=start,
-                    drop_height=drop_height, fidelity=fidelity, n_modes=n_modes)
-    return Result(
-        scene=scene, settings=settings, t=d["t"], x_wheel=d["x_wheel"], y_wheel=d["y_wheel"],
-        ydot_wheel=d["ydot_wheel"], theta=d["theta"], thetadot=d["thetadot"],
-        contact_s=d["contact_s"], y_contact=d["y_contact"], normal_force=d["normal_force"],
-        tangential_force=d["tangential_force"], slip=d["slip"], slip_state=d["state"],
-        v_error=d["v_error"], phi=d["phi"], acc_contact=d["acc_contact"], acc_A=d["acc_A"],
-        acc_B=d["acc_B"], acc_C=d["acc_C"], acc_D=d["acc_D"], acc_E=d["acc_E"],
-        reaction=d["reaction"], penetration=d["penetration"],
-        energy=d["energy"] if energy else None, steps=d["steps"],
-        newton_iterations=d["newton_iterations"], state_changes=d["state_changes"],
-        stability_limit=d["stability_limit"], wall_time=wall, final_state=d["final_state"])
+    return out, _time.perf_counter() - t0

@@ -1,4 +1,4 @@
-"""Published rail-irregularity spectra as one-sided PSDs in SI units (MODEL.md §10).
+"""Published rail-irregularity spectra as one-sided PSDs in SI units (docs: Model § Irregularities).
 
 Every spectrum here is a frozen, picklable value that is called with the spatial angular
 frequency Omega = 2 pi / lambda [rad/m] and returns S(Omega) [m^2/(rad/m)], **one-sided**:
@@ -245,7 +245,7 @@ def third_octave(wavelengths, levels_db, label: str = "one-third-octave spectrum
 
 def iso3095() -> ThirdOctaveSpectrum:
     """ISO 3095:2013 rail-roughness limit spectrum: one-third-octave levels [dB re 1 um] from
-    17.1 dB at lambda = 40 cm to -11.0 dB at 0.315 cm (MODEL.md §10), as a
+    17.1 dB at lambda = 40 cm to -11.0 dB at 0.315 cm (docs: Model § Irregularities), as a
     :class:`ThirdOctaveSpectrum` (valid lambda ~ 0.28-45 cm)."""
     return third_octave([x / 100.0 for x in _ISO_LAMBDA_CM], _ISO_LEVELS,
                         "ISO 3095:2013 limit")

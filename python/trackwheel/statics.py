@@ -1,4 +1,4 @@
-"""Static equilibrium and the quasi-static contact line (MODEL.md §8).
+"""Static equilibrium and the quasi-static contact line (docs: Model § Outputs).
 
 ``static`` solves the nonlinear ANCF rail on its supports, under its own weight, with the wheel
 held at ``x_wheel`` and pressed down by P = F + M g through the contact law (Newton on the
@@ -31,6 +31,13 @@ class StaticResult:
     n_elements: int  #: mesh used
     iterations: int  #: Newton iterations
 
+    def __repr__(self) -> str:
+        return (f"<trackwheel.StaticResult: wheel at X = {self.x_wheel:.4g} m, "
+                f"{self.n_elements} elements>\n"
+                f"  y_contact = {self.y_contact:.6g} m, y_wheel = {self.y_wheel:.6g} m, "
+                f"N = {self.normal_force:.6g} N, s* = {self.contact_s:.6g} m "
+                f"({self.iterations} Newton iterations)")
+
     def rail_shape(self, n_points: int = 201) -> tuple[np.ndarray, np.ndarray]:
         """(x, y) of the deflected rail at ``n_points`` material points [m]."""
         n_points = v.integer("n_points", n_points, low=2, high=10**7)
@@ -49,6 +56,13 @@ class QuasiStatic:
     y_wheel: np.ndarray  #: wheel-centre height, (n,) [m]
     contact_s: np.ndarray  #: s*, (n,) [m]
     normal_force: np.ndarray  #: N, (n,) [N]
+
+    def __repr__(self) -> str:
+        x, y = self.positions, self.y_contact
+        return (f"<trackwheel.QuasiStatic: {x.size} wheel positions "
+                f"X = {x.min():.4g}..{x.max():.4g} m>\n"
+                f"  y_qs = {y.min():.6g}..{y.max():.6g} m, "
+                f"N = {self.normal_force.min():.6g}..{self.normal_force.max():.6g} N")
 
 
 def _mesh(scene: Scene, n_elements) -> int:

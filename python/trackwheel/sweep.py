@@ -34,8 +34,9 @@ parent running threads (Jupyter, progress bars, Dask). Its workers import the ma
 command and ``max_workers=1`` need nothing). Records are written by the calling process as the
 cases come back, so any executor works, local or remote.
 
-Failed cases: a case whose run diverges (:class:`trackwheel.DivergenceError`) or is rejected
-(``ValueError``, e.g. a speed above simulate's range) becomes a row with its message in
+Failed cases: a case whose run diverges (:class:`trackwheel.DivergenceError`), is rejected
+(``ValueError``, e.g. a speed above simulate's range) or cannot start (``RuntimeError``: the
+static solve at the start failed) becomes a row with its message in
 ``error`` and NaN outputs, and the sweep carries on. Such rows are stored too: they are
 deterministic (same inputs, same version, same failure), so re-running a sweep does not retry
 them unless ``retry_errors=True``. Any other exception is a bug or an interruption: the sweep
@@ -59,6 +60,7 @@ import warnings
 from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -66,8 +68,12 @@ from . import _validate as v
 from ._errors import DivergenceError
 from ._version import __version__
 from .analysis import analyse
+from .fidelity import adequacy
 from .scene import Scene
 from .simulate import simulate
+
+if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
+    import pandas as pd
 
 __all__ = ["COLUMNS", "load_sweep", "sweep"]
 
@@ -126,21 +132,24 @@ def _error_row(scene: Scene, speed: float, kwargs: dict, message: str, wall: flo
 
 
 def _run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
-    """Simulate and analyse one case; DivergenceError and ValueError become an error row."""
+    """Simulate and analyse one case; DivergenceError, ValueError and the kernel's RuntimeError
+    (a failed static solve) become an error row."""
     t0 = time.perf_counter()
     try:
         r = simulate(scene, speed, progress=False, **kwargs)
         a = analyse(r)
-    except (DivergenceError, ValueError) as exc:
+    except (DivergenceError, ValueError, RuntimeError) as exc:
+        # RuntimeError: the kernel's static solve at the start failed (e.g. a load that pushes
+        # the rail off its supports) -- a property of the case, like a divergence
         return _error_row(scene, speed, kwargs, f"{type(exc).__name__}: {exc}",
                           time.perf_counter() - t0)
     s = r.settings
-    row = {name: s[name] for name in _SETTINGS}
+    row = {name: getattr(s, name) for name in _SETTINGS}
     row.update(
         amplitude=a.amplitude, main_frequency=a.main_frequency,
         frequency_resolution=a.frequency_resolution, min_contact_force=a.min_contact_force,
         max_contact_force=a.max_contact_force, lost_contact=a.lost_contact, error="",
-        wall_time=r.wall_time, x_end=s["x_start"] + s["speed"] * s["t_end"], steps=r.steps)
+        wall_time=r.wall_time, x_end=s.x_end, steps=r.steps)
     return row
 
 
@@ -239,7 +248,7 @@ def _frame(rows: list[dict]):
     return df
 
 
-def load_sweep(path) -> pandas.DataFrame:  # noqa: F821
+def load_sweep(path) -> pd.DataFrame:
     """Load every sound record of a sweep store (``path``: the ``store=`` directory) into a
     DataFrame with the columns of :func:`sweep` (see the module docstring for the format),
     sorted by speed, support stiffness and case hash. Records that fail their checks are left
@@ -321,7 +330,7 @@ def _terminate(pool: ProcessPoolExecutor) -> None:
 def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | None = None,
           max_workers: int | None = None, store=None, progress: bool = True,
           retry_errors: bool = False, fidelity_tol: float = 0.005,
-          **simulate_kwargs) -> pandas.DataFrame:  # noqa: F821
+          **simulate_kwargs) -> pd.DataFrame:
     """Run ``simulate`` + ``analyse`` for every (speed, support stiffness) pair.
 
     Parameters
@@ -359,8 +368,8 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
     ------
     ValueError, TypeError : bad arguments (empty, non-positive, NaN or duplicate values,
         unknown simulate keywords), before anything runs.
-    Any exception other than DivergenceError/ValueError from a case, and KeyboardInterrupt:
-    re-raised after the finished cases are stored.
+    Any exception other than DivergenceError/ValueError/RuntimeError from a case, and
+    KeyboardInterrupt: re-raised after the finished cases are stored.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
@@ -376,17 +385,15 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
     _jsonable(kwargs)  # the store hashes them: plain numbers, strings, bools, None
     auto = None
     if kwargs.get("fidelity") == "auto":
-        from .fidelity import adequacy
-
         fidelity_tol = v.number("fidelity_tol", fidelity_tol, low=0.0, low_open=True)
         sample_v, sample_k = float(np.max(speeds)), float(np.min(stiffs))
         rest = {key: val for key, val in kwargs.items() if key != "fidelity"}
         table = adequacy(_case_scene(scene, sample_k), speeds=[sample_v], tol=fidelity_tol,
                          **rest)
         kwargs["fidelity"] = table.attrs["recommended"]
-        auto = dict(chosen=kwargs["fidelity"], sample_speed=sample_v,
-                    sample_support_stiffness=sample_k, tol=fidelity_tol,
-                    table=table.to_dict("records"))
+        auto = {"chosen": kwargs["fidelity"], "sample_speed": sample_v,
+                    "sample_support_stiffness": sample_k, "tol": fidelity_tol,
+                    "table": table.to_dict("records")}
     if executor is not None and not isinstance(executor, Executor):
         raise TypeError(f"executor must be a concurrent.futures.Executor, "
                         f"got {type(executor).__name__}")
