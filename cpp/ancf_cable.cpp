@@ -188,8 +188,8 @@ void cable_bending(const CableSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
       for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) {
           const double p = h.ns[i] * h.nss[j] - h.nss[i] * h.ns[j];
-          d2c(2 * i, 2 * j + 1) += p;      // J(0,1) = 1
-          d2c(2 * i + 1, 2 * j) -= p;      // J(1,0) = -1
+          d2c(2 * i, 2 * j + 1) += p;  // J(0,1) = 1
+          d2c(2 * i + 1, 2 * j) -= p;  // J(1,0) = -1
         }
     }
     double kappa;

@@ -34,12 +34,12 @@ Mat28 shape_matrix(const double n[4]);
 void gauss_points(int n, double* xi, double* w);
 
 struct CableSection {
-  double length;       // element length l [m]
-  double EA;           // axial stiffness [N]
-  double EI;           // bending stiffness [N m^2]
-  double rhoA;         // mass per length [kg/m]
+  double length;  // element length l [m]
+  double EA;      // axial stiffness [N]
+  double EI;      // bending stiffness [N m^2]
+  double rhoA;    // mass per length [kg/m]
   bool exact_curvature = true;
-  int n_gauss = 5;     // Gauss points per element
+  int n_gauss = 5;  // Gauss points per element
 };
 
 // Gauss points and shape functions for one element length, computed once and reused.

@@ -29,6 +29,7 @@ class BandMatrix {
   // y = A x
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   Eigen::MatrixXd dense() const;
+  bool is_zero() const { return data_.isZero(0.0); }  // every stored entry exactly 0
   // In-place LU (no pivoting). Returns false on a zero or non-finite pivot.
   bool factorize();
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;  // after factorize()

@@ -4,7 +4,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -14,11 +17,14 @@
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "eigen_analysis.hpp"
+#include "generalized_alpha.hpp"
+#include "limits.hpp"
 #include "linear_track.hpp"
-#include "rolling.hpp"
+#include "model.hpp"
+#include "output.hpp"
 #include "rail.hpp"
+#include "rolling.hpp"
 #include "statics.hpp"
-#include "wheel.hpp"
 
 namespace py = pybind11;
 using namespace trackwheel;
@@ -58,31 +64,25 @@ py::array_t<T> as_array(std::vector<T>&& v) {
   return py::array_t<T>(static_cast<py::ssize_t>(owner->size()), owner->data(), free_owner);
 }
 
+// Every field of the output table under its name: per-wheel fields (n_samples, n_wheels),
+// the others (n_samples,); integer fields as int32. Plus the run's counters.
 py::dict output_to_dict(SimOutput&& o) {
   py::dict d;
-  d["t"] = as_array(std::move(o.t));
-  d["x_wheel"] = as_array(std::move(o.x_wheel));
-  d["y_wheel"] = as_array(std::move(o.y_wheel));
-  d["ydot_wheel"] = as_array(std::move(o.ydot_wheel));
-  d["theta"] = as_array(std::move(o.theta));
-  d["thetadot"] = as_array(std::move(o.thetadot));
-  d["contact_s"] = as_array(std::move(o.contact_s));
-  d["y_contact"] = as_array(std::move(o.y_contact));
-  d["normal_force"] = as_array(std::move(o.normal_force));
-  d["tangential_force"] = as_array(std::move(o.tangential_force));
-  d["slip"] = as_array(std::move(o.slip));
-  d["v_error"] = as_array(std::move(o.v_error));
-  d["phi"] = as_array(std::move(o.phi));
-  d["acc_contact"] = as_array(std::move(o.acc_contact));
-  d["acc_A"] = as_array(std::move(o.acc_A));
-  d["acc_B"] = as_array(std::move(o.acc_B));
-  d["acc_C"] = as_array(std::move(o.acc_C));
-  d["acc_D"] = as_array(std::move(o.acc_D));
-  d["acc_E"] = as_array(std::move(o.acc_E));
-  d["reaction"] = as_array(std::move(o.reaction));
-  d["penetration"] = as_array(std::move(o.penetration));
-  d["energy"] = as_array(std::move(o.energy));
-  d["state"] = as_array(std::move(o.state));
+  const auto& table = output_fields();
+  const py::ssize_t nw = o.rec.n_wheels();
+  for (int f = 0; f < kFieldCount; ++f) {
+    std::vector<double>& col = o.rec.column(f);
+    const py::ssize_t n = static_cast<py::ssize_t>(col.size());
+    py::array arr;
+    if (table[f].integer) {
+      std::vector<int32_t> ints(col.begin(), col.end());
+      arr = as_array(std::move(ints));
+    } else {
+      arr = as_array(std::move(col));
+    }
+    if (table[f].per_wheel) arr = arr.attr("reshape")(n / nw, nw);
+    d[table[f].name] = arr;
+  }
   d["steps"] = o.steps;
   d["newton_iterations"] = o.newton_iterations;
   d["factorizations"] = o.factorizations;
@@ -92,14 +92,37 @@ py::dict output_to_dict(SimOutput&& o) {
   return d;
 }
 
+py::tuple output_table() {
+  py::list rows;
+  for (const FieldInfo& f : output_fields())
+    rows.append(
+        py::make_tuple(f.name, f.unit, f.doc, f.per_wheel, f.integer ? "int32" : "float64"));
+  return py::tuple(rows);
+}
+
+Model make_model(const RailModel& rail, const std::vector<WheelParams>& wheels,
+                 const ContactParams& contact) {
+  return Model{rail, wheels, contact};
+}
+
+// A dense square as a band matrix of half bandwidth b (entries outside the band ignored).
+BandMatrix band_of(const Eigen::MatrixXd& A, int b) {
+  if (A.rows() != A.cols()) throw std::invalid_argument("A must be square");
+  if (b < 0) throw std::invalid_argument("half_bandwidth must be >= 0");
+  const int n = static_cast<int>(A.rows());
+  BandMatrix M(n, b);
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - b); i <= std::min(n - 1, j + b); ++i) M.at(i, j) = A(i, j);
+  return M;
+}
+
 // Guards for hostile input at the binding level: the kernel indexes rail coordinate vectors
 // without bounds checks, so every binding taking one checks its size first (std::invalid_argument
 // becomes ValueError in Python).
 void check_coordinates(const RailModel& rail, const Eigen::VectorXd& e, const char* name) {
   if (e.size() != rail.n_dof())
     throw std::invalid_argument(std::string(name) + " has " + std::to_string(e.size()) +
-                                " entries; this rail has n_dof = " +
-                                std::to_string(rail.n_dof()));
+                                " entries; this rail has n_dof = " + std::to_string(rail.n_dof()));
 }
 
 // progress(step, n_steps) called from the time loop with the GIL held; it is also where Ctrl-C
@@ -127,18 +150,27 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("exact_curvature", &CableSection::exact_curvature)
       .def_readwrite("n_gauss", &CableSection::n_gauss);
   m.def("cable_mass", &cable_mass, "Element mass matrix (8x8) [kg]");
-  m.def("cable_elastic", [](const CableSection& c, const Vec8& e) {
-    Vec8 Q; Mat8 K; double U;
-    cable_elastic(c, e, &Q, &K, &U);
-    return py::make_tuple(Q, K, U);
-  }, "Elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy U [J]");
+  m.def(
+      "cable_elastic",
+      [](const CableSection& c, const Vec8& e) {
+        Vec8 Q;
+        Mat8 K;
+        double U;
+        cable_elastic(c, e, &Q, &K, &U);
+        return py::make_tuple(Q, K, U);
+      },
+      "Elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy U [J]");
   m.def("cable_axial", [](const CableSection& c, const Vec8& e) {
-    Vec8 Q; Mat8 K; double U;
+    Vec8 Q;
+    Mat8 K;
+    double U;
     cable_axial(c, e, &Q, &K, &U);
     return py::make_tuple(Q, K, U);
   });
   m.def("cable_bending", [](const CableSection& c, const Vec8& e) {
-    Vec8 Q; Mat8 K; double U;
+    Vec8 Q;
+    Mat8 K;
+    double U;
     cable_bending(c, e, &Q, &K, &U);
     return py::make_tuple(Q, K, U);
   });
@@ -175,7 +207,9 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("radius", &WheelParams::radius)
       .def_readwrite("load", &WheelParams::load)
       .def_readwrite("torque", &WheelParams::torque)
-      .def_readwrite("gravity", &WheelParams::gravity);
+      .def_readwrite("gravity", &WheelParams::gravity)
+      .def_readwrite("x_offset", &WheelParams::x_offset,
+                     "X_A - (X_0 + v t), the wheel's place along the vehicle [m]");
   py::enum_<ContactLaw>(m, "ContactLaw")
       .value("linear", ContactLaw::Linear)
       .value("hertz", ContactLaw::Hertz);
@@ -184,7 +218,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("law", &ContactParams::law)
       .def_readwrite("stiffness", &ContactParams::stiffness)
       .def_readwrite("damping", &ContactParams::damping)
-      .def_readwrite("radius", &ContactParams::radius);
+      .def_readwrite("radius", &ContactParams::radius)
+      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
 
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
@@ -196,10 +231,13 @@ PYBIND11_MODULE(_core, m) {
            }),
            py::arg("x0"), py::arg("dx"), py::arg("coefficients"))
       .def_property_readonly("empty", &Profile::empty)
-      .def("__call__", [](const Profile& p, double x) {
-        const ProfileValue v = p(x);
-        return py::make_tuple(v.r, v.rx, v.rxx);
-      }, "(r, dr/dX, d2r/dX2) at X");
+      .def(
+          "__call__",
+          [](const Profile& p, double x) {
+            const ProfileValue v = p(x);
+            return py::make_tuple(v.r, v.rx, v.rxx);
+          },
+          "(r, dr/dX, d2r/dX2) at X");
 
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())
@@ -213,48 +251,67 @@ PYBIND11_MODULE(_core, m) {
       .def("reference", &RailModel::reference)
       .def("mass_dense", &RailModel::mass_dense)
       .def("mass_band_dense", [](const RailModel& r) { return r.mass().dense(); })
-      .def("tangent_dense", [](const RailModel& r, const Eigen::VectorXd& e) {
-        check_coordinates(r, e, "e");
-        return r.tangent_dense(e);
-      })
+      .def("tangent_dense",
+           [](const RailModel& r, const Eigen::VectorXd& e) {
+             check_coordinates(r, e, "e");
+             return r.tangent_dense(e);
+           })
       .def("gravity_force", &RailModel::gravity_force)
-      .def("internal_force", [](const RailModel& r, const Eigen::VectorXd& e) {
-        check_coordinates(r, e, "e");
-        Eigen::VectorXd Q; double U;
-        r.internal_force(e, nullptr, Q, &U);
-        return py::make_tuple(Q, U);
-      })
-      .def("positions", [](const RailModel& r, const Eigen::VectorXd& e,
-                           const std::vector<double>& s) {
-        check_coordinates(r, e, "e");
-        for (double si : s)
-          if (!std::isfinite(si)) throw std::invalid_argument("s must be finite [m]");
-        Eigen::MatrixXd out(s.size(), 2);
-        for (size_t i = 0; i < s.size(); ++i) out.row(i) = r.position(e, r.locate(s[i]));
-        return out;
-      }, "Rail points r(s) (n, 2) [m] for material coordinates s [m]");
+      .def("internal_force",
+           [](const RailModel& r, const Eigen::VectorXd& e) {
+             check_coordinates(r, e, "e");
+             Eigen::VectorXd Q;
+             double U;
+             r.internal_force(e, nullptr, Q, &U);
+             return py::make_tuple(Q, U);
+           })
+      .def(
+          "positions",
+          [](const RailModel& r, const Eigen::VectorXd& e, const std::vector<double>& s) {
+            check_coordinates(r, e, "e");
+            for (double si : s)
+              if (!std::isfinite(si)) throw std::invalid_argument("s must be finite [m]");
+            Eigen::MatrixXd out(s.size(), 2);
+            for (size_t i = 0; i < s.size(); ++i) out.row(i) = r.position(e, r.locate(s[i]));
+            return out;
+          },
+          "Rail points r(s) (n, 2) [m] for material coordinates s [m]");
 
-  m.def("contact_eval", [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya,
-                           double s_guess, const ContactParams& cp, const Vec10& qdot) {
-    check_coordinates(rail, e, "e");
-    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
-    const ContactForce cf = contact_force(cp, pt, qdot, true);
-    py::dict d;
-    d["s"] = pt.s; d["element"] = pt.mp.element; d["rho"] = pt.rho; d["phi"] = pt.phi;
-    d["normal"] = Eigen::Vector2d(pt.n); d["tangent"] = Eigen::Vector2d(pt.t);
-    d["y_contact"] = pt.r.y();
-    d["surface"] = Eigen::Vector2d(pt.p);
-    d["N"] = cf.N; d["active"] = cf.active; d["F"] = cf.F; d["K"] = cf.K; d["C"] = cf.C;
-    d["grad_rho"] = cf.grad_rho;
-    return d;
-  }, "Contact point and force for q = [X_A, Y_A, e_el]");
+  m.def(
+      "contact_eval",
+      [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya, double s_guess,
+         const ContactParams& cp, const Vec10& qdot) {
+        check_coordinates(rail, e, "e");
+        const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
+        const ContactForce cf = contact_force(cp, pt, qdot, true);
+        py::dict d;
+        d["s"] = pt.s;
+        d["element"] = pt.mp.element;
+        d["rho"] = pt.rho;
+        d["phi"] = pt.phi;
+        d["normal"] = Eigen::Vector2d(pt.n);
+        d["tangent"] = Eigen::Vector2d(pt.t);
+        d["y_contact"] = pt.r.y();
+        d["surface"] = Eigen::Vector2d(pt.p);
+        d["N"] = cf.N;
+        d["active"] = cf.active;
+        d["F"] = cf.F;
+        d["K"] = cf.K;
+        d["C"] = cf.C;
+        d["grad_rho"] = cf.grad_rho;
+        return d;
+      },
+      "Contact point and force for q = [X_A, Y_A, e_el]");
 
-  m.def("static_solve", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
-                           double x) {
-    StaticResult r;
-    { py::gil_scoped_release nogil; r = solve_static(rail, w, c, x); }
-    return static_to_dict(r);
-  });
+  m.def("static_solve",
+        [](const RailModel& rail, const WheelParams& w, const ContactParams& c, double x) {
+          StaticResult r;
+          {
+            py::gil_scoped_release nogil;
+            r = solve_static(rail, w, c, x);
+          }
+          return static_to_dict(r);
+        });
   m.def("rail_static", [](const RailModel& rail) {
     py::gil_scoped_release nogil;
     return solve_rail_static(rail);
@@ -262,23 +319,36 @@ PYBIND11_MODULE(_core, m) {
   m.def("quasi_static", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
                            const std::vector<double>& x) {
     std::vector<StaticResult> rs;
-    { py::gil_scoped_release nogil; rs = solve_quasi_static(rail, w, c, x); }
+    {
+      py::gil_scoped_release nogil;
+      rs = solve_quasi_static(rail, w, c, x);
+    }
     const size_t n = rs.size();
     Eigen::VectorXd yc(n), yw(n), sc(n), N(n);
     for (size_t i = 0; i < n; ++i) {
-      yc(i) = rs[i].y_contact; yw(i) = rs[i].y_wheel; sc(i) = rs[i].contact_s;
+      yc(i) = rs[i].y_contact;
+      yw(i) = rs[i].y_wheel;
+      sc(i) = rs[i].contact_s;
       N(i) = rs[i].normal_force;
     }
     py::dict d;
-    d["y_contact"] = yc; d["y_wheel"] = yw; d["contact_s"] = sc; d["normal_force"] = N;
+    d["y_contact"] = yc;
+    d["y_wheel"] = yw;
+    d["contact_s"] = sc;
+    d["normal_force"] = N;
     return d;
   });
-  m.def("vertical_modes", [](const RailModel& rail, double M, double k,
-                             const std::vector<double>& x, int n_modes) {
-    ModalResult r;
-    { py::gil_scoped_release nogil; r = vertical_modes(rail, M, k, x, n_modes); }
-    return modal_to_tuple(r);
-  }, "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))");
+  m.def(
+      "vertical_modes",
+      [](const RailModel& rail, double M, double k, const std::vector<double>& x, int n_modes) {
+        ModalResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = vertical_modes(rail, M, k, x, n_modes);
+        }
+        return modal_to_tuple(r);
+      },
+      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))");
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
@@ -300,7 +370,6 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("dt", &SimSettings::dt)
       .def_readwrite("rho_inf", &SimSettings::rho_inf)
       .def_readwrite("baumgarte", &SimSettings::baumgarte)
-      .def_readwrite("friction", &SimSettings::friction)
       .def_readwrite("rolling", &SimSettings::rolling)
       .def_readwrite("output_every", &SimSettings::output_every)
       .def_readwrite("max_newton", &SimSettings::max_newton)
@@ -308,67 +377,90 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("reuse_jacobian", &SimSettings::reuse_jacobian)
       .def_readwrite("record_energy", &SimSettings::record_energy)
       .def_readwrite("progress_every", &SimSettings::progress_every);
+  py::class_<WheelState>(m, "WheelState")
+      .def(py::init<>())
+      .def_readwrite("y", &WheelState::y, "Y_A [m]")
+      .def_readwrite("ydot", &WheelState::ydot, "dY_A/dt [m/s]")
+      .def_readwrite("theta", &WheelState::theta, "rolling angle [rad]")
+      .def_readwrite("thetadot", &WheelState::thetadot, "rolling rate [rad/s]")
+      .def_readwrite("s", &WheelState::s, "contact parameter warm start [m]")
+      .def_readwrite("state", &WheelState::state)
+      .def_readwrite("sigma", &WheelState::sigma, "sign of the sliding friction force");
   py::class_<SimState>(m, "SimState")
       .def(py::init<>())
-      .def_readwrite("e", &SimState::e)
-      .def_readwrite("edot", &SimState::edot)
-      .def_readwrite("y", &SimState::y)
-      .def_readwrite("ydot", &SimState::ydot)
-      .def_readwrite("theta", &SimState::theta)
-      .def_readwrite("thetadot", &SimState::thetadot)
-      .def_readwrite("s", &SimState::s)
-      .def_readwrite("state", &SimState::state)
-      .def_readwrite("sigma", &SimState::sigma);
+      .def_readwrite("e", &SimState::e, "rail coordinates (n_dof,)")
+      .def_readwrite("edot", &SimState::edot, "rail velocities (n_dof,)")
+      .def_readwrite("wheels", &SimState::wheels,
+                     "one WheelState per wheel (a copy: assign the whole list)");
 
-  static py::exception<DivergenceError> div_exc(m, "KernelDivergenceError", PyExc_RuntimeError);
+  // trackwheel.DivergenceError(message, time=, step=, cause=) for the kernel's DivergenceError
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const DivergenceError& e) {
-      // raise trackwheel.DivergenceError(message, time=, step=, cause=)
       py::object cls = py::module_::import("trackwheel._errors").attr("DivergenceError");
       py::object exc = cls(e.what(), e.time, e.step, e.cause);
       PyErr_SetObject(cls.ptr(), exc.ptr());
     }
   });
 
-  m.def("simulate", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
-                       const SimSettings& s, const SimState& init, py::object progress) {
-    const ProgressFn fn = python_progress(progress);
-    SimOutput o;
-    {
-      py::gil_scoped_release nogil;
-      o = simulate(rail, w, c, s, init, fn);
-    }
-    return output_to_dict(std::move(o));
-  }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
-     py::arg("initial"), py::arg("progress") = py::none(),
-     "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
-     "settings.progress_every steps with the GIL held, which also checks for Ctrl-C)");
-  m.def("highest_frequency", [](const RailModel& rail, const WheelParams& w,
-                                const ContactParams& c, const Eigen::VectorXd& e, double x,
-                                double y) {
-    check_coordinates(rail, e, "e");
-    return highest_frequency(rail, w, c, e, x, y);
-  },
-        "omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system");
+  m.attr("OUTPUT_FIELDS") = output_table();
+  m.attr("MAX_ELEMENTS") = limits::kMaxElements;
+  m.attr("GAUSS_RANGE") = py::make_tuple(limits::kMinGauss, limits::kMaxGauss);
+  m.attr("MAX_SPEED") = limits::kMaxSpeed;
+
+  m.def(
+      "simulate",
+      [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
+         const SimSettings& s, const SimState& init, py::object progress) {
+        const ProgressFn fn = python_progress(progress);
+        const Model model = make_model(rail, wheels, c);
+        SimOutput o;
+        {
+          py::gil_scoped_release nogil;
+          o = simulate(model, s, init, fn);
+        }
+        return output_to_dict(std::move(o));
+      },
+      py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
+      py::arg("initial"), py::arg("progress") = py::none(),
+      "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
+      "settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns "
+      "{field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and "
+      "the counters steps, newton_iterations, factorizations, state_changes, stability_limit, "
+      "final_state");
+  m.def(
+      "highest_frequency",
+      [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
+         const Eigen::VectorXd& e, double x, double y) {
+        check_coordinates(rail, e, "e");
+        return highest_frequency(make_model(rail, {w}, c), e, {x}, {y});
+      },
+      "omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system");
   m.def("explicit_stability_limit", &explicit_stability_limit);
   m.def("time_band_factor_solve", &time_band_factor_solve, py::arg("rail"), py::arg("cq"),
         py::arg("cv"), py::arg("repeats"), py::arg("bordered") = false,
         "Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)");
-  m.def("rolling_eval", [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya,
-                           double s_guess, const Vec10& qdot, double thetadot) {
-    check_coordinates(rail, e, "e");
-    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
-    Vec10 grad;
-    distance_derivatives(pt, grad, nullptr);
-    const RollingKinematics k = rolling_kinematics(pt, grad, qdot, thetadot, true);
-    py::dict d;
-    d["g"] = k.g; d["b"] = Vec11(k.b); d["dg_dq"] = Vec10(k.dg_dq);
-    d["db_dq"] = Mat11x10(k.db_dq); d["ds_dq"] = Vec10(k.ds_dq); d["s"] = pt.s;
-    d["s_dot"] = k.s_dot;
-    return d;
-  }, "Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]");
+  m.def(
+      "rolling_eval",
+      [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya, double s_guess,
+         const Vec10& qdot, double thetadot) {
+        check_coordinates(rail, e, "e");
+        const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xa, ya), s_guess);
+        Vec10 grad;
+        distance_derivatives(pt, grad, nullptr);
+        const RollingKinematics k = rolling_kinematics(pt, grad, qdot, thetadot, true);
+        py::dict d;
+        d["g"] = k.g;
+        d["b"] = Vec11(k.b);
+        d["dg_dq"] = Vec10(k.dg_dq);
+        d["db_dq"] = Mat11x10(k.db_dq);
+        d["ds_dq"] = Vec10(k.ds_dq);
+        d["s"] = pt.s;
+        d["s_dot"] = k.s_dot;
+        return d;
+      },
+      "Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]");
 
   py::enum_<WheelModel>(m, "WheelModel")
       .value("moving_force", WheelModel::MovingForce)
@@ -381,17 +473,102 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("n_modes", &LinearOptions::n_modes)
       .def_readwrite("sudden", &LinearOptions::sudden)
       .def_readwrite("drop_height", &LinearOptions::drop_height);
-  m.def("simulate_linear", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
-                              const SimSettings& s, const LinearOptions& opt,
-                              py::object progress) {
-    const ProgressFn fn = python_progress(progress);
-    SimOutput o;
-    {
-      py::gil_scoped_release nogil;
-      o = simulate_linear(rail, w, c, s, opt, fn);
-    }
-    return output_to_dict(std::move(o));
-  }, py::arg("rail"), py::arg("wheel"), py::arg("contact"), py::arg("settings"),
-     py::arg("options"), py::arg("progress") = py::none(),
-     "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
+  m.def(
+      "simulate_linear",
+      [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
+         const SimSettings& s, const LinearOptions& opt, py::object progress) {
+        const ProgressFn fn = python_progress(progress);
+        const Model model = make_model(rail, wheels, c);
+        SimOutput o;
+        {
+          py::gil_scoped_release nogil;
+          o = simulate_linear(model, s, opt, fn);
+        }
+        py::dict d = output_to_dict(std::move(o));
+        d["final_state"] = py::none();
+        return d;
+      },
+      py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
+      py::arg("options"), py::arg("progress") = py::none(),
+      "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
+
+  // ---------------------------------------------------------------- test hooks
+  m.def(
+      "ga_probe",
+      [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
+         const SimSettings& s, const SimState& init, double t1, std::optional<Eigen::VectorXd> x) {
+        const Model model = make_model(rail, wheels, c);
+        check_settings(s);
+        check_model(model);
+        check_coordinates(rail, init.e, "initial.e");
+        if (static_cast<int>(init.wheels.size()) != model.n_wheels())
+          throw std::invalid_argument("initial needs one WheelState per wheel");
+        System sys(model, s);
+        SimState st = init;
+        Eval ev;
+        Accel acc;
+        sys.evaluate(0.0, st, true, ev);
+        for (int w = 0; w < sys.n_wheels(); ++w) st.wheels[w].s = ev.w[w].pt.s;
+        sys.accelerations(st, ev, acc);
+        SimOutput out;
+        const Divergence div(s, [] { return std::string("probe"); });
+        GeneralizedAlpha ga(sys, st, ev, acc, out, div);
+        const int nf = sys.n_free(), m = sys.n_border();
+        Eigen::VectorXd start(nf + m);
+        start << rail.to_free(acc.edd), acc.x;
+        Accel it = acc;
+        if (x) {
+          if (x->size() != nf + m)
+            throw std::invalid_argument(
+                "x must have n_free + 3 n_wheels = " + std::to_string(nf + m) + " entries");
+          it.edd = Eigen::VectorXd::Zero(rail.n_dof());
+          rail.add_from_free(x->head(nf), it.edd);
+          it.x = x->tail(m);
+        }
+        Eigen::VectorXd minus_r;
+        Eigen::MatrixXd J;
+        ga.probe(t1, it, minus_r, J);
+        py::dict d;
+        d["start"] = start;
+        d["residual"] = minus_r;
+        d["matrix"] = J;
+        return d;
+      },
+      py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
+      py::arg("initial"), py::arg("t1"), py::arg("x") = py::none(),
+      "Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] "
+      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel] (None: the start "
+      "accelerations). Returns {'start': the start accelerations in that layout, 'residual': "
+      "-r, 'matrix': the iteration matrix dr/dx (assembled, dense)}");
+  m.def(
+      "band_solve",
+      [](const Eigen::MatrixXd& A, int half_bandwidth, const Eigen::VectorXd& r) {
+        BandMatrix M = band_of(A, half_bandwidth);
+        if (r.size() != M.size()) throw std::invalid_argument("r must match A");
+        if (!M.factorize()) throw std::runtime_error("band matrix is singular");
+        Eigen::VectorXd x = r;
+        M.solve_in_place(x);
+        return x;
+      },
+      py::arg("A"), py::arg("half_bandwidth"), py::arg("r"),
+      "Test hook: solve A x = r by the band LU (no pivoting) of A's band");
+  m.def(
+      "bordered_solve",
+      [](const Eigen::MatrixXd& A, int half_bandwidth, const Eigen::MatrixXd& B,
+         const Eigen::MatrixXd& C, const Eigen::MatrixXd& D, const Eigen::VectorXd& r1,
+         const Eigen::VectorXd& r2) {
+        BandMatrix M = band_of(A, half_bandwidth);
+        const int n = M.size(), k = static_cast<int>(D.rows());
+        if (B.rows() != n || B.cols() != k || C.rows() != k || C.cols() != n || D.cols() != k ||
+            r1.size() != n || r2.size() != k)
+          throw std::invalid_argument("bordered_solve: inconsistent shapes");
+        BorderedSolver solver;
+        if (!solver.factorize(M, B, C, D)) throw std::runtime_error("bordered matrix is singular");
+        Eigen::VectorXd x1, x2;
+        solver.solve(r1, r2, x1, x2);
+        return py::make_tuple(x1, x2);
+      },
+      py::arg("A"), py::arg("half_bandwidth"), py::arg("B"), py::arg("C"), py::arg("D"),
+      py::arg("r1"), py::arg("r2"),
+      "Test hook: solve [A B; C D] [x1; x2] = [r1; r2] with the bordered band solver");
 }

@@ -102,6 +102,33 @@ void distance_derivatives(const ContactPoint& pt, Vec10& grad, Mat10* hess) {
   }
 }
 
+double elastic_normal_force(ContactLaw law, double k, double delta, double& slope) {
+  if (law == ContactLaw::Linear) {
+    slope = k;
+    return k * delta;
+  }
+  if (delta <= 0.0) {
+    slope = 0.0;
+    return 0.0;
+  }
+  const double sq = std::sqrt(delta);
+  slope = 1.5 * k * sq;
+  return k * delta * sq;
+}
+
+double contact_potential(ContactLaw law, double k, double delta) {
+  if (law == ContactLaw::Linear) return 0.5 * k * delta * delta;
+  return delta > 0.0 ? 0.4 * k * delta * delta * std::sqrt(delta) : 0.0;
+}
+
+double static_compression(ContactLaw law, double k, double P) {
+  return law == ContactLaw::Linear ? P / k : std::pow(P / k, 2.0 / 3.0);
+}
+
+double linearised_stiffness(ContactLaw law, double k, double P) {
+  return law == ContactLaw::Linear ? k : 1.5 * std::pow(k, 2.0 / 3.0) * std::cbrt(P);
+}
+
 ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, const Vec10& qdot,
                            bool want_jacobian) {
   ContactForce out;
@@ -112,15 +139,8 @@ ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, cons
   out.K.setZero();
   out.C.setZero();
   if (out.delta <= 0.0) return out;
-  double Ne, dNe;  // elastic force and its derivative with respect to delta
-  if (cp.law == ContactLaw::Linear) {
-    Ne = cp.stiffness * out.delta;
-    dNe = cp.stiffness;
-  } else {
-    const double sq = std::sqrt(out.delta);
-    Ne = cp.stiffness * out.delta * sq;
-    dNe = 1.5 * cp.stiffness * sq;
-  }
+  double dNe;  // derivative of the elastic force with respect to delta
+  const double Ne = elastic_normal_force(cp.law, cp.stiffness, out.delta, dNe);
   const double delta_dot = -out.grad_rho.dot(qdot);
   const double N = Ne + cp.damping * delta_dot;
   if (N <= 0.0) return out;  // a damper cannot pull

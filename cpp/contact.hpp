@@ -35,8 +35,20 @@ struct ContactParams {
   ContactLaw law = ContactLaw::Linear;
   double stiffness = 0.0;  // k [N/m] (linear) or C_H [N/m^1.5] (Hertz)
   double damping = 0.0;    // contact damping c [N s/m]
-  double radius = 0.1;     // undeformed wheel radius rho0 [m]
+  double radius = 0.0;     // undeformed wheel radius rho0 [m] (Model::contact_of sets it)
+  double friction = 0.0;   // mu, friction coefficient of the slip judgement [-]
 };
+
+// Elastic normal force N_e(delta) [N] and its slope dN_e/d(delta) [N/m] of the law, for the
+// full and linear paths alike: k delta (linear, also for delta < 0: the linear path's bilateral
+// spring) or C_H delta^1.5 (Hertz, 0 for delta <= 0).
+double elastic_normal_force(ContactLaw law, double stiffness, double delta, double& slope);
+// Contact potential V(delta) [J] with dV/d(delta) = N_e: k delta^2/2 or 2/5 C_H delta^2.5.
+double contact_potential(ContactLaw law, double stiffness, double delta);
+// Compression under the static load P [N]: P/k or (P/C_H)^(2/3) [m].
+double static_compression(ContactLaw law, double stiffness, double P);
+// Stiffness of the law linearised at the static load P: k, or 1.5 C_H^(2/3) P^(1/3) [N/m].
+double linearised_stiffness(ContactLaw law, double stiffness, double P);
 
 struct ContactPoint {
   double s = 0.0;              // contact parameter s* on the rail [m]

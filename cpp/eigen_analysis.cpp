@@ -18,8 +18,8 @@ std::vector<int> direction_dofs(const RailModel& rail, int component) {
 
 void solve_pencil(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int n_modes,
                   Eigen::VectorXd& f, Eigen::MatrixXd& V) {
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M, Eigen::ComputeEigenvectors |
-                                                                        Eigen::Ax_lBx);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
+      K, M, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
   if (es.info() != Eigen::Success) throw std::runtime_error("eigenvalue solve failed");
   const Eigen::VectorXd w2 = es.eigenvalues();
   f.resize(n_modes);

@@ -15,9 +15,9 @@
 namespace trackwheel {
 
 struct ModalResult {
-  Eigen::MatrixXd frequencies;         // (n_positions, n_modes) [Hz], ascending
-  std::vector<Eigen::MatrixXd> shapes; // per position: (n_dof + 1, n_modes), rail full coords
-                                       // then the wheel's Y_w; mass-normalised
+  Eigen::MatrixXd frequencies;          // (n_positions, n_modes) [Hz], ascending
+  std::vector<Eigen::MatrixXd> shapes;  // per position: (n_dof + 1, n_modes), rail full coords
+                                        // then the wheel's Y_w; mass-normalised
 };
 
 // wheel_mass <= 0: the bare rail on its supports (positions then must hold one dummy entry).

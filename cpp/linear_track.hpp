@@ -11,14 +11,17 @@
 //   Hertz        N = C_H delta^1.5 for delta > 0, else 0 (unilateral: loss of contact).
 // Contact stays vertical at X_A (no obliquity, no contact-point search, no rolling constraint:
 // the tangential dynamics do not enter the vertical problem of a straight linear beam).
-// Generalized-alpha (Arnold-Bruls form) with the constant band part factorised once; the wheel
-// and the contact force are a 2-wide border, so each step costs one band solve for the moving
-// coupling plus one for the right-hand side (one Newton iteration for the linear levels).
+// Generalized-alpha (Arnold-Bruls form, the coefficients of generalized_alpha.hpp) with the
+// constant band part factorised once; each wheel and its contact force are a 2-wide border, so
+// a step costs one band solve per wheel for the moving coupling (cached per element) plus one
+// for the right-hand side (one Newton iteration for the linear levels). The time loop,
+// watchdog and divergence reports are time_loop.hpp's, the contact law contact.hpp's.
 #pragma once
 
 #include <Eigen/Core>
 
-#include "dynamics.hpp"
+#include "model.hpp"
+#include "time_loop.hpp"
 
 namespace trackwheel {
 
@@ -26,13 +29,13 @@ enum class WheelModel { MovingForce = 0, MovingMass = 1, Sprung = 2, Hertz = 3 }
 
 struct LinearOptions {
   WheelModel wheel_model = WheelModel::Sprung;
-  int n_modes = 0;          // 0: all coordinates (factorise once); > 0: modal superposition
-  bool sudden = false;      // start: false = static equilibrium, true = rail under own weight
-  double drop_height = 0.0; // wheel lifted this much at the start [m]
+  int n_modes = 0;           // 0: all coordinates (factorise once); > 0: modal superposition
+  bool sudden = false;       // start: false = static equilibrium, true = rail under own weight
+  double drop_height = 0.0;  // wheel lifted this much at the start [m]
 };
 
-SimOutput simulate_linear(const RailModel& rail, const WheelParams& wheel,
-                          const ContactParams& contact, const SimSettings& settings,
+// Every model wheel is of options.wheel_model; wheel w acts at X_0 + x_offset_w + v t.
+SimOutput simulate_linear(const Model& model, const SimSettings& settings,
                           const LinearOptions& options, const ProgressFn& progress = nullptr);
 
 }  // namespace trackwheel

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "limits.hpp"
+
 namespace trackwheel {
 
 namespace {
@@ -17,19 +19,22 @@ void require(bool ok, const std::string& msg) {
 RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Profile profile)
     : p_(rail), sup_(supports), profile_(std::move(profile)) {
   require(std::isfinite(p_.length) && p_.length > 0, "rail length must be > 0 m");
-  require(p_.n_elements >= 1 && p_.n_elements <= 100000, "n_elements must be in [1, 100000]");
+  require(p_.n_elements >= 1 && p_.n_elements <= limits::kMaxElements,
+          "n_elements must be in [1, " + std::to_string(limits::kMaxElements) + "]");
   require(std::isfinite(p_.EA) && p_.EA > 0, "EA must be > 0 N");
   require(std::isfinite(p_.EI) && p_.EI > 0, "EI must be > 0 N m^2");
   require(std::isfinite(p_.rhoA) && p_.rhoA > 0, "rho A must be > 0 kg/m");
-  require(p_.n_gauss >= 1 && p_.n_gauss <= 10, "n_gauss must be in [1, 10]");
+  require(p_.n_gauss >= limits::kMinGauss && p_.n_gauss <= limits::kMaxGauss,
+          "n_gauss must be in [" + std::to_string(limits::kMinGauss) + ", " +
+              std::to_string(limits::kMaxGauss) + "]");
   require(std::isfinite(p_.gravity), "gravity must be finite");
   const size_t ns = sup_.position.size();
   require(sup_.stiffness.size() == ns && sup_.damping.size() == ns,
           "support position, stiffness and damping must have the same length");
   for (size_t j = 0; j < ns; ++j) {
-    require(std::isfinite(sup_.position[j]) && sup_.position[j] >= 0 &&
-                sup_.position[j] <= p_.length,
-            "support positions must lie in [0, L]");
+    require(
+        std::isfinite(sup_.position[j]) && sup_.position[j] >= 0 && sup_.position[j] <= p_.length,
+        "support positions must lie in [0, L]");
     require(std::isfinite(sup_.stiffness[j]) && sup_.stiffness[j] >= 0,
             "support stiffness must be >= 0 N/m");
     require(std::isfinite(sup_.damping[j]) && sup_.damping[j] >= 0,
@@ -48,9 +53,9 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   // boundary conditions
   const int nd = n_dof();
   full_to_free_.assign(nd, 0);
-  full_to_free_[0] = -1;               // x(0) = 0
-  full_to_free_[1] = -1;               // y(0) = 0
-  full_to_free_[nd - 4 + 1] = -1;      // y(L) = 0
+  full_to_free_[0] = -1;           // x(0) = 0
+  full_to_free_[1] = -1;           // y(0) = 0
+  full_to_free_[nd - 4 + 1] = -1;  // y(L) = 0
   if (p_.pin_far_end) full_to_free_[nd - 4] = -1;
   for (int i = 0; i < nd; ++i) {
     if (full_to_free_[i] == 0) {

@@ -20,15 +20,16 @@
 
 namespace trackwheel {
 
+// No physics defaults (they live in trackwheel.Scene): an unset field fails validation.
 struct RailParams {
-  double length = 5.0;          // L [m]
+  double length = 0.0;          // L [m]
   double EA = 0.0;              // axial stiffness E A [N]
   double EI = 0.0;              // bending stiffness E I [N m^2]
   double rhoA = 0.0;            // mass per length rho A [kg/m]
-  int n_elements = 20;          // number of ANCF elements [-]
+  int n_elements = 0;           // number of ANCF elements [-], 1..limits::kMaxElements
   bool exact_curvature = true;  // kappa = (r_s x r_ss)/|r_s|^3 (true) or r_s x r_ss (false)
-  int n_gauss = 5;              // Gauss points per element for the elastic forces [-]
-  double gravity = 9.8;         // g acting on the rail [m/s^2] (0 switches rail weight off)
+  int n_gauss = 0;              // Gauss points per element for the elastic forces [-], 2..10
+  double gravity = 0.0;         // g acting on the rail [m/s^2] (0 switches rail weight off)
   bool pin_far_end = false;     // fix x at s = L too
 };
 
@@ -66,15 +67,15 @@ class RailModel {
 
   Eigen::VectorXd reference() const;  // straight, undeformed rail [m, m, -, -]
   MeshPoint locate(double s) const;   // s clamped to [0, L]
-  Eigen::Vector2d position(const Eigen::VectorXd& e, const MeshPoint& p) const;  // r [m]
-  Eigen::Vector2d slope(const Eigen::VectorXd& e, const MeshPoint& p) const;     // r_s [-]
+  Eigen::Vector2d position(const Eigen::VectorXd& e, const MeshPoint& p) const;          // r [m]
+  Eigen::Vector2d slope(const Eigen::VectorXd& e, const MeshPoint& p) const;             // r_s [-]
   Eigen::Vector2d curvature_vector(const Eigen::VectorXd& e, const MeshPoint& p) const;  // r_ss
 
   const Mat8& element_mass() const { return Me_; }
-  const BandMatrix& mass() const { return M_; }                       // free x free [kg]
-  const BandMatrix& support_stiffness() const { return Ks_; }         // free x free [N/m]
-  const BandMatrix& support_damping() const { return Cs_; }           // free x free [N s/m]
-  const Eigen::VectorXd& gravity_force() const { return Qg_; }        // full [N]
+  const BandMatrix& mass() const { return M_; }                 // free x free [kg]
+  const BandMatrix& support_stiffness() const { return Ks_; }   // free x free [N/m]
+  const BandMatrix& support_damping() const { return Cs_; }     // free x free [N s/m]
+  const Eigen::VectorXd& gravity_force() const { return Qg_; }  // full [N]
   double total_mass() const { return p_.rhoA * p_.length; }
 
   // Elastic (axial + bending) + support spring (+ support damper if edot) forces, full

@@ -23,12 +23,12 @@ using Mat11x10 = Eigen::Matrix<double, 11, 10>;
 Vec10 contact_parameter_gradient(const ContactPoint& pt);
 
 struct RollingKinematics {
-  double g = 0.0;     // slip velocity [m/s] (= the constraint value)
-  Vec11 b;            // dg/dqdot over [V_A(2), edot_el(8), thetadot]
-  Vec10 dg_dq;        // dg/dq at fixed velocities (q = [X_A, Y_A, e_el])
-  Mat11x10 db_dq;     // d b/dq (geometric stiffness of the tangential force)
-  Vec10 ds_dq;        // d s*/dq
-  double s_dot = 0.0; // ds*/dt [m/s]
+  double g = 0.0;      // slip velocity [m/s] (= the constraint value)
+  Vec11 b;             // dg/dqdot over [V_A(2), edot_el(8), thetadot]
+  Vec10 dg_dq;         // dg/dq at fixed velocities (q = [X_A, Y_A, e_el])
+  Mat11x10 db_dq;      // d b/dq (geometric stiffness of the tangential force)
+  Vec10 ds_dq;         // d s*/dq
+  double s_dot = 0.0;  // ds*/dt [m/s]
 };
 
 // qdot = [V_A(2), edot_el(8)], thetadot [rad/s]; grad_rho = d rho/dq.

@@ -9,18 +9,18 @@
 #include <vector>
 
 #include "contact.hpp"
+#include "model.hpp"
 #include "rail.hpp"
-#include "wheel.hpp"
 
 namespace trackwheel {
 
 struct StaticResult {
-  Eigen::VectorXd e;       // rail coordinates, full [m, m, -, -]
-  double x_wheel = 0.0;    // X_A [m]
-  double y_wheel = 0.0;    // Y_A [m]
-  double contact_s = 0.0;  // s* [m]
-  double y_contact = 0.0;  // y(s*), the contact-point displacement y_B [m]
-  double normal_force = 0.0;  // N [N]
+  Eigen::VectorXd e;                 // rail coordinates, full [m, m, -, -]
+  double x_wheel = 0.0;              // X_A [m]
+  double y_wheel = 0.0;              // Y_A [m]
+  double contact_s = 0.0;            // s* [m]
+  double y_contact = 0.0;            // y(s*), the contact-point displacement y_B [m]
+  double normal_force = 0.0;         // N [N]
   double horizontal_reaction = 0.0;  // force holding X_A [N]
   int iterations = 0;
 };
@@ -28,8 +28,7 @@ struct StaticResult {
 // e_guess may be empty (starts from the straight rail).
 StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
                           const ContactParams& contact, double x_wheel,
-                          const Eigen::VectorXd& e_guess = Eigen::VectorXd(),
-                          double y_guess = NAN);
+                          const Eigen::VectorXd& e_guess = Eigen::VectorXd(), double y_guess = NAN);
 
 // Static equilibrium of the rail alone under gravity (no wheel).
 Eigen::VectorXd solve_rail_static(const RailModel& rail);

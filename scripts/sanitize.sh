@@ -3,7 +3,7 @@
 # (CMake option TRACKWHEEL_SANITIZE=ON) and run the fast test suite against it.
 #
 #   bash scripts/sanitize.sh                  # tests/ without the slow marker
-#   bash scripts/sanitize.sh tests/test_robustness.py -x   # any pytest arguments instead
+#   bash scripts/sanitize.sh tests/test_kernel_guards.py -x   # any pytest arguments instead
 #
 # The extension is built with CMake + Ninja into $SANITIZE_BUILD_DIR (default
 # ${TMPDIR:-/tmp}/trackwheel-sanitize, reused between runs) and put next to a copy of the Python
@@ -15,7 +15,9 @@
 # slower instrumented kernel).
 #
 # Needs g++ (or clang) with libasan; installs the build requirements (pybind11, cmeel-eigen,
-# cmake, ninja) into the current Python environment with pip if they are missing.
+# cmake, ninja) into the current Python environment with pip if they are missing. PYTHON names
+# the interpreter (default python3); it must not have trackwheel installed in editable mode,
+# whose import hook would shadow the sanitized copy.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -58,7 +60,7 @@ ninja -C "$build" -j "${SANITIZE_JOBS:-2}" _core
 pkg="$build/pkg/trackwheel"
 rm -rf "$build/pkg"
 mkdir -p "$pkg"
-cp "$repo"/python/trackwheel/*.py "$pkg/"
+cp "$repo"/python/trackwheel/*.py "$repo"/python/trackwheel/*.pyi "$pkg/"
 cp "$build"/_core*.so "$pkg/"
 
 # ---- tests ------------------------------------------------------------------------------------

@@ -190,3 +190,75 @@ def test_decimated_output_uses_the_sample_spacing():
     assert dec.frequency_resolution == pytest.approx(1.0 / (dec.t.size * 4e-5), rel=1e-12)
     np.testing.assert_array_equal(dec.dynamic, full.dynamic[::4])
     assert dec.amplitude <= full.amplitude
+
+
+# --------------------------------------------------------------------------------------------
+# contact-force statistics in analyse (issue 13)
+def test_force_statistics_of_a_known_force(run300):
+    """analyse(run) on a run whose contact force is replaced by a known one: P0 = F + M g =
+    47138 N plus a 0.3 P0 sine on a bin of the record (f = 20 / duration, a whole number of
+    periods, so Parseval puts exactly its mean square A^2/2 in its one-third-octave band:
+    RMS A/sqrt(2) to rounding, < 1e-9 relative), and N = 0 on 25 samples (a contact loss of
+    25 dt, exact with the midpoint rule). The dynamic factor is max N / P0 exactly, and the
+    vibration outputs of analyse do not depend on N (bit-identical to the plain analysis)."""
+    t = run300.t
+    dt = 1e-5
+    p0 = run300.scene.static_load
+    assert p0 == pytest.approx(47040.0 + 98.0, rel=1e-15)
+    f0 = 20.0 / (t.size * dt)
+    amp = 0.3 * p0
+    n = p0 + amp * np.sin(2.0 * math.pi * f0 * t)
+    a = tw.analyse(dc.replace(run300, normal_force=n))
+    k = int(np.argmin(np.abs(a.forces.band_centres - f0)))
+    assert a.forces.band_rms[k] == pytest.approx(amp / math.sqrt(2.0), rel=1e-9)
+    assert a.dynamic_factor == n.max() / p0 and a.loss_duration == 0.0
+    assert a.forces.max_force == n.max() and a.forces.min_force == n.min()
+    plain = tw.analyse(run300)
+    for name in ("amplitude", "amplitude_time", "main_frequency", "frequency_resolution",
+                 "y_qs_error"):
+        assert getattr(a, name) == getattr(plain, name), name
+    n_loss = n.copy()
+    n_loss[300:325] = 0.0
+    b = tw.analyse(dc.replace(run300, normal_force=n_loss))
+    assert b.loss_duration == pytest.approx(25 * dt, rel=1e-9)
+    np.testing.assert_allclose(b.forces.loss_intervals, [[t[300] - dt / 2, t[324] + dt / 2]],
+                               rtol=0, atol=1e-15)
+
+
+def test_p1_p2_after_a_defect(run300):
+    """With defect_at X_d the P1/P2 peaks are the maxima of N in the windows after t_d (the time
+    X_A(t) reaches X_d): two spikes placed 0.3 ms (P1 window, T_1/2 = 0.5 ms) and 4 ms (P2
+    window, up to (T_1 + T_2)/2 = 10.5 ms) after t_d are found with their values and times.
+    Without defect_at there are no peaks (NaN) and the repr says nothing of them."""
+    t, x = run300.t, run300.x_wheel
+    p0 = run300.scene.static_load
+    x_d = 0.3
+    t_d = float(np.interp(x_d, x, t))
+    n = np.full(t.size, p0)
+    i1 = int(np.searchsorted(t, t_d + 3e-4))
+    i2 = int(np.searchsorted(t, t_d + 4e-3))
+    n[i1], n[i2] = 1.8 * p0, 1.3 * p0
+    fake = dc.replace(run300, normal_force=n)
+    a = tw.analyse(fake, defect_at=x_d)
+    f = a.forces
+    assert f.defect_time == pytest.approx(t_d, rel=1e-12)
+    assert (f.p1, f.p1_time, f.p2, f.p2_time) == (1.8 * p0, t[i1], 1.3 * p0, t[i2])
+    assert "P1" in repr(a) and f"{f.p1:.5g}" in repr(a)
+    plain = tw.analyse(fake)
+    assert math.isnan(plain.forces.p1) and "P1" not in repr(plain)
+    with pytest.raises(ValueError, match="defect_at"):
+        tw.analyse(fake, defect_at=2.0)  # the run ends at X = 0.75 m
+
+
+def test_defect_position_is_the_joint_middle():
+    """The P1/P2 reference of a scene is the cusp of its first dipped joint, X_j + l/2 (where
+    the slope of the Kabo dip jumps); no joint, no position."""
+    from trackwheel.force_statistics import defect_position
+
+    irr = tw.Irregularity.sine(0.5, 1e-5) + tw.Irregularity.dipped_joint(2e-3, 0.6, at=2.0)
+    scene = dc.replace(tw.Scene.kato2005(), irregularity=irr)
+    assert defect_position(scene) == pytest.approx(2.3, rel=1e-15)
+    assert defect_position(tw.Scene.kato2005()) is None
+    joint = irr.parts[1]
+    x = np.array([2.3 - 1e-7, 2.3 + 1e-7])
+    assert np.all(np.abs(joint.slope(x)) == pytest.approx(math.pi * 2e-3 / 0.6, rel=1e-6))

@@ -305,3 +305,130 @@ def test_help_has_no_hand_typed_timings(command, capsys):
     assert cli.main([command, "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
     assert not re.search(r"\b(minutes?|hours?|seconds)\b|about \d+ ?s\b|µs", text), text
+
+
+# --------------------------------------------------------------------------------------------
+# excitation options (issue 13)
+def _scene_of(argv):
+    """The scene a `run` command line builds (and its notes)."""
+    args = cli.build_parser().parse_args(["run", "--speed-kmh", "100", *argv])
+    return cli._excited_scene(tw.Scene.kato2005(), args)
+
+
+def test_excitation_options_build_the_api_scene():
+    """--irregularity/--seed/--wavelengths/--joint/--wheel-flat give exactly the scene the API
+    builds: the random part drawn with --seed, a second random part with the seed derived from
+    it (Irregularity.reseeded), the joint added, a new flat half a revolution from the mark."""
+    scene, _ = _scene_of(["--irregularity", "fra:5", "--irregularity", "german:high",
+                          "--seed", "3", "--wavelengths", "2", "50",
+                          "--joint", "0.002,0.5,2.0", "--wheel-flat", "0.05"])
+    spec = tw.spectra
+    irr = (tw.Irregularity.random(spec.fra(5), seed=3, wavelengths=(2.0, 50.0))
+           + tw.Irregularity.random(spec.german("high"), seed=0, wavelengths=(2.0, 50.0))
+           ).reseeded(3) + tw.Irregularity.dipped_joint(0.002, 0.5, 2.0)
+    assert scene.irregularity == irr
+    assert scene.wheel.defects == (tw.WheelFlat(0.05, at_angle=np.pi),)
+    sine, _ = _scene_of(["--irregularity", "sine:0.5,1e-5", "--irregularity", "china"])
+    assert sine.irregularity.parts[0] == tw.Irregularity.sine(0.5, 1e-5).parts[0]
+    assert sine.irregularity.parts[1].seed == 0  # --seed defaults to 0
+    iso, _ = _scene_of(["--irregularity", "iso3095"])
+    assert iso.irregularity.parts[0].spectrum == spec.iso3095()
+    assert _scene_of([])[0] == tw.Scene.kato2005()
+
+
+def test_joint_turns_the_contact_filter_on():
+    """--joint sets Contact.patch_filter (the Kabo cusp curves more sharply than any wheel) and
+    says so; --patch-filter alone sets it too. In a build whose Contact has no patch_filter yet
+    (before the kernel half of issue 13), --joint warns and --patch-filter is refused."""
+    has_filter = "patch_filter" in {f.name for f in dataclasses.fields(tw.Contact)}
+    scene, notes = _scene_of(["--joint", "0.002,0.5,2.0"])
+    if has_filter:
+        assert scene.contact.patch_filter is True and "contact filter on" in notes[0]
+        assert _scene_of(["--patch-filter"])[0].contact.patch_filter is True
+    else:
+        assert notes[0].startswith("warning:") and "patch_filter" in notes[0]
+        with pytest.raises(cli._OptionError, match="--patch-filter"):
+            _scene_of(["--patch-filter"])
+
+
+def test_run_prints_the_force_statistics(capsys):
+    """`run` with an excitation prints it and the force statistics of analyse(run,
+    defect_at=joint middle) on the scene the API builds: dynamic factor and P1/P2 to the
+    printed digits."""
+    argv = ["--irregularity", "fra:5", "--seed", "3", "--wavelengths", "2", "50",
+            "--joint", "0.0005,0.2,0.4"]
+    assert cli.main(["run", "--speed-kmh", "300", *argv, *CHEAP]) == 0
+    printed = capsys.readouterr().out
+    scene, _ = _scene_of(argv)
+    a = tw.analyse(tw.simulate(scene, tw.kmh(300), n_elements=20, dt=1e-5, x_end=0.75),
+                   defect_at=0.5)
+    assert "FRA class 5 (seed 3, 2-50 m), dipped joint 0.5 mm over 0.2 m at X = 0.4 m" in printed
+    assert _value(printed, "dynamic factor") == pytest.approx(a.dynamic_factor, abs=5e-5)
+    assert f"{a.forces.p1 / 1e3:.2f} / {a.forces.p2 / 1e3:.2f} kN" in printed
+    assert "force bands" in printed
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--irregularity", "fra:7"], ["fra:7", "track_class = 7", "[1, 6]"]),
+    (["--irregularity", "fra:x"], ["fra:x", "integer 1..6"]),
+    (["--irregularity", "german:mid"], ["german:mid", "'low'"]),
+    (["--irregularity", "bumpy"], ["unknown irregularity 'bumpy'", "fra:N"]),
+    (["--irregularity", "sine:0.5"], ["WAVELENGTH,AMPLITUDE"]),
+    (["--irregularity", "fra:5", "--wavelengths", "0.5", "50"],
+     ["--wavelengths (0.5, 50) m is outside the validity band of FRA class 5",
+      "[1.524, 304.8] m"]),
+    (["--irregularity", "fra:5", "--wavelengths", "0", "50"], ["positive"]),
+    (["--seed", "3"], ["--seed", "random --irregularity"]),
+    (["--irregularity", "fra:5", "--seed", "-1"], ["--seed -1", "allowed range"]),
+    (["--joint", "-0.002,0.5,2"], ["--joint", "depth = -0.002", "allowed range"]),
+    (["--joint", "0.002,0.5"], ["DEPTH,LENGTH,AT"]),
+    (["--joint", "0.002,0.5,4.8"], ["--joint", "leaves the rail", "[0, 4.5] m"]),
+    (["--wheel-flat", "-0.05"], ["--wheel-flat", "> 0 m"]),
+    (["--wheel-flat", "0.3"], ["--wheel-flat", "shorter than the wheel's diameter"]),
+])
+def test_bad_excitation_values_are_one_line(argv, words, capsys):
+    assert cli.main(["run", "--speed-kmh", "100", *argv, *CHEAP]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "error:" in err
+    for w in words:
+        assert w in err, (w, err)
+
+
+def test_seed_lists_and_ranges(tmp_path, capsys):
+    """--seeds takes ranges and lists (0-2,5 is 0, 1, 2, 5); bad ones are one-line errors."""
+    assert cli._seed_list("0-2,5") == [0, 1, 2, 5] and cli._seed_list("7") == [7]
+    store = str(tmp_path / "s")
+    for bad, word in (("5-3", "empty seed range"), ("a", "0-19"), ("-1", "0-19")):
+        assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store,
+                         "--irregularity", "fra:5", "--seeds", bad]) == 2
+        err = capsys.readouterr().err
+        assert len(err.splitlines()) == 1 and word in err, err
+    assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store, "--seeds", "0-2"]) == 2
+    assert "random --irregularity" in capsys.readouterr().err
+    assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store, "--irregularity",
+                     "fra:5", "--seeds", "1", "0-2"]) == 2
+    assert "twice" in capsys.readouterr().err
+    assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store, "--irregularity",
+                     "fra:5", "--seeds", "0-2", "--seed", "4"]) == 2
+    assert "not both" in capsys.readouterr().err
+
+
+def test_sweep_over_seeds(tmp_path, capsys):
+    """`sweep --seeds 0-2` runs one case per (speed, seed) of the reseeded scene, writes the
+    seed and force columns, and prints the percentiles over the seeds per speed (those of
+    summarise_seeds on the written table)."""
+    csv = tmp_path / "t.csv"
+    argv = ["sweep", "--speeds-kmh", "200", "300", "--irregularity", "fra:5", "--wavelengths",
+            "2", "50", "--seeds", "0-2", "--store", str(tmp_path / "s"), "--out", str(csv),
+            "--workers", "1", "--no-progress", *CHEAP]
+    assert cli.main(argv) == 0
+    printed = capsys.readouterr().out
+    table = _csv(csv)
+    assert list(table.seed) == [0, 1, 2, 0, 1, 2] and list(table.speed_kmh) == [200.0] * 3 + [
+        300.0] * 3
+    assert "dynamic_factor" in table.columns and "loss_duration" in table.columns
+    s = tw.summarise_seeds(table, ["max_contact_force", "dynamic_factor"])
+    p = s.loc[tw.kmh(300)]
+    line = [ln for ln in printed.splitlines() if ln.strip().startswith("300 km/h")][0]
+    assert (f"max N {p[('max_contact_force', 'p5')] / 1e3:.4g} / "
+            f"{p[('max_contact_force', 'p50')] / 1e3:.4g}") in line and "(3 seeds)" in line

@@ -87,14 +87,15 @@ def free_vibration(rho_inf, dt, n_steps=1000, integrator="generalized_alpha"):
     init = _core.SimState()
     e = np.asarray(d["e"])
     edot = initial_rail_velocity(model)
-    init.e, init.edot, init.y, init.ydot = e, edot, d["y_wheel"], 0.0
-    init.theta, init.thetadot, init.s = 0.0, 0.0, d["contact_s"]
-    init.state = _core.SlipState.stick
+    w = _core.WheelState()
+    w.y, w.ydot, w.theta, w.thetadot, w.s = d["y_wheel"], 0.0, 0.0, 0.0, d["contact_s"]
+    w.state = _core.SlipState.stick
+    init.e, init.edot, init.wheels = e, edot, [w]
     s = _core.SimSettings()
     s.integrator = getattr(_core.Integrator, integrator)
     s.speed, s.x_start, s.dt, s.t_end = 0.0, 2.5, dt, n_steps * dt
     s.rho_inf, s.record_energy, s.newton_tol = rho_inf, True, 1e-14
-    return _core.simulate(model, wheel, contact, s, init)
+    return _core.simulate(model, [wheel], contact, s, init)
 
 
 def test_energy_conserved_undamped():

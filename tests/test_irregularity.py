@@ -50,7 +50,9 @@ def test_spectral_sum_variance_matches_integral_of_the_spectrum():
     exact, _ = quad(s, 2 * math.pi / BAND[1], 2 * math.pi / BAND[0], epsrel=1e-12)
     # closed form: k A Omega_c^2 / (Omega^2 (Omega^2 + Omega_c^2)) = kA (1/Omega^2 - 1/(..))
     kA, wc = 0.25 * 0.2095e-4, 0.8245
-    prim = lambda w: kA * (-1 / w - math.atan(w / wc) / wc)
+    def prim(w):
+        return kA * (-1 / w - math.atan(w / wc) / wc)
+
     assert exact == pytest.approx(prim(2 * math.pi / 2) - prim(2 * math.pi / 40), rel=1e-10)
     for seed in range(5):
         part = Irregularity.random(s, seed=seed, wavelengths=BAND).parts[0]
@@ -172,7 +174,9 @@ def test_dipped_joint_shape():
 
 def test_samples_reproduce_a_cubic_and_refuse_outside():
     x = np.linspace(0.0, 4.0, 21)
-    cubic = lambda s: 1e-3 * (s**3 - 2 * s**2 + 0.5 * s - 1)
+    def cubic(s):
+        return 1e-3 * (s**3 - 2 * s**2 + 0.5 * s - 1)
+
     irr = Irregularity.samples(x, cubic(x))
     xq = np.linspace(0.0, 4.0, 77)
     # a not-a-knot cubic spline reproduces a cubic exactly (round-off only)
@@ -266,7 +270,9 @@ def test_defect_derivatives_and_period(defect):
         half = (math.asin(defect.length / (2 * RHO0)) if not defect.rounded
                 else defect.length / (2 * RHO0))
         psi = psi[np.abs(np.abs(psi - defect.at_angle) - half) > 1e-3]
-    f = lambda p: defect.delta_rho(p, RHO0)
+    def f(p):
+        return defect.delta_rho(p, RHO0)
+
     # h = 1e-6 for the slope, 1e-4 for the second difference (its round-off eps rho0 / h^2
     # would be 5e-5 at 1e-6); the truncation h^2 |d3 rho| / 6 stays below 1e-9
     d1, _ = _fd(f, psi, 1e-6)

@@ -376,3 +376,143 @@ def test_ctrl_c_keeps_finished_cases_and_stops_the_workers(tmp_path):
     assert not alive
     df = tw.load_sweep(store)  # warnings are errors: every record is sound
     assert 2 <= len(df) < 8 and (df.error == "").all()
+
+
+# --------------------------------------------------------------------------------------------
+# the seed axis (issue 13): these check the plumbing (which profile each case runs, rows,
+# records, executors), not the physics of the profile
+RANDOM = (tw.Irregularity.random(tw.spectra.fra(5), seed=0, wavelengths=(1.6, 50.0))
+          + tw.Irregularity.sine(0.5, 1e-5)
+          + tw.Irregularity.random(tw.spectra.german("low"), seed=0, wavelengths=(2.0, 40.0)))
+ROUGH = dc.replace(SCENE, irregularity=RANDOM)
+
+
+def test_reseeded_draws_every_random_part_afresh():
+    """reseeded(s): the first random part takes seed s (the same profile as
+    Irregularity.random(seed=s)), the second the derived seed of (s, 1), the sine is kept;
+    different seeds give different profiles, the same seed the same one bit for bit."""
+    from trackwheel.irregularity import derived_seed
+
+    r3 = RANDOM.reseeded(3)
+    assert [p.seed for p in r3.parts if p.kind == "random"] == [3, derived_seed(3, 1)]
+    assert r3.parts[1] == RANDOM.parts[1] and RANDOM.n_random == 2
+    assert derived_seed(3, 1) not in (3, derived_seed(4, 1), derived_seed(3, 2))
+    x = np.linspace(0.0, 5.0, 501)
+    alone = tw.Irregularity.random(tw.spectra.fra(5), seed=3, wavelengths=(1.6, 50.0))
+    np.testing.assert_array_equal(r3.parts[0].value(x), alone(x))
+    np.testing.assert_array_equal(RANDOM.reseeded(3)(x), r3(x))
+    assert np.max(np.abs(RANDOM.reseeded(4)(x) - r3(x))) > 1e-4  # mm-scale profiles differ
+    with pytest.raises(ValueError, match="no random part"):
+        tw.Irregularity.sine(0.5, 1e-5).reseeded(1)
+    with pytest.raises(ValueError, match="seed"):
+        RANDOM.reseeded(-1)
+
+
+def test_seed_axis_rows_records_and_resume(tmp_path):
+    """One row per (speed, stiffness, seed), seed minor; each case runs the scene with
+    irregularity.reseeded(seed) (its record's inputs say so); the seeds are distinct cases in
+    the store, and a re-run with a subset of the seeds reads them back unchanged (same seed,
+    identical row)."""
+    store = tmp_path / "s"
+    df = tw.sweep(ROUGH, SPEEDS, seeds=[0, 3], max_workers=1, store=store, progress=False,
+                  **KW)
+    assert list(df.seed) == [0, 3, 0, 3] and list(df.speed) == [SPEEDS[0]] * 2 + [SPEEDS[1]] * 2
+    assert df.case.nunique() == 4 and len(records(store)) == 4
+    for p in records(store):
+        rec = json.loads(p.read_text())
+        seed = rec["inputs"]["seed"]
+        parts = rec["inputs"]["scene"]["irregularity"]["parts"]
+        expected = dc.asdict(RANDOM.reseeded(seed))["parts"]
+        assert rec["row"]["seed"] == seed and parts == json.loads(json.dumps(expected))
+    again = tw.sweep(ROUGH, SPEEDS, seeds=[3], max_workers=1, store=store, progress=False,
+                     **KW)
+    assert again.attrs == {"computed": 0, "from_store": 2}
+    pd.testing.assert_frame_equal(again, df[df.seed == 3].reset_index(drop=True),
+                                  check_exact=True)
+    assert df.seed.dtype == "Int64" and tw.sweep(ROUGH, SPEEDS[0], max_workers=1,
+                                                 progress=False, **KW).seed.isna().all()
+
+
+def test_seed_axis_same_rows_whatever_the_executor():
+    """The Monte Carlo rows are identical serially, on 2 processes, on threads and on a local
+    Dask cluster (each case a deterministic run of its own reseeded scene)."""
+    kw = dict(seeds=[1, 2, 5], progress=False, **KW)
+    ref = tw.sweep(ROUGH, SPEEDS[1], max_workers=1, **kw)
+    two = tw.sweep(ROUGH, SPEEDS[1], max_workers=2, **kw)
+    pd.testing.assert_frame_equal(no_wall(two), no_wall(ref), check_exact=True)
+    with cf.ThreadPoolExecutor(2) as ex:
+        threads = tw.sweep(ROUGH, SPEEDS[1], executor=ex, **kw)
+    pd.testing.assert_frame_equal(no_wall(threads), no_wall(ref), check_exact=True)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        dask = tw.sweep(ROUGH, SPEEDS[1], executor=client.get_executor(), **kw)
+    pd.testing.assert_frame_equal(no_wall(dask), no_wall(ref), check_exact=True)
+
+
+def _with_patch_filter(scene):
+    """The Kabo joint's cusp needs the contact filter once the kernel reads the profile
+    (Contact.patch_filter, the kernel half of issue 13); before that the field does not exist."""
+    if "patch_filter" in {f.name for f in dc.fields(tw.Contact)}:
+        return dc.replace(scene, contact=dc.replace(scene.contact, patch_filter=True))
+    return scene
+
+
+def test_force_columns_are_the_analysis_of_each_case():
+    """The force-statistics columns are analyse(run, defect_at=joint middle).forces of the
+    case's own run, bit for bit; force_rms is the RMS of N - mean(N); with the joint's middle
+    (0.35 m) inside the run, P1/P2 are there, without a joint they are NaN."""
+    irr = RANDOM + tw.Irregularity.dipped_joint(1e-4, 0.1, at=0.3)
+    scene = _with_patch_filter(dc.replace(SCENE, irregularity=irr))
+    df = tw.sweep(scene, SPEEDS[1], seeds=[7], max_workers=1, progress=False, **KW)
+    case = dc.replace(scene, irregularity=irr.reseeded(7))
+    r = tw.simulate(case, SPEEDS[1], **KW)
+    a = tw.analyse(r, defect_at=0.35)
+    row = df.iloc[0]
+    assert row.dynamic_factor == a.dynamic_factor and row.loss_duration == a.loss_duration
+    assert (row.p1, row.p1_time, row.p2, row.p2_time) == (
+        a.forces.p1, a.forces.p1_time, a.forces.p2, a.forces.p2_time)
+    n = r.normal_force
+    assert row.force_rms == pytest.approx(math.sqrt(np.mean((n - n.mean()) ** 2)), rel=1e-12)
+    plain = tw.sweep(ROUGH, SPEEDS[1], seeds=[7], max_workers=1, progress=False, **KW)
+    assert plain.p1.isna().all() and plain.p2.isna().all()
+
+
+@pytest.mark.parametrize("scene, seeds, exc, match", [
+    (SCENE, [0], ValueError, "no random part"),
+    (dc.replace(SCENE, irregularity=tw.Irregularity.sine(0.5, 1e-5)), [0], ValueError,
+     "no random part"),
+    (ROUGH, [], ValueError, "seeds is empty"),
+    (ROUGH, [1, 1], ValueError, "duplicate"),
+    (ROUGH, [-2], ValueError, "seeds"),
+    (ROUGH, [1.5], TypeError, "seeds"),
+])
+def test_bad_seeds(scene, seeds, exc, match, tmp_path):
+    with pytest.raises(exc, match=match):
+        tw.sweep(scene, 10.0, seeds=seeds, store=tmp_path / "s", progress=False)
+    assert not records(tmp_path / "s")
+
+
+def test_summarise_seeds_percentiles_per_speed():
+    """Per speed, numpy's percentiles of each column over the seeds that ran (a failed row is
+    left out and not counted); a table mixing support stiffnesses must say how to group."""
+    rng = np.random.default_rng(0)
+    rows = [{"speed": sp, "support_stiffness": 1e8, "seed": s, "error": "",
+             "max_contact_force": 5e4 + 1e3 * rng.random(), "dynamic_factor": 1 + rng.random()}
+            for sp in (10.0, 20.0) for s in range(7)]
+    rows[3]["error"], rows[3]["max_contact_force"] = "DivergenceError: x", 1e9
+    df = pd.DataFrame(rows)
+    out = tw.summarise_seeds(df, ["max_contact_force", "dynamic_factor"], q=(5, 50, 95))
+    assert list(out.index) == [10.0, 20.0] and list(out[("n_seeds", "")]) == [6, 7]
+    for sp in (10.0, 20.0):
+        ok = df[(df.speed == sp) & (df.error == "")]
+        for col in ("max_contact_force", "dynamic_factor"):
+            for q in (5, 50, 95):
+                assert out.loc[sp, (col, f"p{q}")] == np.percentile(ok[col], q)
+    mixed = pd.concat([df, df.assign(support_stiffness=2e8)])
+    with pytest.raises(ValueError, match="support_stiffness"):
+        tw.summarise_seeds(mixed, ["dynamic_factor"])
+    both = tw.summarise_seeds(mixed, ["dynamic_factor"], by=["speed", "support_stiffness"])
+    assert both.index.names == ["speed", "support_stiffness"] and len(both) == 4
+    with pytest.raises(ValueError, match="seed"):
+        tw.summarise_seeds(df.drop(columns="seed"), ["dynamic_factor"])

@@ -21,8 +21,8 @@ from .results import Result, RunSettings
 from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .statics import QuasiStatic, StaticResult, quasi_static, static
-from .sweep import load_sweep, sweep
-from . import spectra
+from .sweep import load_sweep, summarise_seeds, sweep
+from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
 
 __all__ = [
     "FIDELITY_LEVELS",
@@ -57,6 +57,7 @@ __all__ = [
     "simulate",
     "stability_limit",
     "static",
+    "summarise_seeds",
     "sweep",
     "Irregularity",
     "Polygon",

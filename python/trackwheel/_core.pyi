@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CableSection', 'ContactLaw', 'ContactParams', 'Integrator', 'KernelDivergenceError', 'LinearOptions', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'WheelModel', 'WheelParams', 'axial_modes', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'explicit_stability_limit', 'gauss_points', 'hermite', 'highest_frequency', 'quasi_static', 'rail_static', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'time_band_factor_solve', 'vertical_modes']
+__all__: list[str] = ['CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'WheelModel', 'WheelParams', 'WheelState', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'quasi_static', 'rail_static', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'time_band_factor_solve', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -156,6 +156,14 @@ class WheelParams:
     @torque.setter
     def torque(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @property
+    def x_offset(self) -> float:
+        """
+        X_A - (X_0 + v t), the wheel's place along the vehicle [m]
+        """
+    @x_offset.setter
+    def x_offset(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class ContactLaw:
     """
     Members:
@@ -210,6 +218,14 @@ class ContactParams:
         ...
     @damping.setter
     def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def friction(self) -> float:
+        """
+        mu, slip judgement [-]
+        """
+    @friction.setter
+    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def radius(self) -> float:
@@ -373,12 +389,6 @@ class SimSettings:
     def dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def friction(self) -> float:
-        ...
-    @friction.setter
-    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
     def max_newton(self) -> int:
         ...
     @max_newton.setter
@@ -426,60 +436,85 @@ class SimSettings:
     @x_start.setter
     def x_start(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-class SimState:
+class WheelState:
     state: SlipState
     def __init__(self) -> None:
         ...
     @property
-    def e(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-        ...
-    @e.setter
-    def e(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
-        ...
-    @property
-    def edot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-        ...
-    @edot.setter
-    def edot(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
-        ...
-    @property
     def s(self) -> float:
-        ...
+        """
+        contact parameter warm start [m]
+        """
     @s.setter
     def s(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def sigma(self) -> float:
-        ...
+        """
+        sign of the sliding friction force
+        """
     @sigma.setter
     def sigma(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def theta(self) -> float:
-        ...
+        """
+        rolling angle [rad]
+        """
     @theta.setter
     def theta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def thetadot(self) -> float:
-        ...
+        """
+        rolling rate [rad/s]
+        """
     @thetadot.setter
     def thetadot(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def y(self) -> float:
-        ...
+        """
+        Y_A [m]
+        """
     @y.setter
     def y(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def ydot(self) -> float:
-        ...
+        """
+        dY_A/dt [m/s]
+        """
     @ydot.setter
     def ydot(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
-class KernelDivergenceError(RuntimeError):
-    pass
+class SimState:
+    def __init__(self) -> None:
+        ...
+    @property
+    def e(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        rail coordinates (n_dof,)
+        """
+    @e.setter
+    def e(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def edot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        rail velocities (n_dof,)
+        """
+    @edot.setter
+    def edot(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def wheels(self) -> list[WheelState]:
+        """
+        one WheelState per wheel (a copy: assign the whole list)
+        """
+    @wheels.setter
+    def wheels(self, arg0: collections.abc.Sequence[WheelState]) -> None:
+        ...
 class WheelModel:
     """
     Members:
@@ -550,6 +585,14 @@ class LinearOptions:
         ...
 def axial_modes(arg0: RailModel, arg1: typing.SupportsInt | typing.SupportsIndex) -> tuple:
     ...
+def band_solve(A: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], half_bandwidth: typing.SupportsInt | typing.SupportsIndex, r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    Test hook: solve A x = r by the band LU (no pivoting) of A's band
+    """
+def bordered_solve(A: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], half_bandwidth: typing.SupportsInt | typing.SupportsIndex, B: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], C: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], D: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], r1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], r2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+    """
+    Test hook: solve [A B; C D] [x1; x2] = [r1; r2] with the bordered band solver
+    """
 def cable_axial(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
     ...
 def cable_bending(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
@@ -568,6 +611,10 @@ def contact_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike,
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
+def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None) -> dict:
+    """
+    Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense)}
+    """
 def gauss_points(arg0: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
     ...
 def hermite(arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: typing.SupportsFloat | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]]:
@@ -584,11 +631,11 @@ def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike,
     """
     Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
     """
-def simulate(rail: RailModel, wheel: WheelParams, contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None) -> dict:
+def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None) -> dict:
     """
-    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C)
+    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
     """
-def simulate_linear(rail: RailModel, wheel: WheelParams, contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None) -> dict:
+def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None) -> dict:
     """
     Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)
     """
@@ -602,3 +649,7 @@ def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.Supports
     """
     Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))
     """
+GAUSS_RANGE: tuple = (2, 10)
+MAX_ELEMENTS: int = 2000
+MAX_SPEED: float = 300.0
+OUTPUT_FIELDS: tuple = (('t', 's', 'time', False, 'float64'), ('x_wheel', 'm', 'X_A, wheel-centre position (prescribed X_0 + v t)', True, 'float64'), ('y_wheel', 'm', 'Y_A, wheel-centre height', True, 'float64'), ('ydot_wheel', 'm/s', 'dY_A/dt', True, 'float64'), ('theta', 'rad', 'rolling angle', True, 'float64'), ('thetadot', 'rad/s', 'rolling rate', True, 'float64'), ('contact_s', 'm', 's*, rail coordinate of the contact point', True, 'float64'), ('y_contact', 'm', 'y_B = y(s*), rail displacement under the wheel', True, 'float64'), ('normal_force', 'N', 'N, normal contact force (0 without contact)', True, 'float64'), ('tangential_force', 'N', 'lambda, tangential contact force on the wheel', True, 'float64'), ('slip', 'm/s', 'slip velocity t.(V_A - S edot) - rho thetadot', True, 'float64'), ('slip_state', '', '0 no contact, 1 stick, 2 slide', True, 'int32'), ('v_error', '%', "paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100", True, 'float64'), ('phi', 'rad', 'rail obliquity at the contact point', True, 'float64'), ('acc_contact', 'm/s^2', "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss (s'' y_s neglected)", True, 'float64'), ('acc_A', 'm/s^2', "rho cos(phi) theta' v phi_s (MODEL.md §8)", True, 'float64'), ('acc_B', 'm/s^2', "rho cos(phi) theta' phi_t", True, 'float64'), ('acc_C', 'm/s^2', 'rho cos(phi) v^2 phi_s^2', True, 'float64'), ('acc_D', 'm/s^2', 'rho cos(phi) phi_t^2', True, 'float64'), ('acc_E', 'm/s^2', '2 rho cos(phi) phi_t v phi_s', True, 'float64'), ('reaction', 'N', 'horizontal force holding X_A = X_0 + v t', True, 'float64'), ('penetration', 'm', 'rho0 - rho (negative: gap)', True, 'float64'), ('energy', 'J', 'total mechanical energy (recorded on request only)', False, 'float64'))

@@ -96,4 +96,5 @@ def contact_params(scene: Scene) -> _core.ContactParams:
         p.stiffness = c.stiffness if c.stiffness is not None else scene.hertz_constant
     p.damping = c.damping
     p.radius = scene.wheel.radius
+    p.friction = c.friction
     return p

@@ -7,6 +7,15 @@ import numbers
 
 import numpy as np
 
+from . import _core
+
+#: Limits defined once in the C++ kernel (cpp/limits.hpp) and read here, so that the Python
+#: checks and the kernel's accept the same inputs: most rail elements [-], the Gauss points per
+#: element (low, high) [-] and the highest forward speed [m/s].
+MAX_ELEMENTS: int = _core.MAX_ELEMENTS
+GAUSS_RANGE: tuple[int, int] = tuple(_core.GAUSS_RANGE)
+MAX_SPEED: float = _core.MAX_SPEED
+
 
 def number(name: str, value, *, low=None, high=None, low_open=False, high_open=False,
            unit: str = "") -> float:

@@ -10,6 +10,11 @@ main frequency, and the acceleration terms (docs: Model § Outputs).
   zero padding, parabolic interpolation of the log magnitude), reported with the frequency
   resolution 1/(N dt) of the record.
 
+- the contact-force statistics of :mod:`trackwheel.force_statistics` (``Analysis.forces``):
+  max and min N, the dynamic factor max N / P0 against the static load P0 = F + M g, the
+  contact-loss intervals and duration, the RMS of N in one-third-octave bands, the amplitude
+  spectrum of N, and with ``defect_at`` the P1/P2 peaks after a discrete defect.
+
 The lower-level :func:`amplitude_spectrum` and :func:`main_frequency` work on any uniformly
 sampled signal. Everything is vectorised numpy.
 """
@@ -24,6 +29,7 @@ import numpy as np
 from numpy.polynomial import chebyshev
 
 from . import _validate as v
+from .force_statistics import P1_PERIOD, P2_PERIOD, ForceStatistics, result_statistics
 from .results import Result
 from .scene import Scene
 from .statics import quasi_static
@@ -203,6 +209,8 @@ class Analysis:
     acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
     acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
     acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
+    #: contact-force statistics of N (:func:`trackwheel.force_statistics.force_statistics`)
+    forces: ForceStatistics
 
     def __repr__(self) -> str:
         return (f"<trackwheel.Analysis: {self.t.size} samples, "
@@ -211,7 +219,25 @@ class Analysis:
                 f"main frequency {self.main_frequency:.1f} Hz "
                 f"(resolution {self.frequency_resolution:.2g} Hz)\n"
                 f"  contact force {self.min_contact_force:.6g}..{self.max_contact_force:.6g} N, "
-                f"lost contact: {'yes' if self.lost_contact else 'no'}")
+                f"lost contact: {'yes' if self.lost_contact else 'no'}\n"
+                f"  dynamic factor {self.dynamic_factor:.4g}, contact loss "
+                f"{self.loss_duration * 1e3:.3g} ms" + self._peaks_text())
+
+    def _peaks_text(self) -> str:
+        f = self.forces
+        if math.isnan(f.defect_time):
+            return ""
+        return f", P1 {f.p1:.5g} N, P2 {f.p2:.5g} N"
+
+    @property
+    def dynamic_factor(self) -> float:
+        """max N / P0 [-], P0 = F + M g the static wheel load."""
+        return self.forces.dynamic_factor
+
+    @property
+    def loss_duration(self) -> float:
+        """Total time without contact [s] (0 if the wheel kept contact)."""
+        return self.forces.loss_duration
 
     @property
     def sample_spacing(self) -> float:
@@ -219,8 +245,10 @@ class Analysis:
         return float(self.t[1] - self.t[0])
 
 
-def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
-    """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model § Outputs).
+def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
+            p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD) -> Analysis:
+    """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model §
+    Outputs).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
     .n_elements``) at 8 Chebyshev points per element crossed (cached per scene, mesh and
@@ -230,7 +258,16 @@ def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
     frequency are those of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling
     interval is ``dt x output_every``.
 
-    Raises ValueError if the run kept fewer than 4 samples.
+    The contact-force statistics (``Analysis.forces``, see
+    :mod:`trackwheel.force_statistics`) are taken against the static load P0 = F + M g [N]:
+    ``dynamic_factor`` = max N / P0, contact loss where N <= 0, the RMS of N - mean(N) in each
+    one-third-octave band the record resolves. With ``defect_at`` X_d [m] (e.g. the middle of
+    a dipped joint, :func:`trackwheel.force_statistics.defect_position`) also P1, the maximum
+    of N in [t_d, t_d + T_1/2], and P2, the maximum in (t_d + T_1/2, t_d + (T_1 + T_2)/2], with
+    t_d the time the wheel centre reaches X_d and T_1 = ``p1_period``, T_2 = ``p2_period`` [s].
+
+    Raises ValueError if the run kept fewer than 4 samples, or if ``defect_at`` is not passed
+    in the run.
     """
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
@@ -249,6 +286,8 @@ def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
     resolution = 1.0 / (n * dt)
     f_main = _peak(freqs, amps, resolution, 0.5 / dt)
     N = result.normal_force
+    forces = result_statistics(result, defect_at=defect_at, p1_period=p1_period,
+                               p2_period=p2_period)
     return Analysis(
         t=result.t, x_wheel=x, y_contact=result.y_contact, y_qs=y_qs, dynamic=d,
         amplitude=float(abs(d[i_max])), amplitude_time=float(result.t[i_max]),
@@ -257,4 +296,4 @@ def analyse(result: Result, *, n_fft: int | None = None) -> Analysis:
         y_qs_error=qs_err, normal_force=N, min_contact_force=float(N.min()),
         max_contact_force=float(N.max()), lost_contact=result.lost_contact,
         acc_contact=result.acc_contact, acc_A=result.acc_A, acc_B=result.acc_B,
-        acc_C=result.acc_C, acc_D=result.acc_D, acc_E=result.acc_E)
+        acc_C=result.acc_C, acc_D=result.acc_D, acc_E=result.acc_E, forces=forces)

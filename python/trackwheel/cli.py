@@ -8,9 +8,16 @@
     ``DIR/sweep-store``, so an interrupted run resumes.
 ``trackwheel run --speed-kmh V [--support-stiffness K] [--integrator ...] [--plot PNG]``
     One passage: print the amplitude and main frequency of the contact-point vibration, the
-    contact-force range, lost contact and the wall time; optionally save :func:`plots.dynamic`.
-``trackwheel sweep --speeds-kmh V ... [--support-stiffness K ...] --store DIR [--out CSV]``
-    A speed x support-stiffness sweep into a resumable store; prints the table.
+    contact-force statistics (range, dynamic factor, contact loss, band levels, P1/P2 after a
+    joint) and the wall time; optionally save :func:`plots.dynamic`.
+``trackwheel sweep --speeds-kmh V ... [--support-stiffness K ...] [--seeds 0-19] --store DIR``
+    A speed x support-stiffness (x seed) sweep into a resumable store; prints the table.
+
+Excitation (``run`` and ``sweep``, docs: Model § Irregularities; lengths in m):
+``--irregularity fra:N | german:low | german:high | china | iso3095 | sine:WAVELENGTH,AMPLITUDE``
+(repeatable: the profiles add), ``--seed N`` and ``--wavelengths MIN MAX`` for the random
+spectra, ``--joint DEPTH,LENGTH,AT`` (a Kabo dipped joint; turns the contact filter on),
+``--wheel-flat LENGTH`` (a new flat, half a revolution from the start), ``--patch-filter``.
 ``trackwheel eigen [--position X] [--n-modes N]``
     Print the lowest vertical natural frequencies with the wheel at X [m].
 
@@ -39,6 +46,8 @@ from ._version import __version__
 from .analysis import analyse
 from .defaults import MAX_SPEED, default_settings
 from .eigen import eigen as _eigen
+from .force_statistics import defect_position
+from .irregularity import Irregularity, WheelFlat
 from .reproduce import REPRODUCE_STEPS, STORE_NAME, X_REPORT, reproduce
 from .scene import Scene, kmh
 from .simulate import FIDELITY_LEVELS, simulate
@@ -52,8 +61,10 @@ _PAPER = default_settings(Scene.kato2005())
 # argument parsing
 # --------------------------------------------------------------------------------------------
 #: what argparse takes for a negative number (its own pattern misses exponents such as -1e6,
-#: which it would then read as an unknown option)
-_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+#: which it would then read as an unknown option), or a comma list starting with one
+#: (--joint -0.002,0.5,2 reaches the check of the depth)
+_NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+_NEGATIVE_NUMBER = re.compile(rf"^-{_NUMBER}(,\s*-?{_NUMBER})*$")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -93,6 +104,80 @@ def _positive_float(text: str) -> float:
     if x <= 0.0:
         raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
     return x
+
+
+#: spectra by their command-line name
+_SPECTRA = {"fra": "fra:N (US FRA class N = 1..6)", "german": "german:low|high",
+            "china": "china (TB/T 3352-2014)", "iso3095": "iso3095 (ISO 3095 roughness limit)",
+            "sine": "sine:WAVELENGTH,AMPLITUDE [m]"}
+
+
+def _floats(text: str, n: int, what: str) -> list[float]:
+    parts = text.split(",")
+    if len(parts) != n:
+        raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
+    return [_finite_float(x.strip()) for x in parts]
+
+
+def _irregularity_spec(text: str) -> tuple[str, str]:
+    """``KIND[:ARG]`` -> (kind, arg), checked against the known kinds."""
+    kind, _, arg = text.partition(":")
+    kind = kind.strip().lower()
+    if kind not in _SPECTRA:
+        raise argparse.ArgumentTypeError(f"unknown irregularity {text!r}; use "
+                                         + ", ".join(_SPECTRA.values()))
+    if kind in ("fra", "german", "sine") and not arg:
+        raise argparse.ArgumentTypeError(f"{text!r} needs its argument: {_SPECTRA[kind]}")
+    if kind in ("china", "iso3095") and arg:
+        raise argparse.ArgumentTypeError(f"{text!r}: {kind} takes no argument")
+    return kind, arg.strip()
+
+
+def _joint(text: str) -> list[float]:
+    return _floats(text, 3, "DEPTH,LENGTH,AT in m, e.g. 0.002,0.5,2.0")
+
+
+def _seed_list(text: str) -> list[int]:
+    """``0-19``, ``1,4,7`` or ``0-4,10`` -> the integers (ranges inclusive)."""
+    out = []
+    for item in text.split(","):
+        lo, dash, hi = item.strip().partition("-")
+        try:
+            a = int(lo)
+            b = int(hi) if dash else a
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected seeds such as 0-19 or 1,4,7 (integers "
+                                             f">= 0), got {text!r}") from None
+        if b < a:
+            raise argparse.ArgumentTypeError(f"empty seed range {item!r} in {text!r}")
+        out.extend(range(a, b + 1))
+    return out
+
+
+def _excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None:
+    g = p.add_argument_group("excitation (docs: Model § Irregularities; lengths in m, default a smooth rail "
+                             "and a round wheel)")
+    g.add_argument("--irregularity", type=_irregularity_spec, action="append", metavar="SPEC",
+                   help="rail profile: " + ", ".join(_SPECTRA.values()) + "; repeat to add "
+                        "profiles")
+    g.add_argument("--seed", type=int, metavar="N",
+                   help="seed of the random profile (default 0)"
+                        + ("; --seeds sweeps over several" if seeds else ""))
+    if seeds:
+        g.add_argument("--seeds", type=_seed_list, nargs="+", metavar="SEEDS",
+                       help="realisations of the random profile, e.g. 0-19 or 1,4,7: one case "
+                            "per seed (summarised as percentiles per speed)")
+    g.add_argument("--wavelengths", type=_positive_float, nargs=2, metavar=("MIN", "MAX"),
+                   help="wavelength band of the random profile [m] (default: the spectrum's "
+                        "validity band)")
+    g.add_argument("--joint", type=_joint, metavar="DEPTH,LENGTH,AT",
+                   help="dipped joint (Kabo form) of depth and length [m] starting at X = AT "
+                        "[m]; turns the contact filter on")
+    g.add_argument("--wheel-flat", type=_finite_float, metavar="LENGTH",
+                   help="new wheel flat of chord LENGTH [m], meeting the rail half a "
+                        "revolution after the start")
+    g.add_argument("--patch-filter", action="store_true",
+                   help="average the profile over the Hertz contact patch")
 
 
 def _simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
@@ -163,6 +248,7 @@ def _add_run(sub) -> None:
                    help=f"forward speed [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, metavar="K",
                    help="support stiffness k_s [N/m] (default 140e6)")
+    _excitation_options(p)
     _simulate_options(p)
     p.add_argument("--plot", type=Path, metavar="PNG",
                    help="save y_B, y_qs, d(t) and the spectrum of d to this file (any format "
@@ -174,9 +260,11 @@ def _add_sweep(sub) -> None:
     p = sub.add_parser(
         "sweep", help="run a speed x support-stiffness sweep into a store",
         description="Run every (speed, support stiffness) case of Scene.kato2005() in parallel "
-                    "(trackwheel.sweep), keep each finished case in --store (a re-run skips "
-                    "them) and print the table. Exit code 1 if a case failed (it is recorded "
-                    "with its error).")
+                    "(trackwheel.sweep), with --seeds one case per realisation of the random "
+                    "--irregularity, keep each finished case in --store (a re-run skips them) "
+                    "and print the table (with --seeds also the 5/50/95 % percentiles over "
+                    "the seeds per speed). Exit code 1 if a case failed (it is recorded with "
+                    "its error).")
     p.add_argument("--speeds-kmh", type=_finite_float, nargs="+", required=True, metavar="V",
                    help=f"forward speeds [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, nargs="+", metavar="K",
@@ -187,6 +275,7 @@ def _add_sweep(sub) -> None:
     p.add_argument("--workers", type=_positive_int, metavar="N",
                    help="processes (default: one per core)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _excitation_options(p, seeds=True)
     _simulate_options(p, auto=True)
     p.set_defaults(run=_cmd_sweep, parser=p)
 
@@ -309,6 +398,145 @@ def _scene(stiffness: float | None = None) -> Scene:
     return scene
 
 
+class _OptionError(ValueError):
+    """A bad excitation value, worded for the command line."""
+
+
+def _spectrum(kind: str, arg: str):
+    from . import spectra
+
+    if kind == "fra":
+        try:
+            track_class = int(arg)
+        except ValueError:
+            raise _OptionError(f"--irregularity fra:{arg}: the FRA class must be an integer "
+                               "1..6") from None
+        return spectra.fra(track_class)
+    if kind == "german":
+        return spectra.german(arg)
+    return spectra.china_hsr() if kind == "china" else spectra.iso3095()
+
+
+def _profile(args: argparse.Namespace) -> Irregularity | None:
+    """The rail profile of --irregularity/--joint (None: smooth). The random parts are drawn
+    with --seed (first part) and seeds derived from it (Irregularity.reseeded)."""
+    parts = []
+    for kind, arg in args.irregularity or ():
+        text = f"--irregularity {kind}{':' + arg if arg else ''}"
+        try:
+            if kind == "sine":
+                lam, amp = _floats(arg, 2, "sine:WAVELENGTH,AMPLITUDE in m, e.g. sine:0.5,1e-5")
+                parts.append(Irregularity.sine(lam, amp))
+            else:
+                parts.append(Irregularity.random(_spectrum(kind, arg), seed=0,
+                                                 wavelengths=args.wavelengths))
+        except _OptionError:
+            raise
+        except (ValueError, argparse.ArgumentTypeError) as exc:
+            msg = str(exc).replace("wavelengths = ", "--wavelengths ")
+            raise _OptionError(f"{text}: {msg}") from None
+    irr = sum(parts) if parts else None
+    n_random = 0 if irr is None else irr.n_random
+    if n_random == 0 and (args.seed is not None or args.wavelengths is not None
+                          or getattr(args, "seeds", None)):
+        used = [o for o, val in (("--seed", args.seed), ("--wavelengths", args.wavelengths),
+                                 ("--seeds", getattr(args, "seeds", None))) if val is not None]
+        raise _OptionError(f"{' and '.join(used)} need(s) a random --irregularity "
+                           "(fra:N, german:low|high, china or iso3095)")
+    if n_random:
+        if args.seed is not None and args.seed < 0:
+            raise _OptionError(f"--seed {args.seed}: allowed range 0 .. 2^63 - 1")
+        irr = irr.reseeded(args.seed or 0)
+    if args.joint is not None:
+        depth, length, at = args.joint
+        try:
+            joint = Irregularity.dipped_joint(depth, length, at)
+        except ValueError as exc:
+            raise _OptionError(f"--joint: {exc}") from None
+        irr = joint if irr is None else irr + joint
+    return irr
+
+
+def _with_contact_filter(scene: Scene) -> Scene | None:
+    """The scene with Contact.patch_filter on, or None if this build's Contact has none."""
+    if "patch_filter" not in {f.name for f in dataclasses.fields(scene.contact)}:
+        return None
+    return dataclasses.replace(scene, contact=dataclasses.replace(scene.contact,
+                                                                  patch_filter=True))
+
+
+def _excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[str]]:
+    """``scene`` with the excitation options applied, and notes to print (stdout) or warn
+    (lines starting "warning:"). Raises _OptionError for bad values."""
+    notes = []
+    irr = _profile(args)
+    if irr is not None:
+        length = scene.rail.length
+        if args.joint is not None and not 0.0 <= args.joint[2] <= length - args.joint[1]:
+            raise _OptionError(f"--joint: the joint from X = {args.joint[2]:g} m over "
+                               f"{args.joint[1]:g} m leaves the rail; allowed AT range "
+                               f"[0, {length - args.joint[1]:g}] m")
+        scene = dataclasses.replace(scene, irregularity=irr)
+    if args.wheel_flat is not None:
+        if not args.wheel_flat > 0.0:
+            raise _OptionError(f"--wheel-flat {args.wheel_flat:g}: the flat's length must be "
+                               "> 0 m")
+        try:
+            flat = WheelFlat(args.wheel_flat, at_angle=math.pi)
+            scene = dataclasses.replace(scene, wheel=dataclasses.replace(
+                scene.wheel, defects=(*scene.wheel.defects, flat)))
+        except ValueError as exc:
+            raise _OptionError(f"--wheel-flat: {exc}") from None
+    if args.patch_filter or args.joint is not None:
+        filtered = _with_contact_filter(scene)
+        if filtered is not None:
+            scene = filtered
+            if not args.patch_filter:
+                notes.append("--joint turns the contact filter on (Contact.patch_filter = True: "
+                             "the dip's cusp curves more sharply than the wheel)")
+        elif args.patch_filter:
+            raise _OptionError("--patch-filter: this build's Contact has no patch_filter (it "
+                               "comes with the kernel half of issue 13)")
+        else:
+            notes.append("warning: this build's Contact has no patch_filter; the joint runs "
+                         "without the contact filter")
+    return scene, notes
+
+
+def _describe(scene: Scene) -> str:
+    """One line naming the excitation of ``scene``."""
+    words = []
+    for p in () if scene.irregularity is None else scene.irregularity.parts:
+        if p.kind == "random":
+            words.append(f"{p.spectrum.name} (seed {p.seed}, {p.wavelengths[0]:g}-"
+                         f"{p.wavelengths[1]:g} m)")
+        elif p.kind == "sine":
+            words.append(f"sine {p.wavelength:g} m x {p.amplitude:g} m")
+        elif p.kind == "dipped_joint":
+            words.append(f"dipped joint {p.depth * 1e3:g} mm over {p.length:g} m at "
+                         f"X = {p.at:g} m")
+    for d in scene.wheel.defects:
+        words.append(f"wheel flat {d.length * 1e3:g} mm" if d.kind == "wheel_flat"
+                     else f"polygon order {d.order}")
+    if getattr(scene.contact, "patch_filter", False):
+        words.append("contact filter on")
+    return ", ".join(words) if words else "none (smooth rail, round wheel)"
+
+
+def _print_forces(scene: Scene, a) -> None:
+    f = a.forces
+    print(f"  dynamic factor : {a.dynamic_factor:.4f}  (max N / static load)")
+    if f.band_rms.size:
+        top = np.argsort(f.band_rms)[::-1][:3]
+        print("  force bands    : " + ", ".join(
+            f"{f.band_centres[k]:.4g} Hz {f.band_rms[k] / 1e3:.3g} kN" for k in top)
+            + "  (largest one-third-octave RMS of N)")
+    if not math.isnan(f.defect_time):
+        print(f"  P1 / P2        : {f.p1 / 1e3:.2f} / {f.p2 / 1e3:.2f} kN at t = "
+              f"{f.p1_time * 1e3:.3f} / {f.p2_time * 1e3:.3f} ms (joint reached at "
+              f"{f.defect_time * 1e3:.3f} ms)")
+
+
 def _print_run(scene: Scene, speed_kmh: float, r, a) -> None:
     st = r.settings
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
@@ -317,6 +545,7 @@ def _print_run(scene: Scene, speed_kmh: float, r, a) -> None:
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings       : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} "
           f"elements, X = {x0:.4g} -> {x1:.4g} m, fidelity {st.fidelity}")
+    print(f"  excitation     : {_describe(scene)}")
     print(f"  amplitude      : {a.amplitude * 1e6:.3f} µm  (max |d|, d = y_B - y_qs; at "
           f"X = {a.x_wheel[i_max]:.3f} m)")
     print(f"  main frequency : {a.main_frequency:.1f} Hz  (resolution "
@@ -326,10 +555,19 @@ def _print_run(scene: Scene, speed_kmh: float, r, a) -> None:
     if a.lost_contact:
         free = r.contact_free_intervals()
         print(f"  lost contact   : yes, {len(free)} interval(s), first at "
-              f"t = {free[0][0] * 1e3:.3f} ms")
+              f"t = {free[0][0] * 1e3:.3f} ms, {a.loss_duration * 1e3:.3f} ms in all")
     else:
         print("  lost contact   : no")
+    _print_forces(scene, a)
     print(f"  wall time      : {r.wall_time:.3f} s ({r.steps} steps)")
+
+
+def _print_notes(notes: list[str], command: str) -> None:
+    for note in notes:
+        if note.startswith("warning:"):
+            print(f"trackwheel {command}: {note}", file=sys.stderr)
+        else:
+            print(f"note: {note}")
 
 
 def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
@@ -337,7 +575,13 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.plot is not None:
         _output_file(args.plot, "--plot", parser, formats=_figure_formats())
     try:
-        scene = _scene(args.support_stiffness)
+        scene, notes = _excited_scene(_scene(args.support_stiffness), args)
+    except _OptionError as exc:
+        parser.error(str(exc))
+    except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
+        parser.error(_option_error(exc))
+    _print_notes(notes, "run")
+    try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             r = simulate(scene, kmh(args.speed_kmh), **_simulate_kwargs(args))
@@ -352,8 +596,11 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         print(f"trackwheel run: the simulation could not start: {exc}", file=sys.stderr)
         return 1
     _print_warnings(caught, "run")
+    x_d = defect_position(scene)
+    if x_d is not None and not r.x_wheel[0] <= x_d <= r.x_wheel[-1]:
+        x_d = None  # the run does not reach the joint's middle
     try:
-        a = analyse(r)
+        a = analyse(r, defect_at=x_d)
     except RuntimeError as exc:  # a static solve of the quasi-static line failed
         print(f"trackwheel run: the analysis failed: {exc}", file=sys.stderr)
         return 1
@@ -371,25 +618,45 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     return 0
 
 
-def _print_sweep(df, store: Path) -> None:
+def _print_sweep(df, store: Path, excitation: str) -> None:
+    print(f"excitation: {excitation}")
     auto = df.attrs.get("fidelity_auto")
     if auto:
         print(f"--fidelity auto: {auto['chosen']} (adequate within {auto['tol']:g} on "
               f"{auto['sample_speed'] * 3.6:g} km/h, "
               f"{auto['sample_support_stiffness'] / 1e6:g} MN/m)")
-    print(f"{'v [km/h]':>8}  {'k_s [MN/m]':>10}  {'amplitude [µm]':>14}  "
-          f"{'main f [Hz]':>11}  {'± [Hz]':>6}  {'N min..max [kN]':>15}  lost  error")
+    seeded = bool(df["seed"].notna().any())
+    print(f"{'v [km/h]':>8}  {'k_s [MN/m]':>10}  " + ("seed  " if seeded else "")
+          + f"{'amplitude [µm]':>14}  {'main f [Hz]':>11}  {'± [Hz]':>6}  "
+          f"{'N min..max [kN]':>15}  {'N/P0':>6}  lost  error")
     for row in df.itertuples():
+        head = (f"{row.speed_kmh:>8g}  {row.support_stiffness / 1e6:>10g}  "
+                + (f"{row.seed:>4}  " if seeded else ""))
         if row.error:
-            print(f"{row.speed_kmh:>8g}  {row.support_stiffness / 1e6:>10g}  {row.error}")
+            print(f"{head}{row.error}")
             continue
-        print(f"{row.speed_kmh:>8g}  {row.support_stiffness / 1e6:>10g}  "
-              f"{row.amplitude * 1e6:>14.3f}  {row.main_frequency:>11.1f}  "
+        print(f"{head}{row.amplitude * 1e6:>14.3f}  {row.main_frequency:>11.1f}  "
               f"{row.frequency_resolution:>6.1f}  "
               f"{row.min_contact_force / 1e3:>6.2f}..{row.max_contact_force / 1e3:<7.2f}  "
-              f"{'yes' if row.lost_contact else 'no':>4}")
+              f"{row.dynamic_factor:>6.3f}  {'yes' if row.lost_contact else 'no':>4}")
+    if seeded and (df["error"] == "").any():
+        from .sweep import summarise_seeds
+
+        by = "speed" if df["support_stiffness"].nunique() == 1 else ["speed",
+                                                                      "support_stiffness"]
+        summary = summarise_seeds(df, ["max_contact_force", "dynamic_factor"], by=by)
+        print("over the seeds (5th / 50th / 95th percentile):")
+        for key, row in summary.iterrows():
+            v, k = (key, None) if isinstance(by, str) else key
+            where = f"{v * 3.6:>8g} km/h" + (f", {k / 1e6:g} MN/m" if k is not None else "")
+            print(f"{where}: max N {_pcts(row, 'max_contact_force', 1e-3)} kN, N/P0 "
+                  f"{_pcts(row, 'dynamic_factor', 1.0)} ({int(row[('n_seeds', '')])} seeds)")
     print(f"{len(df)} cases: {df.attrs.get('computed', 0)} computed, "
           f"{df.attrs.get('from_store', 0)} from the store {store}")
+
+
+def _pcts(row, column: str, scale: float) -> str:
+    return " / ".join(f"{row[(column, p)] * scale:.4g}" for p in ("p5", "p50", "p95"))
 
 
 def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
@@ -402,14 +669,26 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         if args.fidelity != "auto":
             parser.error("--fidelity-tol is only used with --fidelity auto")
         extra["fidelity_tol"] = args.fidelity_tol
+    seeds = None
+    if args.seeds is not None:
+        seeds = [s for group in args.seeds for s in group]
+        if len(set(seeds)) != len(seeds):
+            parser.error(f"--seeds: a seed is given twice ({', '.join(map(str, seeds))})")
+        if args.seed is not None:
+            parser.error("give --seed (one realisation) or --seeds (several), not both")
     try:
-        df = sweep(Scene.kato2005(), speed=[kmh(v) for v in args.speeds_kmh],
+        scene, notes = _excited_scene(Scene.kato2005(), args)
+    except _OptionError as exc:
+        parser.error(str(exc))
+    _print_notes(notes, "sweep")
+    try:
+        df = sweep(scene, speed=[kmh(v) for v in args.speeds_kmh], seeds=seeds,
                    support_stiffness=args.support_stiffness, store=args.store,
                    progress=not args.no_progress, max_workers=args.workers,
                    **_simulate_kwargs(args), **extra)
     except (ValueError, TypeError) as exc:
         parser.error(_option_error(exc))
-    _print_sweep(df, args.store)
+    _print_sweep(df, args.store, _describe(scene))
     if args.out is not None:
         try:
             df.to_csv(args.out, index=False)

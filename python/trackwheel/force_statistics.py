@@ -210,6 +210,17 @@ def result_statistics(result, *, defect_at: float | None = None, p1_period: floa
                             p2_period=p2_period, loss_threshold=loss_threshold)
 
 
+def defect_position(scene) -> float | None:
+    """X [m] of the discrete rail defect whose P1/P2 peaks a run of ``scene`` shows: the middle
+    of the first dipped joint of ``scene.irregularity`` (the cusp, where the slope changes by
+    2 pi d / l and the wheel is thrown upward), or None if the profile holds no joint."""
+    irr = getattr(scene, "irregularity", None)
+    for part in () if irr is None else irr.parts:
+        if getattr(part, "kind", None) == "dipped_joint":
+            return part.at + 0.5 * part.length
+    return None
+
+
 def jenkins_p2(static_load: float, dip_angle: float, speed: float, unsprung_mass: float,
                track_mass: float, track_stiffness: float, track_damping: float) -> float:
     """Dipped-joint P2 force [N] by the empirical formula of Jenkins et al. (1974), for trends:
@@ -232,22 +243,24 @@ def jenkins_p2(static_load: float, dip_angle: float, speed: float, unsprung_mass
     return p0 + a2 * sp * math.sqrt(mu / (mu + mt)) * damping * math.sqrt(kt * mu)
 
 
-def seed_percentiles(df, columns, *, by: str = "speed", q=(5.0, 50.0, 95.0)):
+def seed_percentiles(df, columns, *, by="speed", q=(5.0, 50.0, 95.0)):
     """Percentiles over Monte Carlo realisations: for each value of ``by`` (a column, e.g. the
-    speed), the ``q`` percentiles [%] of each of ``columns`` over the rows (one per seed).
-    Returns a pandas DataFrame indexed by ``by`` with columns (column, "p<q>"); numpy's
-    linear interpolation between order statistics; NaN rows (failed cases) are skipped."""
+    speed, or a list of columns), the ``q`` percentiles [%] of each of ``columns`` over the
+    rows (one per seed). Returns a pandas DataFrame indexed by ``by`` with columns
+    (column, "p<q>"); numpy's linear interpolation between order statistics; NaN values
+    (failed cases) are skipped."""
     import pandas as pd
 
     if not isinstance(df, pd.DataFrame):
         raise TypeError(f"df must be a pandas DataFrame, got {type(df).__name__}")
     cols = [columns] if isinstance(columns, str) else list(columns)
-    missing = [c for c in [by, *cols] if c not in df.columns]
+    keys = [by] if isinstance(by, str) else list(by)
+    missing = [c for c in [*keys, *cols] if c not in df.columns]
     if missing:
         raise ValueError(f"columns {missing} are not in the table; it has {list(df.columns)}")
     qs = [v.number("q", x, low=0.0, high=100.0, unit="%") for x in np.atleast_1d(q)]
     out = {}
-    for key, grp in df.groupby(by, sort=True):
+    for key, grp in df.groupby(by if isinstance(by, str) else keys, sort=True):
         row = {}
         for c in cols:
             vals = grp[c].to_numpy(float)
@@ -256,5 +269,8 @@ def seed_percentiles(df, columns, *, by: str = "speed", q=(5.0, 50.0, 95.0)):
                 row[(c, f"p{x:g}")] = float(np.percentile(vals, x)) if vals.size else math.nan
         out[key] = row
     frame = pd.DataFrame.from_dict(out, orient="index")
-    frame.index.name = by
+    if isinstance(by, str):
+        frame.index.name = by
+    else:
+        frame.index = pd.MultiIndex.from_tuples(frame.index, names=keys)
     return frame

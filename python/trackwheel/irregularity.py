@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import hashlib
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -44,6 +44,16 @@ def _x(x) -> np.ndarray:
     if not np.all(np.isfinite(a)):
         raise ValueError("X must be finite [m]")
     return a
+
+
+def derived_seed(seed: int, k: int) -> int:
+    """Seed [-] of random part k >= 1 in realisation ``seed`` (:meth:`Irregularity.reseeded`):
+    the first 63 bits of ``numpy.random.SeedSequence([seed, k])``'s first 64-bit word. NumPy
+    fixes SeedSequence's output across versions and platforms, and distinct (seed, k) pairs
+    give unrelated streams, so no two parts of one realisation, nor the same part of two
+    realisations, share a generator."""
+    word = np.random.SeedSequence([int(seed), int(k)]).generate_state(1, np.uint64)[0]
+    return int(word) & (2**63 - 1)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -296,6 +306,33 @@ class Irregularity:
             raise ValueError("x must be strictly increasing [m]")
         v.choice("method", method, {"cubic", "pchip"})
         return cls((SampledProfile(tuple(xa.tolist()), tuple(ra.tolist()), method),))
+
+    # realisations ----------------------------------------------------------------------------
+    @property
+    def n_random(self) -> int:
+        """Number of random parts (:class:`RandomProfile`) [-]."""
+        return sum(isinstance(p, RandomProfile) for p in self.parts)
+
+    def reseeded(self, seed: int) -> Irregularity:
+        """The same profile with every random part drawn afresh: realisation ``seed`` of the
+        ensemble (the Monte Carlo axis of :func:`trackwheel.sweep`).
+
+        The first random part gets ``seed`` itself, so ``Irregularity.random(S, seed=s)`` and
+        ``Irregularity.random(S, seed=0).reseeded(s)`` are the same profile; random part k >= 1
+        (in the order of ``parts``) gets ``derived_seed(seed, k)``, so the parts stay
+        independent of each other. Deterministic parts (sines, joints, samples) are kept. Raises
+        ValueError if the profile has no random part (nothing to re-seed)."""
+        seed = v.integer("seed", seed, low=0, high=2**63 - 1)
+        if self.n_random == 0:
+            raise ValueError("Irregularity.reseeded: the profile has no random part to re-seed "
+                             "(build one with Irregularity.random)")
+        parts, k = [], 0
+        for p in self.parts:
+            if isinstance(p, RandomProfile):
+                p = replace(p, seed=seed if k == 0 else derived_seed(seed, k))
+                k += 1
+            parts.append(p)
+        return Irregularity(tuple(parts))
 
     # algebra and evaluation ------------------------------------------------------------------
     def __add__(self, other):

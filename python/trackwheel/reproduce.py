@@ -47,7 +47,8 @@ SWEEP_UNITS = {
     "speed": "m_s", "support_stiffness": "N_m", "amplitude": "m", "main_frequency": "hz",
     "frequency_resolution": "hz", "min_contact_force": "N", "max_contact_force": "N",
     "wall_time": "s", "dt": "s", "x_start": "m", "x_end": "m", "t_end": "s",
-    "baumgarte": "1_s", "drop_height": "m"}
+    "baumgarte": "1_s", "drop_height": "m", "loss_duration": "s", "force_rms": "N",
+    "p1": "N", "p1_time": "s", "p2": "N", "p2_time": "s"}
 #: units of the convergence tables (Figs. 4, 5)
 CONVERGENCE_UNITS = {
     "dt": "s", "x_start": "m", "x_end": "m", "wall_time": "s",

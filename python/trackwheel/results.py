@@ -1,7 +1,9 @@
 """What a run returns: :class:`RunSettings` (the settings it used) and :class:`Result`.
 
-The kernel returns a dict of named arrays; :func:`result_from_kernel` is the only place that
-turns it into a :class:`Result`.
+The kernel returns a dict of named arrays, one per row of its output table
+(:data:`OUTPUT_FIELDS`, defined once in ``cpp/output.cpp``): that table defines Result's array
+fields, their documentation and the output-size estimate, and :func:`result_from_kernel` is the
+only place that turns the dict into a :class:`Result`. Adding an output is one row in C++.
 """
 
 from __future__ import annotations
@@ -11,9 +13,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _core
 from .scene import Scene
 
-__all__ = ["Result", "RunSettings", "result_from_kernel"]
+__all__ = ["OUTPUT_FIELDS", "Result", "RunSettings", "result_from_kernel", "sample_bytes"]
+
+#: The kernel's output table, one row per recorded field: (name, unit, doc, per_wheel, dtype).
+OUTPUT_FIELDS: tuple[tuple[str, str, str, bool, str], ...] = tuple(
+    tuple(f) for f in _core.OUTPUT_FIELDS)
 
 
 @dataclass(frozen=True)
@@ -58,48 +65,8 @@ class RunSettings:
         return dataclasses.asdict(self)
 
 
-@dataclass(frozen=True)
-class Result:
-    """Output of :func:`trackwheel.simulate`, one entry per kept sample (every ``output_every``
-    steps). All arrays have shape (n_samples,) and SI units.
-    """
-
-    scene: Scene
-    settings: RunSettings  #: the settings used (integrator, dt, n_elements, speed, ...)
-    t: np.ndarray  #: time [s]
-    x_wheel: np.ndarray  #: X_A, wheel-centre position (prescribed X_0 + v t) [m]
-    y_wheel: np.ndarray  #: Y_A, wheel-centre height [m]
-    ydot_wheel: np.ndarray  #: dY_A/dt [m/s]
-    theta: np.ndarray  #: rolling angle [rad]
-    thetadot: np.ndarray  #: rolling rate [rad/s]
-    contact_s: np.ndarray  #: s*, rail coordinate of the contact point [m]
-    y_contact: np.ndarray  #: y_B = y(s*), rail displacement under the wheel [m]
-    normal_force: np.ndarray  #: N [N] (0 without contact)
-    tangential_force: np.ndarray  #: lambda, tangential contact force on the wheel [N]
-    slip: np.ndarray  #: slip velocity t.(V_A - S edot) - rho thetadot [m/s]
-    slip_state: np.ndarray  #: 0 no contact, 1 stick, 2 slide (int)
-    v_error: np.ndarray  #: paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100 [%]
-    phi: np.ndarray  #: rail obliquity at the contact point [rad]
-    #: vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss
-    #: (s'' y_s neglected) [m/s^2]. Accelerations converge more slowly in dt than displacements
-    #: with generalized-alpha (its algorithmic accelerations lag): about 5 % RMS at 1e-5 s and
-    #: 0.5 % at 1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type
-    #: acceleration studies (the paper, too, needed a smaller step for accelerations).
-    acc_contact: np.ndarray
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (docs: Model § Outputs)
-    acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
-    acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
-    acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
-    acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
-    reaction: np.ndarray  #: horizontal force holding X_A = X_0 + v t [N]
-    penetration: np.ndarray  #: rho0 - rho [m] (negative: gap)
-    energy: np.ndarray | None  #: total mechanical energy [J] (``energy=True`` only)
-    steps: int  #: time steps taken
-    newton_iterations: int  #: total Newton iterations (generalized-alpha)
-    state_changes: int  #: slip/contact state switches
-    stability_limit: float  #: predicted explicit RK4 stability limit at the start [s]
-    wall_time: float  #: [s]
-    final_state: object = field(repr=False)  #: kernel state at the end (for restarts)
+class _ResultMethods:
+    """Derived views of a :class:`Result`."""
 
     @property
     def in_contact(self) -> np.ndarray:
@@ -125,24 +92,60 @@ class Result:
             (f"<trackwheel.Result: {n} samples, t = {self.t[0]:.4g}..{self.t[-1]:.4g} s, "
              f"{self.steps} steps in {self.wall_time:.3g} s>"),
             (f"  settings : {s.fidelity}, {s.integrator}, dt = {s.dt:.3g} s, {s.n_elements} "
-            f"elements, v = {s.speed:.4g} m/s, X = {s.x_start:.4g} -> {s.x_end:.4g} m"),
+             f"elements, v = {s.speed:.4g} m/s, X = {s.x_start:.4g} -> {s.x_end:.4g} m"),
             f"  y_contact: {self.y_contact.min():.4g} .. {self.y_contact.max():.4g} m",
             (f"  normal force: {self.normal_force.min():.4g} .. {self.normal_force.max():.4g} N, "
-            f"lost contact: {'yes' if lost else 'no'}"),
+             f"lost contact: {'yes' if lost else 'no'}"),
         ])
 
 
-#: Result fields read from the kernel's output dict under another name.
-_KERNEL_NAMES = {"slip_state": "state"}
-#: Result fields that do not come from the kernel's arrays.
-_NOT_FROM_KERNEL = {"scene", "settings", "energy", "wall_time", "final_state"}
+def _result_doc() -> str:
+    lines = ["Output of :func:`trackwheel.simulate`, one entry per kept sample (every",
+             "``output_every`` steps).", "",
+             "Array fields (from the kernel's output table :data:`OUTPUT_FIELDS`), each of shape",
+             "(n_samples,), in SI units:", ""]
+    for name, unit, doc, _per_wheel, dtype in OUTPUT_FIELDS:
+        kind = "int" if dtype.startswith("int") else (f"[{unit}]" if unit else "[-]")
+        lines.append(f"- ``{name}`` {kind}: {doc}")
+    lines += ["", "``energy`` is None unless ``simulate(..., energy=True)``. Accelerations converge",
+              "more slowly in dt than displacements with generalized-alpha (its algorithmic",
+              "accelerations lag): ``acc_contact`` is about 5 % RMS off at 1e-5 s and 0.5 % at",
+              "1e-6 s for the paper's scene at 300 km/h, so use dt <= 1e-6 s for Fig. 8-type",
+              "acceleration studies.", "",
+              "Other fields: ``scene``, ``settings`` (:class:`RunSettings`), ``steps``,",
+              "``newton_iterations`` (generalized-alpha), ``state_changes`` (slip/contact",
+              "switches), ``stability_limit`` (predicted explicit RK4 limit at the start) [s],",
+              "``wall_time`` [s], ``final_state`` (kernel state at the end, for restarts)."]
+    return "\n".join(lines)
+
+
+Result = dataclasses.make_dataclass(
+    "Result",
+    [("scene", Scene), ("settings", RunSettings),
+     *[(f[0], "np.ndarray | None" if f[0] == "energy" else "np.ndarray") for f in OUTPUT_FIELDS],
+     ("steps", int), ("newton_iterations", int), ("state_changes", int),
+     ("stability_limit", float), ("wall_time", float),
+     ("final_state", object, field(repr=False))],
+    bases=(_ResultMethods,), frozen=True, repr=False,
+    namespace={"__doc__": _result_doc(), "__module__": __name__})
+
+
+def sample_bytes(energy: bool) -> int:
+    """Bytes one kept sample of a one-wheel run takes, from the output table."""
+    return sum(4 if dtype.startswith("int") else 8 for name, _u, _d, _w, dtype in OUTPUT_FIELDS
+               if energy or name != "energy")
 
 
 def result_from_kernel(out: dict, scene: Scene, settings: RunSettings, wall_time: float,
                        energy: bool) -> Result:
-    """Wrap the kernel's output dict ``out`` (one array per recorded field, plus the counters
-    and ``final_state``) as a :class:`Result`; ``energy`` keeps the energy array."""
-    fields = {f.name: out[_KERNEL_NAMES.get(f.name, f.name)]
-              for f in dataclasses.fields(Result) if f.name not in _NOT_FROM_KERNEL}
-    return Result(scene=scene, settings=settings, energy=out["energy"] if energy else None,
-                  wall_time=wall_time, final_state=out.get("final_state"), **fields)
+    """Wrap the kernel's output dict ``out`` (one array per row of :data:`OUTPUT_FIELDS`, plus
+    the counters and ``final_state``) as a :class:`Result`; ``energy`` keeps the energy array.
+    One wheel: the per-wheel (n_samples, 1) columns become (n_samples,)."""
+    arrays = {name: (out[name][:, 0] if per_wheel else out[name])
+              for name, _unit, _doc, per_wheel, _dtype in OUTPUT_FIELDS}
+    if not energy:
+        arrays["energy"] = None
+    return Result(scene=scene, settings=settings, **arrays, steps=out["steps"],
+                  newton_iterations=out["newton_iterations"], state_changes=out["state_changes"],
+                  stability_limit=out["stability_limit"], wall_time=wall_time,
+                  final_state=out.get("final_state"))

@@ -18,10 +18,8 @@ from .irregularity import WHEEL_DEFECTS, Irregularity
 #: Most supports a scene may resolve to from ``Supports.spacing`` [-] (a guard against a tiny
 #: spacing exhausting memory; 5 m at 0.5 m spacing has nine).
 MAX_SUPPORTS = 100_000
-#: Most rail elements a scene or a call may use [-]: 2.5 mm elements on the 5 m rail. The static
-#: Newton (tolerance 1e-13 L on the corrections) stops converging in round-off beyond ~3000, and
-#: the dense eigen analysis costs O(n^3) per wheel position (~25 s at 1000 elements).
-MAX_ELEMENTS = 2000
+#: Most rail elements a scene or a call may use [-] (defined in the kernel, cpp/limits.hpp).
+MAX_ELEMENTS = v.MAX_ELEMENTS
 
 #: Standard gravity used by the paper's scene [m/s^2]: F = 47040 N is 4800 kg x 9.8 m/s^2.
 GRAVITY = 9.8
@@ -48,8 +46,9 @@ class Rail:
     n_elements: int = 20  #: n_e, number of ANCF elements [-]
     curvature: str = "exact"  #: "exact" kappa = r_s x r_ss/|r_s|^3, or "simplified" r_s x r_ss
     far_end: str = "roller"  #: "roller" (x free at s = L) or "pinned"
-    n_gauss: int = 5  #: Gauss points per element for the elastic forces [-], 2..10 (one point
-    #: under-integrates the bending stiffness: singular, zero-frequency modes)
+    n_gauss: int = 5  #: Gauss points per element for the elastic forces [-], in
+    #: ``_validate.GAUSS_RANGE`` = (2, 10) (one point under-integrates the bending stiffness:
+    #: singular, zero-frequency modes)
 
     def __post_init__(self):
         v.positive("Rail.length", self.length, "m")
@@ -61,7 +60,7 @@ class Rail:
         v.integer("Rail.n_elements", self.n_elements, low=1, high=MAX_ELEMENTS)
         v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
         v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
-        v.integer("Rail.n_gauss", self.n_gauss, low=2, high=10)
+        v.integer("Rail.n_gauss", self.n_gauss, low=v.GAUSS_RANGE[0], high=v.GAUSS_RANGE[1])
 
     @property
     def mass_per_length(self) -> float:

@@ -29,7 +29,7 @@ from .defaults import (
     warn_above_stability_limit,
     warn_unresolved_mesh,
 )
-from .results import Result, RunSettings, result_from_kernel
+from .results import Result, RunSettings, result_from_kernel, sample_bytes
 from .scene import MAX_ELEMENTS, Scene
 
 __all__ = [
@@ -63,8 +63,6 @@ MAX_STEPS = 10**12
 #: measured costs are 1.6-3.4 us per element and step for generalized-alpha and explicit RK4).
 _PROGRESS_INTERVAL = 0.05
 _STEP_COST_PER_ELEMENT = 4e-6
-#: float64 arrays the kernel records per sample (the Result's array fields)
-_N_FIELDS = sum(1 for f in dc.fields(Result) if f.type in ("np.ndarray", "np.ndarray | None"))
 
 _INTEGRATORS = {"generalized_alpha": _core.Integrator.generalized_alpha,
                 "explicit": _core.Integrator.explicit}
@@ -120,15 +118,17 @@ def _initial_state(scene, model, speed, x_start, start, drop_height):
         y_rail = model.positions(e, [x_start])[0, 1]
         y = y_rail + scene.wheel.radius + drop_height
     c = _core.contact_eval(model, e, x_start, y, x_start, contact, np.zeros(10))
+    w = _core.WheelState()
+    w.y = y
+    w.ydot = 0.0
+    w.theta = 0.0
+    # pure rolling at the start: t . V_A = rho thetadot
+    w.thetadot = float(c["tangent"][0]) * speed / c["rho"]
+    w.s = c["s"]
+    w.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
     st.e = e
     st.edot = np.zeros_like(e)
-    st.y = y
-    st.ydot = 0.0
-    st.theta = 0.0
-    # pure rolling at the start: t . V_A = rho thetadot
-    st.thetadot = float(c["tangent"][0]) * speed / c["rho"]
-    st.s = c["s"]
-    st.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
+    st.wheels = [w]  # a copy in the binding: assign the whole list
     return st
 
 
@@ -245,11 +245,13 @@ def _time_step(scene: Scene, dt, integrator: str, linear: bool, model, init, x0:
     if dt is None:
         dt = derived_dt(scene)
         if explicit:
-            dt = min(dt, 0.5 * explicit_limit(model, wheel, contact, init.e, x0, init.y)[0])
+            dt = min(dt, 0.5 * explicit_limit(model, wheel, contact, init.e, x0,
+                                              init.wheels[0].y)[0])
         return dt
     dt = v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
     if explicit:  # issue 6: warn before a doomed run (stack: here, resolve, simulate, caller)
-        warn_above_stability_limit(model, wheel, contact, init.e, x0, init.y, dt, stacklevel=5)
+        warn_above_stability_limit(model, wheel, contact, init.e, x0, init.wheels[0].y, dt,
+                                   stacklevel=5)
     return dt
 
 
@@ -265,19 +267,20 @@ def _steps(dt: float, t_end: float, dt_default: bool) -> int:
     return n_steps
 
 
-def _output_every(output_every, n_steps: int) -> int:
+def _output_every(output_every, n_steps: int, energy: bool) -> int:
     """``output_every`` checked (default: at most DEFAULT_MAX_SAMPLES samples) against the
-    output size limit MAX_OUTPUT_BYTES."""
+    output size limit MAX_OUTPUT_BYTES (the sample size from the kernel's output table)."""
     if output_every is None:
         output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))
     output_every = v.integer("output_every", output_every, low=1, high=2**31 - 1)
     n_samples = n_steps // output_every + 1
-    if n_samples * _N_FIELDS * 8 > MAX_OUTPUT_BYTES:
+    per_sample = sample_bytes(energy)
+    if n_samples * per_sample > MAX_OUTPUT_BYTES:
         raise ValueError(
             f"output_every = {output_every} keeps {n_samples} samples "
-            f"({n_samples * _N_FIELDS * 8 / 2**30:.1f} GiB), above the limit of "
+            f"({n_samples * per_sample / 2**30:.1f} GiB), above the limit of "
             f"{MAX_OUTPUT_BYTES / 2**30:.0f} GiB: increase output_every to at least "
-            f"{math.ceil(n_steps * _N_FIELDS * 8 / MAX_OUTPUT_BYTES)}")
+            f"{math.ceil(n_steps * per_sample / MAX_OUTPUT_BYTES)}")
     return output_every
 
 
@@ -311,7 +314,7 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
     h = _time_step(scene, dt, integrator, linear, model, init, x0)
     n_steps = _steps(h, t_end, dt is None)
-    output_every = _output_every(output_every, n_steps)
+    output_every = _output_every(output_every, n_steps, energy)
     settings = RunSettings(
         integrator=integrator, dt=h, n_elements=ne, speed=speed, x_start=x0,
         t_end=n_steps * h, output_every=output_every, rho_inf=rho_inf, baumgarte=baumgarte,
@@ -333,7 +336,6 @@ def kernel_settings(plan: RunPlan) -> _core.SimSettings:
     s.dt = st.dt
     s.rho_inf = st.rho_inf
     s.baumgarte = st.baumgarte
-    s.friction = plan.scene.contact.friction
     s.rolling = plan.rolling
     s.output_every = st.output_every
     s.max_newton = plan.max_newton
@@ -374,9 +376,9 @@ def _run(plan: RunPlan, s, show: bool | None) -> tuple[dict, float]:
             opt.n_modes = plan.settings.n_modes or 0
             opt.sudden = plan.settings.start == "sudden"
             opt.drop_height = plan.settings.drop_height
-            out = _core.simulate_linear(plan.model, wheel, contact, s, opt, callback)
+            out = _core.simulate_linear(plan.model, [wheel], contact, s, opt, callback)
         else:
-            out = _core.simulate(plan.model, wheel, contact, s, plan.init, callback)
+            out = _core.simulate(plan.model, [wheel], contact, s, plan.init, callback)
     finally:
         if bar is not None:
             bar.close()

@@ -1,8 +1,16 @@
-"""Parameter sweeps over speed and support stiffness, in parallel, resumable (issue 5).
+"""Parameter sweeps over speed, support stiffness and random realisations, in parallel,
+resumable (issues 5, 13).
 
-``sweep(scene, speed=[...], support_stiffness=[...], **simulate_kwargs)`` runs
+``sweep(scene, speed=[...], support_stiffness=[...], seeds=[...], **simulate_kwargs)`` runs
 ``simulate(case_scene, v, **simulate_kwargs)`` and :func:`trackwheel.analyse` for every
-(speed, support stiffness) pair and returns one table row per case.
+(speed, support stiffness, seed) case and returns one table row per case;
+:func:`summarise_seeds` turns the rows of a Monte Carlo sweep into percentiles per speed.
+
+Seeds (the realisation axis): with ``seeds=[s, ...]`` the case scene's irregularity is
+``scene.irregularity.reseeded(s)`` (:meth:`trackwheel.Irregularity.reseeded`): its first random
+part is drawn with seed s, random part k >= 1 with ``derived_seed(s, k)``, deterministic parts
+(sines, joints, measured samples) are kept. The reseeded profile is part of the case scene, so
+it is in the inputs hash: each realisation is its own record and a re-run resumes.
 
 Store format (``store=DIR``)
 ----------------------------
@@ -10,12 +18,12 @@ One JSON file per finished case, ``DIR/case-<h>.json`` where ``<h>`` is the firs
 of the case's *inputs hash*: the SHA-256 of the canonical JSON (sorted keys, no spaces, floats
 written with ``repr`` so they round-trip exactly) of ::
 
-    {"scene": dataclasses.asdict(case scene),   # support stiffness already replaced
-     "speed": v [m/s], "support_stiffness": k [N/m],
+    {"scene": dataclasses.asdict(case scene),   # support stiffness and seed already applied
+     "speed": v [m/s], "support_stiffness": k [N/m], "seed": s or None,
      "simulate": {the simulate keyword arguments given to sweep},
      "version": trackwheel.__version__}
 
-The file holds ``{"format": "trackwheel.sweep.case", "format_version": 1, "inputs_hash": <full
+The file holds ``{"format": "trackwheel.sweep.case", "format_version": 2, "inputs_hash": <full
 hash>, "inputs": {...}, "row": {column: value}, "checksum": <SHA-256 of the canonical JSON of
 everything but the checksum>}``; NaN and inf are written as ``null``. Each record is written to
 a temporary file in the same directory, flushed to disk and renamed over the final name
@@ -69,28 +77,37 @@ from ._errors import DivergenceError
 from ._version import __version__
 from .analysis import analyse
 from .fidelity import adequacy
+from .force_statistics import defect_position, seed_percentiles
 from .scene import Scene
 from .simulate import simulate
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
     import pandas as pd
 
-__all__ = ["COLUMNS", "load_sweep", "sweep"]
+__all__ = ["COLUMNS", "load_sweep", "summarise_seeds", "sweep"]
 
 FORMAT = "trackwheel.sweep.case"
-FORMAT_VERSION = 1
+#: 2: the seed axis and the contact-force columns (issue 13); version-1 records are recomputed
+FORMAT_VERSION = 2
 
 #: Table columns, in order. Outputs are NaN (and ``lost_contact`` <NA>) for failed cases.
 COLUMNS = (
     "speed",  # v [m/s]
     "speed_kmh",  # v [km/h]
     "support_stiffness",  # k_s [N/m]
+    "seed",  # realisation of the random irregularity (<NA> without a seeds axis)
     "amplitude",  # max |d| [m] (analyse)
     "main_frequency",  # [Hz]
     "frequency_resolution",  # 1/(N dt) [Hz]
     "min_contact_force",  # [N]
     "max_contact_force",  # [N]
     "lost_contact",  # bool
+    # contact-force statistics (analyse(...).forces, trackwheel.force_statistics)
+    "dynamic_factor",  # max N / P0, P0 = F + M g [-]
+    "loss_duration",  # total time without contact [s]
+    "force_rms",  # RMS of N - mean(N) over the record [N]
+    "p1", "p1_time",  # P1 peak after the scene's dipped joint [N], its time [s] (NaN: none)
+    "p2", "p2_time",  # P2 peak [N], its time [s]
     "error",  # "" if the case ran, else "DivergenceError: ..." / "ValueError: ..."
     "wall_time",  # simulate's wall time [s] (time to failure for failed cases)
     # settings used (from Result.settings; for failed cases the requested or default ones)
@@ -101,8 +118,12 @@ COLUMNS = (
     "case",  # inputs hash (the store's record name)
 )
 _FLOAT = ("speed", "speed_kmh", "support_stiffness", "amplitude", "main_frequency",
-          "frequency_resolution", "min_contact_force", "max_contact_force", "wall_time", "dt",
+          "frequency_resolution", "min_contact_force", "max_contact_force", "dynamic_factor",
+          "loss_duration", "force_rms", "p1", "p1_time", "p2", "p2_time", "wall_time", "dt",
           "x_start", "x_end", "t_end", "rho_inf", "baumgarte", "drop_height")
+#: force-statistics columns :func:`summarise_seeds` summarises by default
+SEED_COLUMNS = ("max_contact_force", "min_contact_force", "dynamic_factor", "loss_duration",
+                "force_rms")
 _SETTINGS = ("integrator", "dt", "n_elements", "x_start", "t_end", "output_every", "rho_inf",
              "baumgarte", "rolling", "start", "drop_height", "fidelity", "n_modes")
 _SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).parameters.items()
@@ -111,9 +132,12 @@ _SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).p
 
 # --------------------------------------------------------------------------------------------
 # one case (runs in the workers: top level, picklable arguments)
-def _case_scene(scene: Scene, stiffness: float) -> Scene:
-    return dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
-                                                                   stiffness=stiffness))
+def _case_scene(scene: Scene, stiffness: float, seed: int | None = None) -> Scene:
+    scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                    stiffness=stiffness))
+    if seed is None:
+        return scene
+    return dataclasses.replace(scene, irregularity=scene.irregularity.reseeded(seed))
 
 
 def _error_row(scene: Scene, speed: float, kwargs: dict, message: str, wall: float) -> dict:
@@ -137,7 +161,10 @@ def _run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
     t0 = time.perf_counter()
     try:
         r = simulate(scene, speed, progress=False, **kwargs)
-        a = analyse(r)
+        x_d = defect_position(scene)
+        if x_d is not None and not r.x_wheel[0] <= x_d <= r.x_wheel[-1]:
+            x_d = None  # the run does not reach the joint: no P1/P2
+        a = analyse(r, defect_at=x_d)
     except (DivergenceError, ValueError, RuntimeError) as exc:
         # RuntimeError: the kernel's static solve at the start failed (e.g. a load that pushes
         # the rail off its supports) -- a property of the case, like a divergence
@@ -149,6 +176,9 @@ def _run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
         amplitude=a.amplitude, main_frequency=a.main_frequency,
         frequency_resolution=a.frequency_resolution, min_contact_force=a.min_contact_force,
         max_contact_force=a.max_contact_force, lost_contact=a.lost_contact, error="",
+        dynamic_factor=a.dynamic_factor, loss_duration=a.loss_duration,
+        force_rms=float(np.std(r.normal_force)), p1=a.forces.p1, p1_time=a.forces.p1_time,
+        p2=a.forces.p2, p2_time=a.forces.p2_time,
         wall_time=r.wall_time, x_end=s.x_end, steps=r.steps)
     return row
 
@@ -176,9 +206,10 @@ def _canonical(obj) -> bytes:
     return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False).encode()
 
 
-def _inputs(scene: Scene, speed: float, stiffness: float, kwargs: dict) -> dict:
+def _inputs(scene: Scene, speed: float, stiffness: float, kwargs: dict,
+            seed: int | None = None) -> dict:
     return _jsonable({"scene": dataclasses.asdict(scene), "speed": speed,
-                      "support_stiffness": stiffness, "simulate": kwargs,
+                      "support_stiffness": stiffness, "seed": seed, "simulate": kwargs,
                       "version": __version__})
 
 
@@ -242,7 +273,7 @@ def _frame(rows: list[dict]):
     for c in _FLOAT:
         df[c] = df[c].astype("float64")
     df["lost_contact"] = df["lost_contact"].astype("boolean")
-    for c in ("n_elements", "output_every", "steps"):
+    for c in ("seed", "n_elements", "output_every", "steps"):
         df[c] = df[c].astype("Int64")
     df["error"] = df["error"].astype(str)
     return df
@@ -251,7 +282,7 @@ def _frame(rows: list[dict]):
 def load_sweep(path) -> pd.DataFrame:
     """Load every sound record of a sweep store (``path``: the ``store=`` directory) into a
     DataFrame with the columns of :func:`sweep` (see the module docstring for the format),
-    sorted by speed, support stiffness and case hash. Records that fail their checks are left
+    sorted by speed, support stiffness, seed and case hash. Records that fail their checks are left
     out with a ``RuntimeWarning`` naming them. A store may hold several sweeps (other settings,
     other versions): filter on the settings and ``version`` columns."""
     store = Path(os.fspath(path))
@@ -266,7 +297,7 @@ def load_sweep(path) -> pd.DataFrame:
             continue
         rows.append(_decode_row(payload["row"]))
     df = _frame(rows)
-    return df.sort_values(["speed", "support_stiffness", "case"], ignore_index=True)
+    return df.sort_values(["speed", "support_stiffness", "seed", "case"], ignore_index=True)
 
 
 # --------------------------------------------------------------------------------------------
@@ -327,7 +358,28 @@ def _terminate(pool: ProcessPoolExecutor) -> None:
         proc.join(timeout=5.0)
 
 
-def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | None = None,
+def _seeds(seeds, scene: Scene) -> list[int | None]:
+    """The seed axis: [None] without one, else the validated seeds (non-negative integers)."""
+    if seeds is None:
+        return [None]
+    if isinstance(seeds, (int, np.integer)):
+        seeds = [seeds]
+    try:
+        out = [v.integer("seeds", s, low=0, high=2**63 - 1) for s in seeds]
+    except TypeError as exc:
+        raise TypeError("seeds must be a sequence of integers >= 0 (or None)") from exc
+    if not out:
+        raise ValueError("seeds is empty: give at least one integer >= 0 (or None)")
+    if len(set(out)) != len(out):
+        raise ValueError(f"seeds contains duplicate values: {out}")
+    if scene.irregularity is None or scene.irregularity.n_random == 0:
+        raise ValueError("seeds: the scene's irregularity has no random part to re-seed; "
+                         "give scene.irregularity = Irregularity.random(...) (+ other parts)")
+    return out
+
+
+def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
+          executor: Executor | None = None,
           max_workers: int | None = None, store=None, progress: bool = True,
           retry_errors: bool = False, fidelity_tol: float = 0.005,
           **simulate_kwargs) -> pd.DataFrame:
@@ -335,9 +387,15 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
 
     Parameters
     ----------
-    scene : the base Scene; each case replaces ``scene.supports.stiffness``.
+    scene : the base Scene; each case replaces ``scene.supports.stiffness`` (and with
+        ``seeds`` the random parts of ``scene.irregularity``).
     speed : forward speed(s) v > 0 [m/s] (a number or a sequence; ``kmh`` converts).
     support_stiffness : support stiffness(es) k_s > 0 [N/m]; default the scene's.
+    seeds : realisations of the random irregularity (integers >= 0), or None (default: the
+        scene as given, ``seed`` column <NA>). Seed s runs the scene with
+        ``scene.irregularity.reseeded(s)``: its first random part drawn with seed s, the others
+        with seeds derived from s (:func:`trackwheel.irregularity.derived_seed`), the
+        deterministic parts unchanged. Summarise the rows with :func:`summarise_seeds`.
     executor : any ``concurrent.futures.Executor`` to run the cases on, e.g.
         ``distributed.Client(...).get_executor()`` for a Dask cluster (not shut down here).
         Default: a process pool of ``max_workers`` processes (default ``os.cpu_count()``);
@@ -359,15 +417,19 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
 
     Returns
     -------
-    pandas.DataFrame with one row per case, the Cartesian product in order (speed major,
-    stiffness minor), columns :data:`COLUMNS`. ``df.attrs`` holds ``computed`` (cases run by
+    pandas.DataFrame with one row per case, the Cartesian product in order (speed major, then
+    stiffness, seed minor), columns :data:`COLUMNS`: the settings used, the outputs of
+    :func:`trackwheel.analyse` and its contact-force statistics (``dynamic_factor``,
+    ``loss_duration``, ``force_rms``, and ``p1``/``p2`` with their times when the scene holds
+    a dipped joint that the run passes: the peaks after the joint's middle,
+    :func:`trackwheel.force_statistics.defect_position`). ``df.attrs`` holds ``computed`` (cases run by
     this call) and ``from_store`` (cases read from the store). Results do not depend on the
     executor or the number of workers (each case is a deterministic, independent run).
 
     Raises
     ------
     ValueError, TypeError : bad arguments (empty, non-positive, NaN or duplicate values,
-        unknown simulate keywords), before anything runs.
+        unknown simulate keywords, seeds without a random irregularity), before anything runs.
     Any exception other than DivergenceError/ValueError/RuntimeError from a case, and
     KeyboardInterrupt: re-raised after the finished cases are stored.
     """
@@ -377,6 +439,7 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
     stiffs = _values("support_stiffness",
                      scene.supports.stiffness if support_stiffness is None else support_stiffness,
                      "N/m")
+    seed_axis = _seeds(seeds, scene)
     unknown = sorted(set(simulate_kwargs) - set(_SIMULATE_PARAMS))
     if unknown:
         raise TypeError(f"sweep got unknown simulate keyword(s) {unknown}; allowed: "
@@ -410,15 +473,15 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
             raise ValueError(f"store = {os.fspath(store)!r} exists and is not a directory")
         store_dir.mkdir(parents=True, exist_ok=True)
 
-    cases = []  # (speed, stiffness, case scene, inputs, hash)
-    for sp, k in itertools.product(speeds.tolist(), stiffs.tolist()):
-        cs = _case_scene(scene, k)
-        inputs = _inputs(cs, sp, k, kwargs)
-        cases.append((sp, k, cs, inputs, hashlib.sha256(_canonical(inputs)).hexdigest()))
+    cases = []  # (speed, stiffness, seed, case scene, inputs, hash)
+    for sp, k, seed in itertools.product(speeds.tolist(), stiffs.tolist(), seed_axis):
+        cs = _case_scene(scene, k, seed)
+        inputs = _inputs(cs, sp, k, kwargs, seed)
+        cases.append((sp, k, seed, cs, inputs, hashlib.sha256(_canonical(inputs)).hexdigest()))
 
     rows: list[dict | None] = [None] * len(cases)
     if store_dir is not None:
-        for i, (_, _, _, inputs, h) in enumerate(cases):
+        for i, (*_, inputs, h) in enumerate(cases):
             path = _record_path(store_dir, h)
             if not path.exists():
                 continue
@@ -443,9 +506,9 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
                disable=not progress)
 
     def finish(i: int, row: dict) -> None:
-        sp, k, _, inputs, h = cases[i]
-        row = dict(row, speed=sp, speed_kmh=sp * 3.6, support_stiffness=k, version=__version__,
-                   case=h)
+        sp, k, seed, _, inputs, h = cases[i]
+        row = dict(row, speed=sp, speed_kmh=sp * 3.6, support_stiffness=k, seed=seed,
+                   version=__version__, case=h)
         if store_dir is not None:
             _write_record(store_dir, h, inputs, row)
             row = _decode_row(_jsonable(row))  # exactly what a re-run reads back
@@ -455,7 +518,7 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
     try:
         if todo and executor is None and (workers == 1 or len(todo) == 1):
             for i in todo:
-                finish(i, _run_case(cases[i][2], cases[i][0], kwargs))
+                finish(i, _run_case(cases[i][3], cases[i][0], kwargs))
         elif todo:
             if executor is None:
                 with _pool(min(workers, len(todo))) as ex:
@@ -473,7 +536,7 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, executor: Executor | N
 
 
 def _run_parallel(ex, own, todo, cases, kwargs, finish) -> None:
-    pending = {ex.submit(_run_case, cases[i][2], cases[i][0], kwargs): i for i in todo}
+    pending = {ex.submit(_run_case, cases[i][3], cases[i][0], kwargs): i for i in todo}
     try:
         while pending:
             done, _ = wait(pending, return_when=FIRST_COMPLETED)
@@ -503,3 +566,33 @@ def _run_parallel(ex, own, todo, cases, kwargs, finish) -> None:
             if fut.exception() is None:
                 finish(pending[fut], fut.result())
         raise
+
+
+def summarise_seeds(df: pd.DataFrame, columns=SEED_COLUMNS, *, by="speed",
+                    q=(5.0, 50.0, 95.0)) -> pd.DataFrame:
+    """Percentiles over the realisations of a :func:`sweep` with ``seeds``: for each speed (or
+    each value of ``by``, a column or a list of columns), the ``q`` percentiles [%] of
+    ``columns`` (default :data:`SEED_COLUMNS`: max and min contact force [N], dynamic
+    factor [-], contact-loss duration [s], force RMS [N]) over the rows, failed rows left out.
+
+    Returns a DataFrame indexed by ``by`` with columns (column, "p<q>") and ``n_seeds`` (the
+    rows that ran). Raises ValueError if a group mixes several support stiffnesses (pass
+    ``by=["speed", "support_stiffness"]``) or the table has no ``seed`` values.
+    """
+    import pandas as pd
+
+    if not isinstance(df, pd.DataFrame):
+        raise TypeError(f"df must be a pandas DataFrame, got {type(df).__name__}")
+    keys = [by] if isinstance(by, str) else list(by)
+    if "seed" not in df.columns or df["seed"].isna().all():
+        raise ValueError("df has no seed values: summarise the table of sweep(..., seeds=[...])")
+    if "support_stiffness" in df.columns and "support_stiffness" not in keys:
+        mixed = df.groupby(keys)["support_stiffness"].nunique()
+        if (mixed > 1).any():
+            raise ValueError(f"the rows of one {'/'.join(keys)} hold several support "
+                             "stiffnesses; pass by=[..., 'support_stiffness'] or filter the table")
+    # a table read back from CSV has NaN, not "", where no error was written
+    ok = df[df["error"].isna() | (df["error"] == "")] if "error" in df.columns else df
+    out = seed_percentiles(ok, columns, by=by, q=q)
+    out[("n_seeds", "")] = ok.groupby(by if isinstance(by, str) else keys).size()
+    return out

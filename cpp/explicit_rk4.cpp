@@ -1,0 +1,79 @@
+#include "explicit_rk4.hpp"
+
+#include "slip.hpp"
+
+namespace trackwheel {
+
+void ExplicitRK4::derivative(double t, const SimState& s, Accel& a) {
+  sys_.evaluate(t, s, true, scratch_);
+  sys_.accelerations(s, scratch_, a);
+}
+
+// k = st + c h (rates of from_rate, accelerations a)
+void ExplicitRK4::stage(double c, const Accel& a, const SimState& from_rate, SimState& k) const {
+  const double h = sys_.settings().dt;
+  k.e = st_.e + c * h * from_rate.edot;
+  k.edot = st_.edot + c * h * a.edd;
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    const int o = kBorderPerWheel * w;
+    const WheelState& s = st_.wheels[w];
+    k.wheels[w].y = s.y + c * h * from_rate.wheels[w].ydot;
+    k.wheels[w].ydot = s.ydot + c * h * a.x(o + kY);
+    k.wheels[w].theta = s.theta + c * h * from_rate.wheels[w].thetadot;
+    k.wheels[w].thetadot = s.thetadot + c * h * a.x(o + kTheta);
+  }
+}
+
+void ExplicitRK4::step(long n) {
+  const SimSettings& set = sys_.settings();
+  const double h = set.dt, t1 = n * h, t0 = t1 - h;
+  if (!start_ready_) {
+    sys_.evaluate(t0, st_, true, ev_);
+    sys_.accelerations(st_, ev_, acc_);
+  }
+  start_ready_ = false;
+  int n_changed = 0;
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    st_.wheels[w].s = ev_.w[w].pt.s;
+    n_changed += update_slip_state(set.rolling, sys_.model().contact.friction, set.speed,
+                                   st_.wheels[w], ev_.w[w], acc_.x(kBorderPerWheel * w + kLambda));
+  }
+  if (n_changed > 0) {
+    out_.state_changes += n_changed;
+    sys_.accelerations(st_, ev_, acc_);
+  }
+  k1_ = st_;
+  k2_ = st_;
+  stage(0.5, acc_, k1_, k2_);
+  derivative(t0 + 0.5 * h, k2_, a2_);
+  k3_ = st_;
+  stage(0.5, a2_, k2_, k3_);
+  derivative(t0 + 0.5 * h, k3_, a3_);
+  k4_ = st_;
+  stage(1.0, a3_, k3_, k4_);
+  derivative(t1, k4_, a4_);
+  const double wt = h / 6.0;
+  st_.e += wt * (k1_.edot + 2.0 * k2_.edot + 2.0 * k3_.edot + k4_.edot);
+  st_.edot += wt * (acc_.edd + 2.0 * a2_.edd + 2.0 * a3_.edd + a4_.edd);
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    const int o = kBorderPerWheel * w, ty = o + kY, tt = o + kTheta;
+    WheelState& s = st_.wheels[w];
+    s.y += wt * (k1_.wheels[w].ydot + 2.0 * k2_.wheels[w].ydot + 2.0 * k3_.wheels[w].ydot +
+                 k4_.wheels[w].ydot);
+    s.ydot += wt * (acc_.x(ty) + 2.0 * a2_.x(ty) + 2.0 * a3_.x(ty) + a4_.x(ty));
+    s.theta += wt * (k1_.wheels[w].thetadot + 2.0 * k2_.wheels[w].thetadot +
+                     2.0 * k3_.wheels[w].thetadot + k4_.wheels[w].thetadot);
+    s.thetadot += wt * (acc_.x(tt) + 2.0 * a2_.x(tt) + 2.0 * a3_.x(tt) + a4_.x(tt));
+  }
+  if (!finite_state(st_)) div_.fail(n, "non-finite state");
+}
+
+void ExplicitRK4::record(long n) {
+  const double t1 = n * sys_.settings().dt;
+  sys_.evaluate(t1, st_, true, ev_);
+  sys_.accelerations(st_, ev_, acc_);
+  start_ready_ = true;
+  record_sample(t1);
+}
+
+}  // namespace trackwheel

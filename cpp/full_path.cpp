@@ -1,0 +1,49 @@
+#include "full_path.hpp"
+
+#include <cmath>
+
+namespace trackwheel {
+
+void FullStepper::record_sample(double t) {
+  Recording& rec = out_.rec;
+  const double v = sys_.settings().speed;
+  rec.push(Field::t, t);
+  if (rec.wants(Field::energy)) rec.push(Field::energy, total_energy(sys_.model(), st_, ev_));
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    const WheelEval& we = ev_.w[w];
+    const WheelState& ws = st_.wheels[w];
+    const ContactPoint& pt = we.pt;
+    const double lambda = acc_.x(kBorderPerWheel * w + kLambda);
+    rec.push(Field::x_wheel, we.x);
+    rec.push(Field::y_wheel, ws.y);
+    rec.push(Field::ydot_wheel, ws.ydot);
+    rec.push(Field::theta, ws.theta);
+    rec.push(Field::thetadot, ws.thetadot);
+    rec.push(Field::contact_s, pt.s);
+    rec.push(Field::y_contact, pt.r.y());
+    rec.push(Field::normal_force, we.cf.N);
+    rec.push(Field::tangential_force, lambda);
+    rec.push(Field::slip, we.rk.g);
+    rec.push(Field::slip_state, static_cast<int>(ws.state));
+    rec.push(Field::penetration, we.cf.delta);
+    rec.push(Field::v_error, v != 0.0 ? (v - pt.rho * ws.thetadot) / v * 100.0 : 0.0);
+    // obliquity phi = atan2(y_s, x_s), its slope along s and its rate at fixed s
+    Eigen::Vector2d Se_dd = Eigen::Vector2d::Zero(), Ssedot = Eigen::Vector2d::Zero();
+    for (int a = 0; a < 4; ++a) {
+      Ssedot += pt.mp.h.ns[a] * st_.edot.segment<2>(pt.mp.dof0() + 2 * a);
+      Se_dd += pt.mp.h.n[a] * acc_.edd.segment<2>(pt.mp.dof0() + 2 * a);
+    }
+    const double gg = pt.rs.squaredNorm();
+    const double phi_s = (pt.rs.x() * pt.rss.y() - pt.rs.y() * pt.rss.x()) / gg;
+    const double phi_t = (pt.rs.x() * Ssedot.y() - pt.rs.y() * Ssedot.x()) / gg;
+    rec.push(Field::phi, pt.phi);
+    record_acc_terms(rec, pt.rho * std::cos(pt.phi), ws.thetadot, v, phi_s, phi_t);
+    // total vertical acceleration of the contact point y_B(t) = y(s*(t), t), with s'' ~ 0
+    const double sd = we.rk.s_dot;
+    rec.push(Field::acc_contact, Se_dd.y() + 2.0 * sd * Ssedot.y() + sd * sd * pt.rss.y());
+    // driving reaction holding X_A: M X'' = 0 = R + N n_x + lambda t_x
+    rec.push(Field::reaction, -(we.cf.F(0) + lambda * we.rk.b(0)));
+  }
+}
+
+}  // namespace trackwheel

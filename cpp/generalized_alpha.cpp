@@ -1,0 +1,186 @@
+#include "generalized_alpha.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "slip.hpp"
+
+namespace trackwheel {
+
+GACoefficients::GACoefficients(double ri) {
+  am = (2.0 * ri - 1.0) / (ri + 1.0);
+  af = ri / (ri + 1.0);
+  gam = 0.5 - am + af;
+  bet = 0.25 * (1.0 - am + af) * (1.0 - am + af);
+  bp = bet * (1.0 - af) / (1.0 - am);
+  gp = gam * (1.0 - af) / (1.0 - am);
+}
+
+GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
+                                   const Divergence& div)
+    : FullStepper(sys, st, ev, acc, out, div),
+      c_(sys.settings().rho_inf),
+      h_(sys.settings().dt),
+      cq_(c_.bp * h_ * h_),
+      cv_(c_.gp * h_),
+      a_e_(acc.edd),
+      a_b_(acc.x),
+      prev_(acc),
+      key_(sys.n_wheels()),
+      dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {}
+
+void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Accel& x,
+                               SimState& s1) {
+  const double h = h_, bet = c_.bet, gam = c_.gam;
+  // written out (not c_.algorithmic) so that Eigen evaluates it into ae_'s storage
+  ae_ = (c_.af * acc0.edd - c_.am * a_e_ + (1.0 - c_.af) * x.edd) / (1.0 - c_.am);
+  s1.e = s0.e + h * s0.edot + h * h * ((0.5 - bet) * a_e_ + bet * ae_);
+  s1.edot = s0.edot + h * ((1.0 - gam) * a_e_ + gam * ae_);
+  ab_.resize(a_b_.size());
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    const int o = kBorderPerWheel * w;
+    const WheelState& w0 = s0.wheels[w];
+    WheelState& w1 = s1.wheels[w];
+    const double ay0 = a_b_(o + kY), ath0 = a_b_(o + kTheta);
+    const double ay = c_.algorithmic(x.x(o + kY), acc0.x(o + kY), ay0);
+    const double ath = c_.algorithmic(x.x(o + kTheta), acc0.x(o + kTheta), ath0);
+    ab_(o + kY) = ay;
+    ab_(o + kTheta) = ath;
+    ab_(o + kLambda) = 0.0;  // a multiplier has no algorithmic counterpart
+    w1.y = w0.y + h * w0.ydot + h * h * ((0.5 - bet) * ay0 + bet * ay);
+    w1.ydot = w0.ydot + h * ((1.0 - gam) * ay0 + gam * ay);
+    w1.theta = w0.theta + h * w0.thetadot + h * h * ((0.5 - bet) * ath0 + bet * ath);
+    w1.thetadot = w0.thetadot + h * ((1.0 - gam) * ath0 + gam * ath);
+  }
+}
+
+bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
+  if (!have_matrix_ || it >= 4 || !sys_.settings().reuse_jacobian) return true;
+  const double reach = 0.05 * sys_.rail().element_length();
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    const MatrixKey& k = key_[w];
+    const WheelEval& we = ev_.w[w];
+    if (k.element != we.pt.mp.element || k.state != s1.wheels[w].state ||
+        k.sigma != s1.wheels[w].sigma || std::abs(we.pt.s - k.s) > reach)
+      return true;
+  }
+  return false;
+}
+
+// Rebuild policy: the rail part too on the first build, after three slow iterations and on
+// every 64th factorisation (the rail's tangent drifts slowly); the contact part always.
+void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x, int it) {
+  const bool refresh_rail = !have_matrix_ || it >= 3 || out_.factorizations % 64 == 0;
+  sys_.contact_terms(s1, true, ev_);
+  sys_.assemble_iteration_matrix(s1, ev_, x, cq_, cv_, refresh_rail);
+  if (!sys_.factorize_iteration_matrix()) div_.fail(n, "singular Newton matrix");
+  have_matrix_ = true;
+  for (int w = 0; w < sys_.n_wheels(); ++w)
+    key_[w] = {ev_.w[w].pt.mp.element, s1.wheels[w].state, s1.wheels[w].sigma, ev_.w[w].pt.s};
+  ++out_.factorizations;
+}
+
+// Newton on (e''_{n+1}, Y''_{n+1}, theta''_{n+1}, lambda) from the predictor x. Converged when
+// the displacement corrections are below newton_tol and the tangential force corrections below
+// 1e-6 of the wheel load; on return s1 is the state at the converged iterate (ev_ is one
+// correction older). A pass that contracts slower than 4x drops the matrix for a rebuild.
+bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel& acc0, Accel& x,
+                              SimState& s1) {
+  const SimSettings& set = sys_.settings();
+  double prev_dq = INFINITY;
+  for (int it = 0; it < set.max_newton; ++it) {
+    predict(s0, acc0, x, s1);
+    if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
+    sys_.evaluate(t1, s1, false, ev_);
+    for (int w = 0; w < sys_.n_wheels(); ++w) s1.wheels[w].s = ev_.w[w].pt.s;
+    sys_.residual(s1, ev_, x, cv_, r1_, r2_);
+    if (matrix_is_stale(s1, it)) rebuild_matrix(n, s1, x, it);
+    sys_.solve(r1_, r2_, x1_, x2_);
+    ++out_.newton_iterations;
+    dedd_.setZero();
+    sys_.rail().add_from_free(x1_, dedd_);
+    x.edd += dedd_;
+    x.x += x2_;
+    double dq = x1_.lpNorm<Eigen::Infinity>();
+    bool small_lambda = true;
+    for (int w = 0; w < sys_.n_wheels(); ++w) {
+      const int o = kBorderPerWheel * w;
+      const WheelParams& p = sys_.model().wheels[w];
+      dq = std::max({dq, std::abs(x2_(o + kY)), p.radius * std::abs(x2_(o + kTheta))});
+      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, p.total_load());
+    }
+    dq *= cq_;
+    if (dq <= set.newton_tol && small_lambda) {
+      predict(s0, acc0, x, s1);
+      if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
+      return true;
+    }
+    if (it >= 1 && dq > 0.25 * prev_dq) have_matrix_ = false;
+    prev_dq = dq;
+  }
+  return false;
+}
+
+// Applies the slip state machine to every wheel at the converged iterate; returns how many
+// wheels changed state (changed: any did).
+int GeneralizedAlpha::commit_slip_states(Accel& x, SimState& s1, bool& changed) {
+  const SimSettings& set = sys_.settings();
+  int n_changed = 0;
+  for (int w = 0; w < sys_.n_wheels(); ++w)
+    n_changed += update_slip_state(set.rolling, sys_.model().contact.friction, set.speed,
+                                   s1.wheels[w], ev_.w[w], x.x(kBorderPerWheel * w + kLambda));
+  changed = n_changed > 0;
+  return n_changed;
+}
+
+void GeneralizedAlpha::step(long n) {
+  const double t1 = n * h_;
+  s0_ = st_;  // members: the copies reuse their storage, nothing is allocated per step
+  acc0_ = acc_;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    // predictor: linear extrapolation of the accelerations (constant on the first step and
+    // after a state change)
+    if (have_prev_ && attempt == 0) {
+      x_.edd = 2.0 * acc0_.edd - prev_.edd;
+      x_.x = 2.0 * acc0_.x - prev_.x;
+    } else {
+      x_ = acc0_;
+    }
+    s1_ = st_;  // carries the slip states of this attempt
+    if (!newton(n, t1, s0_, acc0_, x_, s1_))
+      div_.fail(n, "Newton did not converge in " + std::to_string(sys_.settings().max_newton) +
+                       " iterations");
+    bool changed = false;
+    const int n_changed = commit_slip_states(x_, s1_, changed);
+    if (changed && attempt < 3) {  // redo the step in the new states
+      out_.state_changes += n_changed;
+      for (int w = 0; w < sys_.n_wheels(); ++w) {
+        st_.wheels[w].state = s1_.wheels[w].state;
+        st_.wheels[w].sigma = s1_.wheels[w].sigma;
+      }
+      continue;
+    }
+    have_prev_ = !changed && attempt == 0;
+    std::swap(prev_, acc0_);
+    std::swap(st_, s1_);
+    std::swap(a_e_, ae_);
+    std::swap(a_b_, ab_);
+    std::swap(acc_, x_);
+    return;
+  }
+}
+
+void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r,
+                             Eigen::MatrixXd& J) {
+  SimState s1 = st_;
+  predict(st_, acc_, x, s1);
+  sys_.evaluate(t1, s1, true, ev_);
+  sys_.residual(s1, ev_, x, cv_, r1_, r2_);
+  sys_.assemble_iteration_matrix(s1, ev_, x, cq_, cv_, true);
+  J = sys_.iteration_matrix_dense();
+  minus_r.resize(r1_.size() + r2_.size());
+  minus_r << r1_, r2_;
+}
+
+}  // namespace trackwheel

@@ -1,0 +1,115 @@
+// The linear vertical rail of the fast path (MODEL.md §2 linearised, §7): the Euler-Bernoulli
+// Hermite beam in y (exactly the ANCF element linearised about the straight rail, its y
+// coordinates only) on linear supports, with constant band matrices M, C, K over generalised
+// coordinates q: the y coordinates, or the lowest n_modes mass-normalised modes (q = Phi z).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "banded.hpp"
+#include "rail.hpp"
+
+namespace trackwheel {
+
+// The linear vertical track in generalised coordinates q (y coordinates, or modal).
+struct LinearTrack {
+  int ny = 0, nq = 0, bw = 3;
+  bool modal = false;
+  std::vector<int> full_of_y;  // y coordinate -> full ANCF index
+  std::vector<int> y_of_full;  // full -> y coordinate (-1)
+  BandMatrix M, C, K;          // over q
+  Eigen::VectorXd Qg;          // over q
+  Eigen::MatrixXd Phi;         // ny x nq (modal only)
+  const RailModel* rail = nullptr;
+
+  explicit LinearTrack(const RailModel& r, int n_modes) : rail(&r) {
+    const auto& f2f = r.full_to_free();
+    y_of_full.assign(r.n_dof(), -1);
+    for (int i = 0; i < r.n_dof(); ++i)
+      if (f2f[i] >= 0 && i % 2 == 1) {
+        y_of_full[i] = static_cast<int>(full_of_y.size());
+        full_of_y.push_back(i);
+      }
+    ny = static_cast<int>(full_of_y.size());
+    // y blocks of the free-coordinate band matrices at the straight reference
+    BandMatrix Kf(r.n_free(), kHalfBandwidth);
+    r.add_tangent(r.reference(), 1.0, Kf);
+    BandMatrix My(ny, 3), Cy(ny, 3), Ky(ny, 3);
+    for (int a = 0; a < ny; ++a)
+      for (int b = std::max(0, a - 3); b <= std::min(ny - 1, a + 3); ++b) {
+        const int i = f2f[full_of_y[a]], j = f2f[full_of_y[b]];
+        if (!r.mass().in_band(i, j)) continue;
+        My.at(a, b) = r.mass().at(i, j);
+        Cy.at(a, b) = r.support_damping().at(i, j);
+        Ky.at(a, b) = Kf.at(i, j);
+      }
+    Eigen::VectorXd Qgy(ny);
+    for (int a = 0; a < ny; ++a) Qgy(a) = r.gravity_force()(full_of_y[a]);
+    if (n_modes <= 0) {
+      nq = ny;
+      M = My;
+      C = Cy;
+      K = Ky;
+      Qg = Qgy;
+      return;
+    }
+    if (n_modes > ny)
+      throw std::invalid_argument("n_modes must be in [1, " + std::to_string(ny) + "]");
+    modal = true;
+    nq = n_modes;
+    bw = nq - 1;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ky.dense(), My.dense());
+    if (es.info() != Eigen::Success) throw std::runtime_error("modal reduction failed");
+    Phi = es.eigenvectors().leftCols(nq);  // mass-normalised
+    const Eigen::MatrixXd Cm = Phi.transpose() * Cy.dense() * Phi;
+    M.resize(nq, bw);
+    C.resize(nq, bw);
+    K.resize(nq, bw);
+    for (int a = 0; a < nq; ++a) {
+      M.at(a, a) = 1.0;
+      K.at(a, a) = es.eigenvalues()(a);
+      for (int b = 0; b < nq; ++b) C.at(a, b) = Cm(a, b);
+    }
+    Qg = Phi.transpose() * Qgy;
+  }
+
+  // The generalised-coordinate vector of the y coordinate with full ANCF index i (zero if fixed):
+  // a unit vector, or a row of Phi.
+  Eigen::VectorXd basis(int i) const {
+    const int k = y_of_full[i];
+    if (k < 0) return Eigen::VectorXd::Zero(nq);
+    if (modal) return Phi.row(k).transpose();
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(nq);
+    e(k) = 1.0;
+    return e;
+  }
+
+  // s(X), s_s(X), s_ss(X) over q: y(X) = s . q etc.
+  void coupling(double X, Eigen::VectorXd& s, Eigen::VectorXd& ss, Eigen::VectorXd& sss) const {
+    const MeshPoint mp = rail->locate(X);
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(ny), ys = y, yss = y;
+    for (int a = 0; a < 4; ++a) {
+      const int k = y_of_full[mp.dof0() + 2 * a + 1];
+      if (k < 0) continue;
+      y(k) = mp.h.n[a];
+      ys(k) = mp.h.ns[a];
+      yss(k) = mp.h.nss[a];
+    }
+    if (modal) {
+      s = Phi.transpose() * y;
+      ss = Phi.transpose() * ys;
+      sss = Phi.transpose() * yss;
+    } else {
+      s = y;
+      ss = ys;
+      sss = yss;
+    }
+  }
+};
+
+}  // namespace trackwheel

@@ -1,0 +1,32 @@
+#include "model.hpp"
+
+#include <cmath>
+
+namespace trackwheel {
+
+namespace {
+void require(bool ok, const std::string& what, const std::string& range) {
+  if (!ok) throw std::invalid_argument(what + " must be " + range);
+}
+}  // namespace
+
+void check_model(const Model& m) {
+  if (m.wheels.empty()) throw std::invalid_argument("the model needs at least one wheel");
+  for (int w = 0; w < m.n_wheels(); ++w) {
+    const WheelParams& p = m.wheels[w];
+    const std::string n = "wheel " + std::to_string(w) + " ";
+    require(std::isfinite(p.mass) && p.mass > 0, n + "mass", "> 0 kg");
+    require(std::isfinite(p.inertia) && p.inertia > 0, n + "inertia", "> 0 kg m^2");
+    require(std::isfinite(p.radius) && p.radius > 0, n + "radius", "> 0 m");
+    require(std::isfinite(p.load) && p.load >= 0, n + "load", ">= 0 N");
+    require(std::isfinite(p.torque), n + "torque", "finite [N m]");
+    require(std::isfinite(p.gravity) && p.gravity >= 0, n + "gravity", ">= 0 m/s^2");
+    require(std::isfinite(p.x_offset), n + "x_offset", "finite [m]");
+  }
+  const ContactParams& c = m.contact;
+  require(std::isfinite(c.stiffness) && c.stiffness > 0, "contact stiffness", "> 0");
+  require(std::isfinite(c.damping) && c.damping >= 0, "contact damping", ">= 0 N s/m");
+  require(std::isfinite(c.friction) && c.friction >= 0, "friction", ">= 0");
+}
+
+}  // namespace trackwheel

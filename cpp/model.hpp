@@ -1,0 +1,46 @@
+// The immutable model of one run: the rail with its supports, the wheels and the contact law,
+// passed to every algorithm as one object (MODEL.md §1-§5).
+//
+// Defaults live in Python (trackwheel.Scene): these structs carry no physics defaults, so a
+// field the caller forgot is a zero that validation rejects, not a silently different wheel.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "contact.hpp"
+#include "rail.hpp"
+
+namespace trackwheel {
+
+// One wheel: a rigid disc (X_A, Y_A, theta) carried at constant forward speed (MODEL.md §3).
+struct WheelParams {
+  double mass = 0.0;      // M [kg]
+  double inertia = 0.0;   // polar moment of inertia J [kg m^2]
+  double radius = 0.0;    // undeformed radius rho0 [m]
+  double load = 0.0;      // vertical load F on the centre (car body share) [N]
+  double torque = 0.0;    // external torque about the centre, positive in rolling direction [N m]
+  double gravity = 0.0;   // g acting on the wheel mass [m/s^2]
+  double x_offset = 0.0;  // X_A - (X_0 + v t): the wheel's place along the vehicle [m]
+  double total_load() const { return load + mass * gravity; }  // P = F + M g [N]
+};
+
+struct Model {
+  const RailModel& rail;            // mesh, section, supports (immutable, shared)
+  std::vector<WheelParams> wheels;  // at least one
+  ContactParams contact;            // law, stiffness, damping, friction (radius: per wheel)
+
+  int n_wheels() const { return static_cast<int>(wheels.size()); }
+  // The contact law of wheel w (its own undeformed radius).
+  ContactParams contact_of(int w) const {
+    ContactParams c = contact;
+    c.radius = wheels[w].radius;
+    return c;
+  }
+};
+
+// Throws std::invalid_argument naming the first wheel or contact field out of range.
+void check_model(const Model& model);
+
+}  // namespace trackwheel

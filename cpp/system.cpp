@@ -1,0 +1,263 @@
+#include "system.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "slip.hpp"
+
+namespace trackwheel {
+
+System::System(const Model& model, const SimSettings& set)
+    : model_(model), set_(set), nf_(model.rail.n_free()), nw_(model.n_wheels()) {
+  Mfac_ = model.rail.mass();
+  if (!Mfac_.factorize()) throw std::runtime_error("rail mass matrix is singular");
+  const int m = n_border();
+  Bb_.resize(nf_, m);
+  Cb_.resize(m, nf_);
+  Db_.resize(m, m);
+  J_.resize(nf_, kHalfBandwidth);
+  lam_.resize(nw_);
+}
+
+void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
+  ev.w.resize(nw_);
+  for (int w = 0; w < nw_; ++w) {
+    WheelEval& we = ev.w[w];
+    we.x = x_at(w, t);
+    we.pt = find_contact_point(rail(), st.e, Eigen::Vector2d(we.x, st.wheels[w].y), st.wheels[w].s);
+  }
+  contact_terms(st, jac, ev);
+  rail().internal_force(st.e, &st.edot, ev.Qint);
+}
+
+void System::contact_terms(const SimState& st, bool jac, Eval& ev) const {
+  for (int w = 0; w < nw_; ++w) {
+    WheelEval& we = ev.w[w];
+    const int d0 = we.pt.mp.dof0();
+    Vec10 qdot;
+    qdot(0) = set_.speed;
+    qdot(1) = st.wheels[w].ydot;
+    qdot.tail<8>() = st.edot.segment<8>(d0);
+    we.cf = contact_force(model_.contact_of(w), we.pt, qdot, jac);
+    we.rk = rolling_kinematics(we.pt, we.cf.grad_rho, qdot, st.wheels[w].thetadot, jac);
+  }
+}
+
+double System::prescribed_lambda(const SimState& st, const Eval& ev, int w) const {
+  return trackwheel::prescribed_lambda(set_.rolling, model_.contact.friction, st.wheels[w],
+                                       ev.w[w]);
+}
+
+void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
+                    Eigen::VectorXd& fb) const {
+  fr = rail().gravity_force() - ev.Qint;
+  fb.setZero(n_border());
+  for (int w = 0; w < nw_; ++w) {
+    const WheelEval& we = ev.w[w];
+    const WheelParams& p = model_.wheels[w];
+    const int d0 = we.pt.mp.dof0(), o = kBorderPerWheel * w;
+    fr.segment<8>(d0) += we.cf.F.tail<8>() + lam(w) * we.rk.b.segment<8>(2);
+    fb(o + kY) = -p.total_load() + we.cf.F(1) + lam(w) * we.rk.b(1);
+    fb(o + kTheta) = p.torque + lam(w) * we.rk.b(10);
+  }
+}
+
+void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
+  Eigen::VectorXd& lam_p = lam_p_;
+  lam_p.resize(nw_);
+  for (int w = 0; w < nw_; ++w) {
+    lam_p(w) = prescribed_lambda(st, ev, w);
+    lam_(w) = std::isnan(lam_p(w)) ? 0.0 : lam_p(w);
+  }
+  Eigen::VectorXd &fr = fr_, &fb = fb_;
+  forces(ev, lam_, fr, fb);
+  Bb_.setZero();
+  Cb_.setZero();
+  Db_.setZero();
+  Eigen::VectorXd &r1 = r1_, &r2 = r2_;
+  r1 = rail().to_free(fr);
+  r2.setZero(n_border());
+  const auto& f2f = rail().full_to_free();
+  for (int w = 0; w < nw_; ++w) {
+    const WheelEval& we = ev.w[w];
+    const int o = kBorderPerWheel * w;
+    Db_(o + kY, o + kY) = model_.wheels[w].mass;
+    Db_(o + kTheta, o + kTheta) = model_.wheels[w].inertia;
+    r2(o + kY) = fb(o + kY);
+    r2(o + kTheta) = fb(o + kTheta);
+    if (!std::isnan(lam_p(w))) {
+      Db_(o + kLambda, o + kLambda) = 1.0;
+      r2(o + kLambda) = lam_p(w);
+      continue;
+    }
+    const int d0 = we.pt.mp.dof0();
+    for (int a = 0; a < 8; ++a) {
+      const int i = f2f[d0 + a];
+      if (i < 0) continue;
+      Bb_(i, o + kLambda) = -we.rk.b(2 + a);
+      Cb_(o + kLambda, i) = we.rk.b(2 + a);
+    }
+    Db_(o + kY, o + kLambda) = -we.rk.b(1);
+    Db_(o + kTheta, o + kLambda) = -we.rk.b(10);
+    Db_(o + kLambda, o + kY) = we.rk.b(1);
+    Db_(o + kLambda, o + kTheta) = we.rk.b(10);
+    // d/dt g = b . qdd + dg/dq . qdot = -alpha g   (X_A'' = 0, X_A' = v)
+    Vec10 qdot;
+    qdot(0) = set_.speed;
+    qdot(1) = st.wheels[w].ydot;
+    qdot.tail<8>() = st.edot.segment<8>(d0);
+    r2(o + kLambda) = -we.rk.dg_dq.dot(qdot) - set_.baumgarte * we.rk.g;
+  }
+  if (!solver_.factorize_border(Mfac_, Bb_, Cb_, Db_))
+    throw std::runtime_error("acceleration system is singular");
+  solver_.solve(r1, r2, x1_, acc.x);
+  acc.edd.setZero(rail().n_dof());
+  rail().add_from_free(x1_, acc.edd);
+}
+
+void System::residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
+                      Eigen::VectorXd& r1, Eigen::VectorXd& r2) {
+  for (int w = 0; w < nw_; ++w) lam_(w) = acc.x(kBorderPerWheel * w + kLambda);
+  forces(ev, lam_, fr_, fb_);
+  rail().mass().multiply(rail().to_free(acc.edd), Medd_);
+  r1 = rail().to_free(fr_) - Medd_;
+  r2.resize(n_border());
+  for (int w = 0; w < nw_; ++w) {
+    const int o = kBorderPerWheel * w;
+    const WheelParams& p = model_.wheels[w];
+    const double lam_p = prescribed_lambda(st, ev, w);
+    r2(o + kY) = -(p.mass * acc.x(o + kY) - fb_(o + kY));
+    r2(o + kTheta) = -(p.inertia * acc.x(o + kTheta) - fb_(o + kTheta));
+    r2(o + kLambda) = std::isnan(lam_p) ? -ev.w[w].rk.g / cv : -(lam_(w) - lam_p);
+  }
+}
+
+void System::add_entry(int i, int j, double v) {
+  if (i < 0 || j < 0 || v == 0.0) return;
+  if (i < nf_ && j < nf_)
+    J_.add(i, j, v);
+  else if (i < nf_)
+    Bb_(i, j - nf_) += v;
+  else if (j < nf_)
+    Cb_(i - nf_, j) += v;
+  else
+    Db_(i - nf_, j - nf_) += v;
+}
+
+void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc,
+                                       double cq, double cv, bool refresh_rail) {
+  if (refresh_rail || Jrail_.size() != nf_) {
+    Jrail_.resize(nf_, kHalfBandwidth);
+    Jrail_.set_linear_combination(1.0, rail().mass(), cv, rail().support_damping());
+    rail().add_tangent(st.e, cq, Jrail_);
+  }
+  J_ = Jrail_;
+  Bb_.setZero();
+  Cb_.setZero();
+  Db_.setZero();
+  for (int w = 0; w < nw_; ++w) {
+    const int o = kBorderPerWheel * w;
+    Db_(o + kY, o + kY) = model_.wheels[w].mass;
+    Db_(o + kTheta, o + kTheta) = model_.wheels[w].inertia;
+  }
+  for (int w = 0; w < nw_; ++w) add_wheel_block(st, ev, acc, w, cq, cv);
+}
+
+// Wheel w's contact, rolling and slip terms. Local index 1 -> Y, 2..9 -> rail, 10 -> theta.
+void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
+                             double cv) {
+  const WheelEval& we = ev.w[w];
+  const WheelState& ws = st.wheels[w];
+  const int o = nf_ + kBorderPerWheel * w;
+  const double lambda = acc.x(kBorderPerWheel * w + kLambda);
+  const auto& f2f = rail().full_to_free();
+  const int d0 = we.pt.mp.dof0();
+  auto glob = [&](int a) -> int {
+    if (a == 1) return o + kY;
+    if (a >= 2 && a <= 9) return f2f[d0 + a - 2];
+    if (a == 10) return o + kTheta;
+    return -1;
+  };
+  for (int a = 1; a <= 10; ++a) {
+    const int i = glob(a);
+    for (int c = 1; c <= 9; ++c) {
+      double v = -lambda * we.rk.db_dq(a, c) * cq;
+      if (a <= 9) v += cq * we.cf.K(a, c) + cv * we.cf.C(a, c);
+      add_entry(i, glob(c), v);
+    }
+    add_entry(i, o + kLambda, -we.rk.b(a));  // d r / d lambda
+  }
+  if (sticking(set_.rolling, ws, we)) {
+    // row: (cq dg/dq + cv b) / cv
+    for (int c = 1; c <= 10; ++c) {
+      const double v = (c <= 9 ? cq * we.rk.dg_dq(c) : 0.0) / cv + we.rk.b(c);
+      add_entry(o + kLambda, glob(c), v);
+    }
+    return;
+  }
+  Db_(o - nf_ + kLambda, o - nf_ + kLambda) = 1.0;
+  if (set_.rolling && ws.state == SlipState::Slip && we.cf.active) {
+    // lambda - sigma mu N(q, qdot):  dN/dq = -dNe grad_rho, dN/dqdot = -c grad_rho
+    const double sm = ws.sigma * model_.contact.friction;
+    for (int c = 1; c <= 9; ++c)
+      add_entry(o + kLambda, glob(c),
+                sm * we.cf.grad_rho(c) * (we.cf.dN_ddelta * cq + model_.contact.damping * cv));
+  }
+}
+
+bool System::factorize_iteration_matrix() { return solver_.factorize(J_, Bb_, Cb_, Db_); }
+
+Eigen::MatrixXd System::iteration_matrix_dense() const {
+  const int m = n_border();
+  Eigen::MatrixXd A(nf_ + m, nf_ + m);
+  A << J_.dense(), Bb_, Cb_, Db_;
+  return A;
+}
+
+double total_energy(const Model& model, const SimState& st, const Eval& ev) {
+  const RailModel& rail = model.rail;
+  const Eigen::VectorXd v = rail.to_free(st.edot);
+  Eigen::VectorXd Mv, Q;
+  rail.mass().multiply(v, Mv);
+  double U = 0.0;
+  rail.internal_force(st.e, nullptr, Q, &U);
+  // summed in this order so that one wheel gives the same rounding as the one-wheel kernel
+  double E = 0.5 * v.dot(Mv);
+  for (int w = 0; w < model.n_wheels(); ++w) {
+    const WheelParams& p = model.wheels[w];
+    const WheelState& s = st.wheels[w];
+    E += 0.5 * p.mass * s.ydot * s.ydot;
+    E += 0.5 * p.inertia * s.thetadot * s.thetadot;
+  }
+  E += U;
+  for (int w = 0; w < model.n_wheels(); ++w)
+    E += contact_potential(model.contact.law, model.contact.stiffness,
+                           std::max(ev.w[w].cf.delta, 0.0));
+  E -= rail.gravity_force().dot(st.e - rail.reference());
+  for (int w = 0; w < model.n_wheels(); ++w) {
+    E += model.wheels[w].total_load() * st.wheels[w].y;
+    E -= model.wheels[w].torque * st.wheels[w].theta;
+  }
+  return E;
+}
+
+double vibration_energy(const Model& model, const SimState& st) {
+  const Eigen::VectorXd v = model.rail.to_free(st.edot);
+  Eigen::VectorXd Mv;
+  model.rail.mass().multiply(v, Mv);
+  double E = 0.5 * v.dot(Mv);
+  for (int w = 0; w < model.n_wheels(); ++w)
+    E += 0.5 * model.wheels[w].mass * st.wheels[w].ydot * st.wheels[w].ydot;
+  return E;
+}
+
+bool finite_state(const SimState& st) {
+  if (!st.e.allFinite() || !st.edot.allFinite()) return false;
+  for (const WheelState& w : st.wheels)
+    if (!std::isfinite(w.y) || !std::isfinite(w.ydot) || !std::isfinite(w.theta) ||
+        !std::isfinite(w.thetadot))
+      return false;
+  return true;
+}
+
+}  // namespace trackwheel

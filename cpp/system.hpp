@@ -1,0 +1,120 @@
+// The system workspace of the full path (MODEL.md §6): evaluation of the rail, the wheels and
+// their contacts at a state, the equations of motion as residuals, the Newton iteration matrix
+// and the index-1 acceleration system, all over one bordered banded system.
+//
+// Unknowns: the free rail coordinates (band, half bandwidth 7) and, per wheel w, a 3-wide
+// border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}. Equations:
+//   rail    M e''   = Q_g - Q_kl - Q_kt - Q_s + sum_w (Q_contact,w + lambda_w b_rail,w)
+//   wheel w M Y_A'' = -(F + M g) + N n_y + lambda t_y,   J th'' = T - rho lambda
+//   lambda_w: rolling constraint g_w = 0 (stick), sigma mu N (slide) or 0 (no contact).
+// The model is const; every buffer lives here, so a step allocates nothing new.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "banded.hpp"
+#include "contact.hpp"
+#include "model.hpp"
+#include "rolling.hpp"
+#include "state.hpp"
+
+namespace trackwheel {
+
+constexpr int kBorderPerWheel = 3;
+constexpr int kY = 0, kTheta = 1, kLambda = 2;
+
+// One wheel's contact evaluated at a state.
+struct WheelEval {
+  double x = 0.0;  // X_A [m]
+  ContactPoint pt;
+  ContactForce cf;
+  RollingKinematics rk;
+};
+
+// Everything evaluated at one (t, state).
+struct Eval {
+  std::vector<WheelEval> w;
+  Eigen::VectorXd Qint;  // elastic + support forces (full) [N]
+};
+
+// Accelerations and multipliers: rail e'' (full) and the border x = [Y'', theta'', lambda]_w.
+struct Accel {
+  Eigen::VectorXd edd;
+  Eigen::VectorXd x;
+};
+
+class System {
+ public:
+  System(const Model& model, const SimSettings& settings);
+
+  const Model& model() const { return model_; }
+  const RailModel& rail() const { return model_.rail; }
+  const SimSettings& settings() const { return set_; }
+  int n_wheels() const { return nw_; }
+  int n_free() const { return nf_; }
+  int n_border() const { return kBorderPerWheel * nw_; }
+  double x_at(int w, double t) const {
+    return set_.x_start + model_.wheels[w].x_offset + set_.speed * t;
+  }
+
+  // Contact search (warm start from each wheel's s), contact forces and rolling kinematics
+  // (with their Jacobians if jac), and the rail's internal forces.
+  void evaluate(double t, const SimState& st, bool jac, Eval& ev) const;
+  // Contact force and rolling kinematics at the found contact points: cheap next to the rail's
+  // elastic forces, so a Newton pass that rebuilds its matrix calls this again with jac.
+  void contact_terms(const SimState& st, bool jac, Eval& ev) const;
+
+  // Multiplier prescribed by wheel w's slip state, or NaN while it sticks.
+  double prescribed_lambda(const SimState& st, const Eval& ev, int w) const;
+
+  // Accelerations and multipliers from the index-1 (acceleration-level) system; the rolling
+  // constraint differentiated once, with Baumgarte's g' + alpha g = 0.
+  void accelerations(const SimState& st, const Eval& ev, Accel& acc);
+
+  // Generalized-alpha residual (right-hand side -r of J dx = -r) at an iterate; cv = gamma' h
+  // scales the velocity-level constraint rows.
+  void residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
+                Eigen::VectorXd& r1, Eigen::VectorXd& r2);
+
+  // Newton iteration matrix dr/d(e'', x) with cq = beta' h^2, cv = gamma' h: assembled, then
+  // factorised; false if singular. The rail part M + cv C_s + cq K_t(e) is cached and rebuilt
+  // only with refresh_rail (the rail is nearly linear; the contact and constraint parts are
+  // rebuilt every time).
+  void assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
+                                 double cv, bool refresh_rail);
+  bool factorize_iteration_matrix();
+  // The assembled (unfactorised) matrix as a dense (n_free + n_border) square (tests).
+  Eigen::MatrixXd iteration_matrix_dense() const;
+
+  void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+             Eigen::VectorXd& x2) const {
+    solver_.solve(r1, r2, x1, x2);
+  }
+
+ private:
+  // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the
+  // border forces fb = [F_Y, F_theta, 0]_w.
+  void forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
+              Eigen::VectorXd& fb) const;
+  void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
+                       double cv);
+  void add_entry(int i, int j, double v);
+
+  const Model& model_;
+  const SimSettings& set_;
+  int nf_, nw_;
+  BandMatrix Mfac_, J_, Jrail_;
+  Eigen::MatrixXd Bb_, Cb_, Db_;
+  Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
+  BorderedSolver solver_;
+};
+
+// Total mechanical energy [J]: kinetic + elastic + support springs + contact potentials
+// + potentials of gravity on the rail, of the wheel loads P Y_A and of the torques -T theta.
+double total_energy(const Model& model, const SimState& st, const Eval& ev);
+// Kinetic energy of the rail and the wheels' vertical motion [J] (the runaway watchdog's).
+double vibration_energy(const Model& model, const SimState& st);
+bool finite_state(const SimState& st);
+
+}  // namespace trackwheel

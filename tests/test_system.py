@@ -1,0 +1,110 @@
+"""The system workspace (cpp/system.hpp): the generalized-alpha iteration matrix against
+central finite differences of the residual, through the test-only binding ``_core.ga_probe``.
+
+The unknowns of a step are x = [e''_free, (Y'', theta'', lambda) per wheel]; the kernel
+solves J dx = -r with J = dr/dx assembled analytically: the rail's M + gamma' h C_s +
+beta' h^2 K_t, the contact stiffness (incl. the moving contact point), the rolling
+constraint's border rows and columns (velocity level, scaled by 1/(gamma' h)) and the slide
+row lambda - sigma mu N(q, qdot). ga_probe returns -r and J at any iterate, so column i of J
+must equal -(R(x + h e_i) - R(x - h e_i)) / 2h with R = -r.
+
+Step and tolerance: h = 1e3 m/s^2 on the accelerations moves the coordinates by
+beta' h_t^2 x 1e3 ~ 3e-8 m (h_t = 1e-5 s), 1e-3 of the contact compression, so the O(h^2)
+truncation is ~1e-7 of a column; h = 1 N on the multipliers, on which r is linear. Round-off
+is eps |R| / h with |R| dominated by the axial forces of the rail, EA |e| ~ 1.4e9 N x 5 m,
+i.e. ~2e-9 per unit of a column whose entries are ~1-10 kg. Measured: 1.3e-8 of a column's
+largest entry (and 1e-5 with h = 1, where round-off dominates, falling as 1/h). Tolerance:
+1e-6 of each column's largest entry. The scene has no contact damping, whose q-dependence the
+matrix neglects on purpose.
+"""
+
+from __future__ import annotations
+
+import dataclasses as dc
+
+import numpy as np
+import pytest
+
+import trackwheel as tw
+from trackwheel import _core, _kernel
+
+V = tw.kmh(300)
+DT = 1e-5
+
+
+def _probe_case(law, slide, n_wheels):
+    scene = tw.Scene.kato2005()
+    if law == "hertz":
+        scene = dc.replace(scene, contact=dc.replace(scene.contact, law="hertz"))
+    model = _kernel.rail_model(scene, 20)
+    contact = _kernel.contact_params(scene)
+    d = _core.static_solve(model, _kernel.wheel_params(scene), contact, 1.3)
+    e = np.asarray(d["e"])
+    wheels, states = [], []
+    for k in range(n_wheels):
+        p = _kernel.wheel_params(scene)
+        p.x_offset = 2.0 * k
+        w = _core.WheelState()
+        x = 1.3 + p.x_offset
+        # wheel 0 at its static equilibrium; wheel 1 pressed 20 um into the rail
+        w.y = d["y_wheel"] if k == 0 else model.positions(e, [x])[0, 1] + 0.1 - 2e-5
+        w.s = d["contact_s"] if k == 0 else x
+        w.thetadot = V / scene.wheel.radius
+        w.state = _core.SlipState.slip if slide else _core.SlipState.stick
+        w.sigma = -1.0
+        wheels.append(p)
+        states.append(w)
+    st = _core.SimState()
+    st.e, st.edot, st.wheels = e, np.zeros_like(e), states
+    s = _core.SimSettings()
+    s.speed, s.x_start, s.dt, s.t_end = V, 1.3, DT, DT
+    return model, wheels, contact, s, st
+
+
+@pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("linear", True, 1),
+                                                  ("hertz", False, 2), ("hertz", True, 2)])
+def test_iteration_matrix_matches_central_differences(law, slide, n_wheels):
+    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels)
+
+    def R(x=None):
+        return _core.ga_probe(model, wheels, contact, s, st, DT, x)
+
+    p0 = R()
+    x0, J = p0["start"], p0["matrix"]
+    nb = 3 * n_wheels
+    assert J.shape == (len(x0), len(x0)) and len(x0) == model.n_free + nb
+    h = np.full(len(x0), 1e3)
+    h[model.n_free + 2::3] = 1.0  # the multipliers lambda [N]
+    cols = []
+    for i in range(len(x0)):
+        xp, xm = x0.copy(), x0.copy()
+        xp[i] += h[i]
+        xm[i] -= h[i]
+        cols.append(-(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h[i]))
+    J_fd = np.stack(cols, axis=1)
+    scale = np.max(np.abs(J), axis=0)
+    assert np.all(scale > 0.0)
+    err = np.max(np.abs(J - J_fd), axis=0) / scale
+    assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
+    # the border is really coupled: the rolling/slide rows and lambda columns are not empty
+    for k in range(n_wheels):
+        lam = model.n_free + 3 * k + 2
+        assert np.count_nonzero(J[:model.n_free, lam]) >= 4
+        assert np.count_nonzero(J[lam, :model.n_free]) >= 4
+
+
+@pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("hertz", True, 2)])
+def test_newton_on_the_probe_matrix_reaches_the_round_off_floor(law, slide, n_wheels):
+    """Newton with the probe's matrix takes the residual from ~1e3-1e4 N to its round-off
+    floor, eps EA |e| ~ 2e-6 N (the rail's axial forces), within five iterations: the matrix
+    is the derivative of the very residual the kernel's Newton solves (measured: 3e-6 N and
+    1e-7 N; bound 1e-4 N, far below the 1e-6 (F + M g) ~ 0.05 N the kernel accepts)."""
+    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels)
+    p0 = _core.ga_probe(model, wheels, contact, s, st, DT)
+    x = p0["start"].copy()
+    assert np.linalg.norm(p0["residual"]) > 1e3
+    for _ in range(5):
+        p = _core.ga_probe(model, wheels, contact, s, st, DT, x)
+        x = x + np.linalg.solve(p["matrix"], p["residual"])
+    r = _core.ga_probe(model, wheels, contact, s, st, DT, x)["residual"]
+    assert np.linalg.norm(r) < 1e-4
