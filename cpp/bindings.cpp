@@ -221,8 +221,27 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("radius", &ContactParams::radius)
       .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
 
+  py::class_<Profile>(m, "Profile",
+                      "Running-surface profile r(X): piecewise cubic on a uniform grid")
+      .def(py::init<>())
+      .def(py::init([](double x0, double dx, const Eigen::Matrix<double, 4, Eigen::Dynamic>& c) {
+             // c: scipy PPoly coefficients, shape (4, m), highest power first
+             std::vector<double> v(c.data(), c.data() + c.size());
+             return Profile(x0, dx, std::move(v));
+           }),
+           py::arg("x0"), py::arg("dx"), py::arg("coefficients"))
+      .def_property_readonly("empty", &Profile::empty)
+      .def(
+          "__call__",
+          [](const Profile& p, double x) {
+            const ProfileValue v = p(x);
+            return py::make_tuple(v.r, v.rx, v.rxx);
+          },
+          "(r, dr/dX, d2r/dX2) at X");
+
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())
+      .def(py::init<const RailParams&, const SupportParams&, Profile>())
       .def_property_readonly("n_dof", &RailModel::n_dof)
       .def_property_readonly("n_free", &RailModel::n_free)
       .def_property_readonly("n_nodes", &RailModel::n_nodes)
@@ -273,6 +292,7 @@ PYBIND11_MODULE(_core, m) {
         d["normal"] = Eigen::Vector2d(pt.n);
         d["tangent"] = Eigen::Vector2d(pt.t);
         d["y_contact"] = pt.r.y();
+        d["surface"] = Eigen::Vector2d(pt.p);
         d["N"] = cf.N;
         d["active"] = cf.active;
         d["F"] = cf.F;

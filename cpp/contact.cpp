@@ -6,6 +6,26 @@
 
 namespace trackwheel {
 
+namespace {
+// Centre line and running surface at s.
+void surface_at(const RailModel& rail, const Eigen::VectorXd& e, double s, ContactPoint& pt) {
+  pt.mp = rail.locate(s);
+  pt.r = rail.position(e, pt.mp);
+  pt.rs = rail.slope(e, pt.mp);
+  pt.rss = rail.curvature_vector(e, pt.mp);
+  pt.p = pt.r;
+  pt.ps = pt.rs;
+  pt.pss = pt.rss;
+  pt.lifted = !rail.profile().empty();
+  if (!pt.lifted) return;
+  pt.profile = rail.profile()(pt.r.x());
+  const ProfileValue& R = pt.profile;
+  pt.p.y() += R.r;
+  pt.ps.y() += R.rx * pt.rs.x();
+  pt.pss.y() += R.rxx * pt.rs.x() * pt.rs.x() + R.rx * pt.rss.x();
+}
+}  // namespace
+
 ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
                                 const Eigen::Vector2d& RA, double s_guess) {
   ContactPoint pt;
@@ -13,13 +33,10 @@ ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
   double s = std::min(std::max(s_guess, 0.0), L);
   const double tol = 1e-13 * L;
   for (int it = 0; it < 50; ++it) {
-    pt.mp = rail.locate(s);
-    pt.r = rail.position(e, pt.mp);
-    pt.rs = rail.slope(e, pt.mp);
-    pt.rss = rail.curvature_vector(e, pt.mp);
-    const Eigen::Vector2d d = RA - pt.r;
-    const double f = d.dot(pt.rs);
-    const double fs = -pt.rs.squaredNorm() + d.dot(pt.rss);
+    surface_at(rail, e, s, pt);
+    const Eigen::Vector2d d = RA - pt.p;
+    const double f = d.dot(pt.ps);
+    const double fs = -pt.ps.squaredNorm() + d.dot(pt.pss);
     pt.iterations = it + 1;
     if (!(fs < 0.0) || !std::isfinite(f)) break;  // not a minimum of the distance
     const double ds = -f / fs;
@@ -38,35 +55,51 @@ ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
     throw std::runtime_error(msg.str());
   }
   pt.s = s;
-  pt.mp = rail.locate(s);
-  pt.r = rail.position(e, pt.mp);
-  pt.rs = rail.slope(e, pt.mp);
-  pt.rss = rail.curvature_vector(e, pt.mp);
-  const Eigen::Vector2d d = RA - pt.r;
+  surface_at(rail, e, s, pt);
+  const Eigen::Vector2d d = RA - pt.p;
   pt.rho = d.norm();
   pt.n = d / pt.rho;
-  pt.t = pt.rs.normalized();
+  pt.t = pt.ps.normalized();
   pt.phi = std::atan2(pt.rs.y(), pt.rs.x());
   return pt;
 }
 
+Mat28 surface_jacobian(const ContactPoint& pt) {
+  Mat28 T = shape_matrix(pt.mp.h.n);
+  if (pt.lifted)
+    for (int a = 0; a < 4; ++a) T(1, 2 * a) = pt.profile.rx * pt.mp.h.n[a];
+  return T;
+}
+
+Mat28 surface_jacobian_s(const ContactPoint& pt) {
+  Mat28 Ts = shape_matrix(pt.mp.h.ns);
+  if (pt.lifted)
+    for (int a = 0; a < 4; ++a)
+      Ts(1, 2 * a) = pt.profile.rxx * pt.rs.x() * pt.mp.h.n[a] + pt.profile.rx * pt.mp.h.ns[a];
+  return Ts;
+}
+
 void distance_derivatives(const ContactPoint& pt, Vec10& grad, Mat10* hess) {
-  // G = [I2, -S(s*)] (2 x 10)
-  Eigen::Matrix<double, 2, 10> G = Eigen::Matrix<double, 2, 10>::Zero();
-  G(0, 0) = 1.0;
-  G(1, 1) = 1.0;
-  for (int a = 0; a < 4; ++a) {
-    G(0, 2 + 2 * a) = -pt.mp.h.n[a];
-    G(1, 2 + 2 * a + 1) = -pt.mp.h.n[a];
-  }
+  // G = [I2, -T(s*)] (2 x 10)
+  Eigen::Matrix<double, 2, 10> G;
+  G.leftCols<2>().setIdentity();
+  G.rightCols<8>() = -surface_jacobian(pt);
   grad = G.transpose() * pt.n;
   if (!hess) return;
   const Eigen::Vector2d d = pt.rho * pt.n;
-  const double fs = -pt.rs.squaredNorm() + d.dot(pt.rss);
-  Vec10 w = G.transpose() * pt.rs / pt.rho;
+  const double fs = -pt.ps.squaredNorm() + d.dot(pt.pss);
+  Vec10 w = G.transpose() * pt.ps / pt.rho;
   for (int a = 0; a < 4; ++a) w.segment<2>(2 + 2 * a) += pt.mp.h.ns[a] * pt.n;
+  const Mat28 Ts = surface_jacobian_s(pt);
+  if (pt.lifted)
+    for (int a = 0; a < 4; ++a) w(2 + 2 * a) += Ts(1, 2 * a) * pt.n.y();
   const Eigen::Matrix2d P = Eigen::Matrix2d::Identity() - pt.n * pt.n.transpose();
   *hess = G.transpose() * P * G / pt.rho + (pt.rho / fs) * w * w.transpose();
+  if (pt.lifted) {  // the surface is curved in e through R(x(e))
+    Vec8 Sx = Vec8::Zero();
+    for (int a = 0; a < 4; ++a) Sx(2 * a) = pt.mp.h.n[a];
+    hess->bottomRightCorner<8, 8>() -= pt.n.y() * pt.profile.rxx * Sx * Sx.transpose();
+  }
 }
 
 double elastic_normal_force(ContactLaw law, double k, double delta, double& slope) {

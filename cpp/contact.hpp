@@ -7,11 +7,17 @@
 // or N = C_H delta^1.5 (Hertz), plus optional damping c * d(delta)/dt, and N = 0 when
 // delta <= 0 (unilateral). Forces: +N n on the wheel centre, -S(s*)^T N n on the rail.
 //
-// Because rho(q) is the distance from R_A to the rail curve, the elastic part of the contact
+// With a rail profile (profile.hpp) the wheel touches the running surface
+//   p(s) = r(s) + R(x(s)) e_y,  x(s) = r_x(s),
+// not the centre line r(s): the search, rho, n and t above use p. Its Jacobian with respect to
+// the element coordinates at fixed s is T = dp/de = S + e_y R'(x) S_x (S_x the x row of S), and
+// T_s = dT/ds = S_s + e_y (R'' x_s S_x + R' S_x,s). Without a profile p = r and T = S.
+//
+// Because rho(q) is the distance from R_A to the surface, the elastic part of the contact
 // force is the gradient of the potential V(rho(q)) and its Jacobian is symmetric:
-//   grad rho = G^T n,  G = [I, -S(s*)]  (q = [X_A, Y_A, e_el(8)]),
-//   hess rho = G^T (I - n n^T) G / rho + rho w w^T / f_s,
-//   w = G^T r_s / rho + [0; S_s^T n],  f_s = -r_s.r_s + (R_A - r).r_ss.
+//   grad rho = G^T n,  G = [I, -T(s*)]  (q = [X_A, Y_A, e_el(8)]),
+//   hess rho = G^T (I - n n^T) G / rho + rho w w^T / f_s - n_y R'' S_x^T S_x (e block),
+//   w = G^T p_s / rho + [0; T_s^T n],  f_s = -p_s.p_s + (R_A - p).p_ss.
 #pragma once
 
 #include <Eigen/Core>
@@ -47,11 +53,14 @@ double linearised_stiffness(ContactLaw law, double stiffness, double P);
 struct ContactPoint {
   double s = 0.0;              // contact parameter s* on the rail [m]
   MeshPoint mp;                // its element and shape functions
-  Eigen::Vector2d r, rs, rss;  // r(s*), r_s, r_ss
-  double rho = 0.0;            // |R_A - r(s*)| [m]
-  Eigen::Vector2d n;           // unit normal, rail -> wheel centre
-  Eigen::Vector2d t;           // unit tangent r_s/|r_s|
-  double phi = 0.0;            // obliquity atan2(y_s, x_s) [rad]
+  Eigen::Vector2d r, rs, rss;  // centre line r(s*), r_s, r_ss
+  Eigen::Vector2d p, ps, pss;  // running surface p(s*), p_s, p_ss (= r, r_s, r_ss without profile)
+  ProfileValue profile;        // R, R', R'' at x(s*) (zero without profile)
+  bool lifted = false;         // a profile is present (T != S)
+  double rho = 0.0;            // |R_A - p(s*)| [m]
+  Eigen::Vector2d n;           // unit normal, surface -> wheel centre
+  Eigen::Vector2d t;           // unit tangent p_s/|p_s|
+  double phi = 0.0;            // obliquity of the centre line atan2(y_s, x_s) [rad]
   int iterations = 0;          // Newton iterations of the search
   bool converged = false;
 };
@@ -74,6 +83,10 @@ struct ContactForce {
 // Evaluate the contact force at a found contact point; qdot = [V_A; edot_el] (for damping).
 ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, const Vec10& qdot,
                            bool want_jacobian);
+
+// T = dp/de_el at fixed s (2 x 8; S without a profile) and its s-derivative T_s.
+Mat28 surface_jacobian(const ContactPoint& pt);
+Mat28 surface_jacobian_s(const ContactPoint& pt);
 
 // d rho/dq and the Hessian of rho (exposed for tests).
 void distance_derivatives(const ContactPoint& pt, Vec10& grad, Mat10* hess);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "limits.hpp"
 
@@ -15,8 +16,8 @@ void require(bool ok, const std::string& msg) {
 }
 }  // namespace
 
-RailModel::RailModel(const RailParams& rail, const SupportParams& supports)
-    : p_(rail), sup_(supports) {
+RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Profile profile)
+    : p_(rail), sup_(supports), profile_(std::move(profile)) {
   require(std::isfinite(p_.length) && p_.length > 0, "rail length must be > 0 m");
   require(p_.n_elements >= 1 && p_.n_elements <= limits::kMaxElements,
           "n_elements must be in [1, " + std::to_string(limits::kMaxElements) + "]");

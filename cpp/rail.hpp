@@ -16,6 +16,7 @@
 
 #include "ancf_cable.hpp"
 #include "banded.hpp"
+#include "profile.hpp"
 
 namespace trackwheel {
 
@@ -50,11 +51,13 @@ constexpr int kHalfBandwidth = 7;
 
 class RailModel {
  public:
-  RailModel(const RailParams& rail, const SupportParams& supports);
+  // profile: the running-surface irregularity r(X) (none by default).
+  RailModel(const RailParams& rail, const SupportParams& supports, Profile profile = Profile());
 
   const RailParams& params() const { return p_; }
   const SupportParams& supports() const { return sup_; }
   const CableSection& section() const { return sec_; }
+  const Profile& profile() const { return profile_; }
   int n_nodes() const { return p_.n_elements + 1; }
   int n_dof() const { return 4 * n_nodes(); }
   int n_free() const { return static_cast<int>(free_to_full_.size()); }
@@ -92,6 +95,7 @@ class RailModel {
  private:
   RailParams p_;
   SupportParams sup_;
+  Profile profile_;
   CableSection sec_;
   CableQuadrature quad_;
   Mat8 Me_;

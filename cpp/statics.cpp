@@ -107,12 +107,13 @@ StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
   Eigen::VectorXd e = e_guess.size() == rail.n_dof() ? e_guess : rail.reference();
   double y = y_guess;
   if (!std::isfinite(y)) {
-    // just touching the rail below, pressed in by the static load of a linear contact
-    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, 1.0), x_wheel);
-    double delta = contact.law == ContactLaw::Linear
-                       ? wheel.total_load() / contact.stiffness
-                       : std::pow(wheel.total_load() / contact.stiffness, 2.0 / 3.0);
-    y = pt.r.y() + wheel.radius - delta;
+    // just touching the rail below, pressed in by the static load; the contact is sought from
+    // a centre one radius above the rail (far above, a corrugated surface can curve more than
+    // the distance: the foot of the normal is then a maximum of the distance)
+    const double y_above = rail.position(e, rail.locate(x_wheel)).y() + wheel.radius;
+    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_above), x_wheel);
+    const double delta = static_compression(contact.law, contact.stiffness, wheel.total_load());
+    y = pt.p.y() + wheel.radius - delta;
   }
   return newton_static(rail, &wheel, &contact, x_wheel, e, y);
 }

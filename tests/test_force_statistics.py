@@ -192,3 +192,12 @@ def test_seed_percentiles():
     assert 50.0 < p.loc[50.0, ("max_force", "p50")] < 51.0  # one value (3) removed
     with pytest.raises(ValueError, match="dynamic_factor"):
         seed_percentiles(df, ["dynamic_factor"])
+
+
+def test_repr_is_compact_and_carries_the_key_numbers():
+    t = np.arange(0.0, 0.2, 1e-4)
+    n = 50e3 + 5e3 * np.sin(2 * np.pi * 100.0 * t)
+    st = force_statistics(t, 30.0 * t, n, 50e3)
+    text = repr(st)
+    assert len(text.splitlines()) <= 5 and len(text) < 400
+    assert "dynamic factor 1.1" in text and "[45, 55] kN" in text

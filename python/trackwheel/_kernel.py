@@ -7,8 +7,17 @@ from __future__ import annotations
 
 from functools import lru_cache
 
+import numpy as np
+
 from . import _core
 from .scene import Scene
+
+#: The kernel interpolates the rail profile by a cubic spline through samples X_i = i dx over
+#: the whole rail, dx at most PROFILE_DX [m] and at most 1/PROFILE_POINTS_PER_WAVELENGTH of the
+#: profile's shortest wavelength: the spline's error is ~(2 pi dx / lambda)^4 / 384 < 2e-6 of
+#: the amplitude, and a joint's cusp is rounded over about 1 mm only.
+PROFILE_DX = 1e-3
+PROFILE_POINTS_PER_WAVELENGTH = 40
 
 
 @lru_cache(maxsize=64)
@@ -29,7 +38,39 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     s.position = list(pos)
     s.stiffness = [scene.supports.stiffness] * len(pos)
     s.damping = [scene.supports.damping] * len(pos)
-    return _core.RailModel(p, s)
+    return _core.RailModel(p, s, profile(scene))
+
+
+def profile(scene: Scene) -> _core.Profile:
+    """The scene's rail profile as the kernel's piecewise cubic over [0, L] (none: empty),
+    patch-filtered if ``scene.contact.patch_filter``.
+
+    Raises ValueError where the profile curves upwards more sharply than the wheel (r'' >=
+    1/rho0, e.g. a dipped joint's cusp): the wheel would bridge the dip on two points, which
+    the single contact point of the model cannot represent.
+    """
+    irr = scene.irregularity
+    if irr is None or not irr.parts:
+        return _core.Profile()
+    from scipy.interpolate import CubicSpline
+
+    from .irregularity import contact_half_width
+
+    dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
+    a = contact_half_width(scene) if scene.contact.patch_filter else None
+    x0, h, r = irr.table(0.0, scene.rail.length, dx, half_width=a)
+    x = x0 + h * np.arange(r.size)
+    spline = CubicSpline(x, r)
+    curvature = spline(x, 2)
+    worst = int(np.argmax(curvature))
+    if curvature[worst] >= 1.0 / scene.wheel.radius:
+        raise ValueError(
+            f"Scene.irregularity curves upwards by {curvature[worst]:.3g} 1/m at X = "
+            f"{x[worst]:.4g} m, more than the wheel's 1/rho0 = {1 / scene.wheel.radius:.3g} 1/m: "
+            "the wheel would bridge it on two points, which one contact point cannot represent; "
+            "allowed: r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to "
+            "average it over the contact patch)")
+    return _core.Profile(x0, h, spline.c)
 
 
 def wheel_params(scene: Scene) -> _core.WheelParams:

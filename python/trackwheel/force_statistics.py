@@ -158,6 +158,22 @@ class ForceStatistics:
     p2: float = math.nan  #: P2 [N]
     p2_time: float = math.nan  #: [s]
 
+    def __repr__(self) -> str:
+        lines = [
+            (f"ForceStatistics: N in [{self.min_force / 1e3:.4g}, {self.max_force / 1e3:.4g}] kN,"
+            f" dynamic factor {self.dynamic_factor:.4g}"),
+            (f"  contact loss {self.loss_duration * 1e3:.4g} ms in"
+            f" {len(self.loss_intervals)} interval(s)"),
+        ]
+        if not math.isnan(self.p1):
+            lines.append(f"  P1 {self.p1 / 1e3:.4g} kN at {self.p1_time:.5g} s, "
+                         f"P2 {self.p2 / 1e3:.4g} kN at {self.p2_time:.5g} s")
+        bands = (f"{self.band_centres.size} one-third-octave bands "
+                 f"({self.band_centres[0]:.3g}-{self.band_centres[-1]:.3g} Hz), "
+                 if self.band_centres.size else "")
+        lines.append(f"  {bands}spectrum of {self.frequency.size} bins")
+        return "\n".join(lines)
+
 
 def force_statistics(t, x, n, static_load: float, *, defect_at: float | None = None,
                      p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD,

@@ -183,9 +183,13 @@ class Contact:
     stiffness: float | None = None  #: k [N/m] (linear) or C_H [N/m^1.5] (hertz); None: Hertz
     damping: float = 0.0  #: contact damping [N s/m]
     friction: float = 0.3  #: mu, friction coefficient for the slip judgement [-]
+    #: the wheel sees the rail profile averaged over its static Hertz patch, length 2a (the 1D
+    #: contact filter; :func:`trackwheel.irregularity.contact_half_width` gives a)
+    patch_filter: bool = False
 
     def __post_init__(self):
         v.choice("Contact.law", self.law, {"linear", "hertz"})
+        v.boolean("Contact.patch_filter", self.patch_filter)
         if self.stiffness is not None:
             v.positive("Contact.stiffness", self.stiffness,
                        "N/m" if self.law == "linear" else "N/m^1.5")
