@@ -19,8 +19,8 @@ Parameters of ``Scene`` and ``simulate`` and where each is exercised here:
 - Scene: gravity, rail_gravity -- on and off.
 - simulate: speed, dt, n_elements, x_start, x_end, rho_inf, output_every, start ("static",
   "sudden"), drop_height (contact lost and regained), n_modes (all modes = all coordinates),
-  integrator and baumgarte (integrators). rolling=False is the frictionless full model, which
-  the linear path equals except for the tangential force: covered by the same comparisons.
+  integrator and baumgarte (integrators), rolling (False: the frictionless full model, which
+  the linear path must equal too).
   energy: not comparable between the paths (the full model's driving reaction also does work
   on the rail's axial motion and the wheel's rotation, which the linear path does not have:
   the energy changes differ by ~20 %); the full path's balance is in test_invariants.py.
@@ -91,13 +91,15 @@ ODD_RUN = {"n_elements": 16, "dt": 1e-5, "x_start": 0.3, "x_end": 3.0, "rho_inf"
     ("hertz", {"drop_height": 2e-4}, {}),
     ("sprung", {}, {"gravity": 0.0, "rail_gravity": False}),
     ("hertz", {}, {"rail_gravity": False}),
+    ("sprung", {"rolling": False}, {}),
 ])
 def test_linear_matches_full_with_every_parameter(level, kw, changes):
     """``odd_scene`` at 250 km/h: the rail under the wheel, the wheel height and the contact
     force of the linear level agree with the ANCF level within 1 % of the dynamic amplitude
     (forces: 1e-3 of the static load), with the static start, a sudden load, a dropped wheel
-    that loses and regains contact, and gravity off (measured: <= 0.14 % and 1e-4). The
-    tolerance is 7x the measured difference, which is the ANCF rail's nonlinearity."""
+    that loses and regains contact, gravity off, and without friction (measured: <= 0.14 % and
+    1e-4). The tolerance is 7x the measured difference, which is the ANCF rail's
+    nonlinearity."""
     scene = odd_scene(**changes)
     run = {**ODD_RUN, **kw}
     a = tw.simulate(scene, tw.kmh(250), fidelity=f"ancf/{level}", **run)
