@@ -235,8 +235,12 @@ def run_suite(py: Path, src: Path, timeout: float) -> tuple[str, str, float]:
     dt = time.perf_counter() - t0
     if p.returncode == 0:
         return "survived", "", dt
-    m = re.search(r"^(?:FAILED|ERROR) (\S+)", p.stdout, re.MULTILINE)
-    return "caught", (m.group(1) if m else f"pytest exit {p.returncode}"), dt
+    # -ra summary line: "FAILED <node id> - <first line of the error>"
+    m = re.search(r"^(?:FAILED|ERROR) (\S+)(?: - (.*))?$", p.stdout, re.MULTILINE)
+    if not m:
+        return "caught", f"pytest exit {p.returncode}", dt
+    why = (m.group(2) or "").strip()
+    return "caught", m.group(1) + (f" ({why[:90]})" if why else ""), dt
 
 
 def run(mutants: list[Mutant], timeout: float, workdir: Path | None) -> list[dict]:
