@@ -314,7 +314,7 @@ def report(rows: list[dict], total: float, out_md: Path, out_csv: Path, note: st
              "|---|---|---|---|---|---|---|"]
     for r in rows:
         desc = r["description"] + (f" (equivalent: {r['equivalent']})" if r["equivalent"] else "")
-        test = r["test"].replace("|", "\\|")
+        desc, test = (x.replace("|", "\\|") for x in (desc, r["test"]))
         lines.append(f"| {r['id']} | {r['file']} | {r['status']} | {test} | "
                      f"{float(r['seconds']):.0f} | {r['run']} | {desc} |")
     out_md.write_text("\n".join(lines) + "\n")
