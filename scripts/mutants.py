@@ -28,8 +28,8 @@ running Python environment, as for an editable install):
     python scripts/mutants.py --only slip-threshold linear-support-damping
     python scripts/mutants.py --list          # the mutants without running anything
 
-It takes roughly one to two minutes per C++ mutant on two cores (the incremental rebuild and the
-suite up to its first failure); run it on demand, not in CI.
+It takes about half a minute per mutant on two cores (the incremental rebuild and the suite up
+to its first failure) after a first build of two to three minutes; run it on demand, not in CI.
 """
 
 from __future__ import annotations
