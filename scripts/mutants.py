@@ -1,0 +1,378 @@
+#!/usr/bin/env python3
+"""Mutation check: does the fast test suite notice plausible physics bugs? (issue 17)
+
+Each mutant in ``MUTANTS`` is one exact source replacement (the old text must occur exactly once
+in its file). The driver copies the repository's working tree (tracked and untracked,
+non-ignored files) into a scratch directory, configures and builds the C++ module there once
+with CMake + Ninja, checks that the unmutated suite passes, and then for each mutant: applies
+it, rebuilds incrementally (Ninja recompiles only the touched file), runs the fast suite
+
+    pytest -x -q -o addopts="-ra --strict-markers --strict-config" -m "not slow" tests
+    (without the timing-dependent tests listed in TIMING_DEPENDENT)
+
+with a per-mutant timeout, records whether it was caught and by which test, and reverts it.
+The suite runs in a bare virtual environment that sees the running environment's packages
+but imports trackwheel from the scratch copy (see make_venv), so the developer's build is never
+touched or used.
+
+Statuses: ``caught`` (a test failed; the first failing test's node id is reported),
+``survived`` (the suite passed: a missing test, or an equivalent mutant, see ``equivalent``),
+``timeout``, ``build error`` (the mutant does not compile: fix its text), ``pattern not found`` /
+``ambiguous`` (the source changed: update the mutant's ``old`` text; after a restructure of the
+kernel this list is the only thing to edit).
+
+Usage (from anywhere in the repository; needs cmake, ninja, pybind11 and cmeel-eigen in the
+running Python environment, as for an editable install):
+
+    python scripts/mutants.py                 # all mutants, table to stdout and benchmarks/
+    python scripts/mutants.py --only slip-threshold linear-support-damping
+    python scripts/mutants.py --list          # the mutants without running anything
+
+It takes about half a minute per mutant on two cores (the incremental rebuild and the suite up
+to its first failure) after a first build of two to three minutes; run it on demand, not in CI.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import dataclasses
+import datetime as _dt
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+#: Tests whose outcome depends on the machine's load, not on the physics: a failure there says
+#: nothing about a mutant. The automatic fidelity choice picks the adequate level with the least
+#: measured wall time (linear/sprung and linear/hertz are within a few per cent of each other).
+#: The Ctrl-C test asks for an interruption latency below 2 s, which a loaded machine can miss.
+#: The executor test starts a local Dask cluster, which on a loaded machine once left a pytest
+#: warning (an error under the project's settings) with a mutant that cannot change any result.
+TIMING_DEPENDENT = [
+    "tests/test_fidelity.py::test_sweep_auto_fidelity_chooses_and_reports",
+    "tests/test_robustness.py::test_ctrl_c_interrupts_a_long_simulation_within_a_second",
+    "tests/test_sweep.py::test_same_table_whatever_the_executor",
+]
+#: the fast suite: tests/ without the notebooks (the project's addopts add --nbmake), the slow
+#: cases and the timing-dependent tests, stopping at the first failure
+PYTEST_ARGS = ["-x", "-q", "-o", "addopts=-ra --strict-markers --strict-config", "-m", "not slow",
+               "-p", "no:randomly", "-p", "no:cacheprovider",
+               *(a for t in TIMING_DEPENDENT for a in ("--deselect", t)), "tests"]
+
+
+@dataclasses.dataclass(frozen=True)
+class Mutant:
+    id: str
+    file: str  #: path relative to the repository root
+    old: str  #: exact text, must occur exactly once in ``file``
+    new: str
+    description: str
+    #: why the mutant cannot change any result, if it is equivalent (then "survived" is expected)
+    equivalent: str | None = None
+
+
+M = Mutant
+DYN = "cpp/dynamics.cpp"
+LIN = "cpp/linear_track.cpp"
+ANCF = "cpp/ancf_cable.cpp"
+CON = "cpp/contact.cpp"
+ROLL = "cpp/rolling.cpp"
+RAIL = "cpp/rail.cpp"
+EIG = "cpp/eigen_analysis.cpp"
+ANA = "python/trackwheel/analysis.py"
+
+#: The mutations. Keep the old texts short and specific: they must be unique in their file.
+MUTANTS: list[Mutant] = [
+    # --- the two of issue 17
+    M("slip-threshold", DYN, "std::abs(lambda) > set.friction * ev.cf.N",
+      "std::abs(lambda) > 1.1 * set.friction * ev.cf.N",
+      "stick -> slide only when |lambda| > 1.1 mu N (Coulomb bound violated in stick)"),
+    M("linear-support-damping", LIN, "Cy.at(a, b) = r.support_damping().at(i, j);",
+      "Cy.at(a, b) = 0.0 * r.support_damping().at(i, j);",
+      "linear path drops the support damping from its damping matrix"),
+    # --- ANCF element: forces and Jacobians
+    M("axial-geometric-stiffness", ANCF, "const double v = wl * eps * h.ns[i] * h.ns[j];",
+      "const double v = 0.0 * wl * eps * h.ns[i] * h.ns[j];",
+      "axial Jacobian without the geometric term eps S_s^T S_s"),
+    M("bending-jacobian-term", ANCF, "3.75 * cr * g72 * dg * dg.transpose()",
+      "3.0 * cr * g72 * dg * dg.transpose()",
+      "exact-curvature Jacobian: wrong coefficient of the (dg dg^T) term"),
+    M("bending-jacobian-d2g", ANCF, "- 1.5 * cr * g52 * d2g;", ";",
+      "exact-curvature Jacobian without the d2g term"),
+    M("fused-force-curvature", ANCF, "sb * (fa * a + fb * rs) + sa * rs",
+      "sb * (fa * a) + sa * rs",
+      "time-loop element force: exact curvature's |r_s|^-3 derivative dropped"),
+    M("fused-force-axial", ANCF, "sa = wl * c.EA * eps;", "sa = 0.9 * wl * c.EA * eps;",
+      "time-loop element force: axial force 10 % low (Jacobian path unchanged)"),
+    # --- rail: supports, gravity
+    M("full-support-damping", RAIL, "sup_.stiffness[j] * y + sup_.damping[j] * ydot",
+      "sup_.stiffness[j] * y", "full path drops the support damping force"),
+    M("rail-gravity", RAIL, "p_.rhoA * p_.gravity * nint[a]", "p_.rhoA * p_.gravity * 0.9 * nint[a]",
+      "rail weight 10 % low"),
+    M("rail-gravity-moments", RAIL, "l * l / 12.0, 0.5 * l, -l * l / 12.0",
+      "0.0, 0.5 * l, 0.0", "consistent gravity load lumped (nodal moments dropped)"),
+    # --- contact
+    M("contact-stiffness", CON, "Ne = cp.stiffness * out.delta;",
+      "Ne = 1.05 * cp.stiffness * out.delta;", "linear contact law 5 % stiff (force only)"),
+    M("contact-damping-sign", CON, "Ne + cp.damping * delta_dot", "Ne - cp.damping * delta_dot",
+      "contact damper pushes the wrong way"),
+    M("contact-damping-jacobian", CON, "out.C = cp.damping *", "out.C = 0.5 * cp.damping *",
+      "contact damping matrix half the damping"),
+    M("hertz-exponent", CON, "Ne = cp.stiffness * out.delta * sq;",
+      "Ne = cp.stiffness * out.delta * std::cbrt(out.delta);",
+      "Hertz law N ~ delta^(4/3) instead of delta^(3/2) (full path)"),
+    M("contact-hessian", CON, "+ (pt.rho / fs) * w * w.transpose()", "",
+      "distance Hessian without the contact-point motion term"),
+    M("linear-hertz-exponent", LIN, "return contact.stiffness * delta * sq;",
+      "return contact.stiffness * delta * std::cbrt(delta);",
+      "Hertz law N ~ delta^(4/3) on the linear path"),
+    M("linear-contact-stiffness", LIN, "return contact.stiffness * delta;\n",
+      "return 1.05 * contact.stiffness * delta;\n", "linear path's contact spring 5 % stiff"),
+    M("linear-rail-gravity", LIN, "Qgy(a) = r.gravity_force()(full_of_y[a]);", "Qgy(a) = 0.0;",
+      "linear path without the rail's weight"),
+    # --- rolling constraint and slip
+    M("rolling-radius", ROLL, "k.g = t.dot(u) - pt.rho * thetadot;",
+      "k.g = t.dot(u) - (pt.rho + 1e-4) * thetadot;",
+      "rolling radius 0.1 mm too large in the constraint (undeformed instead of deformed)"),
+    M("slide-force-sign", DYN, "return st.sigma * set_.friction * ev.cf.N;",
+      "return -st.sigma * set_.friction * ev.cf.N;",
+      "sliding friction drives the slip instead of opposing it"),
+    M("slide-jacobian", DYN, "sm * ev.cf.grad_rho(c) * (ev.cf.dN_ddelta * cq + contact_.damping * cv)",
+      "sm * ev.cf.grad_rho(c) * (ev.cf.dN_ddelta * cq)",
+      "Newton matrix of the sliding row without dN/dqdot",
+      equivalent="only the Newton matrix changes: the iteration converges to the same residual "
+                 "tolerance (modified Newton), results agree to newton_tol; kept as a control"),
+    # --- integrators
+    M("alpha-gamma", DYN, "const double gam = 0.5 - am + af,", "const double gam = 0.6 - am + af,",
+      "generalized-alpha gamma off its second-order value (full path)"),
+    M("alpha-beta", DYN, "bet = 0.25 * (1.0 - am + af) * (1.0 - am + af);",
+      "bet = 0.3 * (1.0 - am + af) * (1.0 - am + af);",
+      "generalized-alpha beta off its optimal value (full path)"),
+    M("linear-alpha-gamma", LIN, "const double gam = 0.5 - am + af,",
+      "const double gam = 0.6 - am + af,",
+      "generalized-alpha gamma off its second-order value (linear path)"),
+    M("rk4-weights", DYN, "st.edot += w * (e1 + 2.0 * e2a + 2.0 * e3 + e4);",
+      "st.edot += w * (e1 + 2.0 * e2a + 1.0 * e3 + 2.0 * e4);",
+      "RK4 weights (1,2,1,2)/6 on the rail velocities: consistent but first order"),
+    M("rk4-last-stage", DYN, "stage(1.0, e3, y3, th3, k3);", "stage(0.5, e3, y3, th3, k3);",
+      "RK4 fourth stage evaluated at half a step"),
+    M("explicit-stability-limit", DYN, "return 2.0 * std::sqrt(2.0) / omega_max;",
+      "return 4.0 * std::sqrt(2.0) / omega_max;",
+      "predicted RK4 stability limit twice too long"),
+    M("baumgarte-sign", DYN, "- set_.baumgarte * ev.rk.g;", "+ set_.baumgarte * ev.rk.g;",
+      "Baumgarte stabilisation destabilises the constraint drift"),
+    # --- outputs
+    M("energy-wheel-load", DYN, "wheel.total_load() * st.y -", "wheel.load * st.y -",
+      "energy output: wheel-load potential without M g"),
+    M("energy-torque", DYN, "wheel.torque * st.theta;", "-wheel.torque * st.theta;",
+      "energy output: torque potential with the wrong sign"),
+    M("linear-decimation", LIN, "if (n % set.output_every == 0) record(t1);",
+      "if ((n - 1) % set.output_every == 0) record(t1);",
+      "linear path records the step after the one it should (output_every > 1)"),
+    # --- analysis
+    M("main-frequency-window", ANA, "w = np.hanning(x.size)", "w = np.ones(x.size)",
+      "spectrum without the Hann window"),
+    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s[\"n_elements\"]), x)",
+      "_quasi_static_line(result.scene, int(s[\"n_elements\"]), x + 0.005)",
+      "quasi-static line taken 5 mm ahead of the wheel"),
+    M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(positions[p]);",
+      "const MeshPoint mp = rail.locate(positions[p] + 0.05);",
+      "eigen analysis attaches the wheel 5 cm from where it is asked"),
+]
+
+
+# ------------------------------------------------------------------------------------------
+def copy_tree(dst: Path) -> None:
+    """The working tree's tracked and untracked, non-ignored files (not build products)."""
+    files = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=REPO,
+                           check=True, capture_output=True).stdout.decode().split("\0")
+    for f in filter(None, files):
+        src = REPO / f
+        if src.is_file():
+            (dst / f).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dst / f)
+
+
+def configure(src: Path, build: Path) -> None:
+    import pybind11
+
+    version = re.search(r'^version = "([^"]+)"', (src / "pyproject.toml").read_text(), re.MULTILINE)
+    subprocess.run(
+        ["cmake", "-S", str(src), "-B", str(build), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+         "-DSKBUILD_PROJECT_NAME=trackwheel",
+         f"-DSKBUILD_PROJECT_VERSION={version.group(1) if version else '0.0.0'}",
+         f"-Dpybind11_DIR={pybind11.get_cmake_dir()}", f"-DPython_EXECUTABLE={sys.executable}",
+         f"-DCMAKE_LIBRARY_OUTPUT_DIRECTORY={src / 'python' / 'trackwheel'}"],
+        check=True, capture_output=True)
+
+
+def build_module(build: Path) -> tuple[bool, str]:
+    p = subprocess.run(["cmake", "--build", str(build)], check=False, capture_output=True,
+                       text=True)
+    return p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+
+
+def make_venv(tmp: Path, src: Path) -> Path:
+    """A bare virtual environment that sees the running environment's packages but not its
+    .pth hooks (so not an editable install of trackwheel, which would import the developer's
+    build, also in the subprocesses some tests start), with the scratch copy's python/ first.
+    Returns its interpreter."""
+    venv = tmp / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    py = venv / "bin" / "python"
+    code = "import sysconfig; print(sysconfig.get_paths()['purelib'])"
+    site = subprocess.run([str(py), "-c", code], check=True, capture_output=True, text=True)
+    site = Path(site.stdout.strip())
+    (site / "0_scratch.pth").write_text(f"{src / 'python'}\n")
+    dev = [p for p in sys.path if p.endswith("site-packages") and Path(p).is_dir()]
+    (site / "1_packages.pth").write_text("".join(f"{p}\n" for p in dev))
+    return py
+
+
+def run_suite(py: Path, src: Path, timeout: float) -> tuple[str, str, float]:
+    """(status, first failing test, seconds)."""
+    t0 = time.perf_counter()
+    env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
+    env.pop("PYTHONPATH", None)
+    try:
+        p = subprocess.run([str(py), "-m", "pytest", *PYTEST_ARGS], cwd=src, env=env,
+                           check=False, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return "timeout", "", time.perf_counter() - t0
+    dt = time.perf_counter() - t0
+    if p.returncode == 0:
+        return "survived", "", dt
+    # -ra summary line: "FAILED <node id> - <first line of the error>"
+    m = re.search(r"^(?:FAILED|ERROR) (\S+)(?: - (.*))?$", p.stdout, re.MULTILINE)
+    if not m:
+        return "caught", f"pytest exit {p.returncode}", dt
+    why = (m.group(2) or "").strip()
+    return "caught", m.group(1) + (f" ({why[:90]})" if why else ""), dt
+
+
+def run(mutants: list[Mutant], timeout: float, workdir: Path | None) -> list[dict]:
+    tmp = Path(tempfile.mkdtemp(prefix="trackwheel-mutants-", dir=workdir))
+    src, build = tmp / "src", tmp / "build"
+    src.mkdir()
+    print(f"scratch copy: {src}", flush=True)
+    copy_tree(src)
+    py = make_venv(tmp, src)
+    t0 = time.perf_counter()
+    configure(src, build)
+    ok, log = build_module(build)
+    if not ok:
+        sys.exit(f"the unmutated code does not build:\n{log}")
+    status, test, secs = run_suite(py, src, timeout)
+    print(f"baseline: build + suite {time.perf_counter() - t0:.0f} s, suite {status} "
+          f"({secs:.0f} s)", flush=True)
+    if status != "survived":
+        sys.exit(f"the unmutated suite does not pass ({status} {test}): nothing to measure")
+    rows = []
+    for mu in mutants:
+        path = src / mu.file
+        text = path.read_text()
+        n = text.count(mu.old)
+        row = {"id": mu.id, "file": mu.file, "description": mu.description, "status": "",
+               "test": "", "seconds": 0.0, "equivalent": mu.equivalent or "",
+               "run": _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")}
+        t1 = time.perf_counter()
+        if n != 1:
+            row["status"] = "pattern not found" if n == 0 else f"ambiguous ({n} matches)"
+        else:
+            path.write_text(text.replace(mu.old, mu.new))
+            try:
+                ok, log = build_module(build) if mu.file.startswith("cpp/") else (True, "")
+                if not ok:
+                    row["status"] = "build error"
+                else:
+                    row["status"], row["test"], _ = run_suite(py, src, timeout)
+            finally:
+                path.write_text(text)
+        row["seconds"] = round(time.perf_counter() - t1, 1)
+        rows.append(row)
+        print(f"{mu.id:28s} {row['status']:18s} {row['seconds']:6.0f} s  {row['test']}",
+              flush=True)
+    ok, log = build_module(build)  # leave the scratch build unmutated
+    shutil.rmtree(tmp, ignore_errors=True)
+    return rows
+
+
+def report(rows: list[dict], total: float, out_md: Path, out_csv: Path, note: str = "") -> None:
+    caught = sum(r["status"] == "caught" for r in rows)
+    equiv = sum(r["status"] == "survived" and bool(r["equivalent"]) for r in rows)
+    head = (f"{caught} of {len(rows)} mutants caught, {equiv} equivalent survived, "
+            f"{len(rows) - caught - equiv} other; {total / 60:.0f} min.")
+    print("\n" + head)
+    lines = ["# Mutation check", "", "Generated by `python scripts/mutants.py`: " + head, note,
+             "", "| mutant | file | status | first failing test (error) | s | run | description |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        desc = r["description"] + (f" (equivalent: {r['equivalent']})" if r["equivalent"] else "")
+        desc, test = (x.replace("|", "\\|") for x in (desc, r["test"]))
+        lines.append(f"| {r['id']} | {r['file']} | {r['status']} | {test} | "
+                     f"{float(r['seconds']):.0f} | {r['run']} | {desc} |")
+    out_md.write_text("\n".join(lines) + "\n")
+    with out_csv.open("w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    print(f"written {out_md} and {out_csv}")
+
+
+def merge(previous: Path, rows: list[dict]) -> list[dict]:
+    """The rows of an earlier report (CSV) with the mutants run now replaced, in list order."""
+    with previous.open(newline="") as f:
+        by_id = {r["id"]: r for r in csv.DictReader(f)}
+    for r in by_id.values():
+        r.setdefault("run", "")
+    by_id.update({r["id"]: r for r in rows})
+    return [by_id[m.id] for m in MUTANTS if m.id in by_id]
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--only", nargs="+", metavar="ID", help="run only these mutants")
+    ap.add_argument("--list", action="store_true", help="list the mutants and exit")
+    ap.add_argument("--timeout", type=float, default=900.0, help="per-mutant suite timeout [s]")
+    ap.add_argument("--workdir", type=Path, default=None, help="parent of the scratch copy")
+    ap.add_argument("--out", type=Path, default=REPO / "benchmarks" / "mutants.md",
+                    help="markdown report (a CSV is written next to it)")
+    ap.add_argument("--update", action="store_true",
+                    help="with --only: replace these mutants' rows in the existing report")
+    a = ap.parse_args(argv)
+    ids = [m.id for m in MUTANTS]
+    if len(set(ids)) != len(ids):
+        sys.exit("duplicate mutant ids")
+    if a.list:
+        for m in MUTANTS:
+            print(f"{m.id:28s} {m.file:32s} {m.description}")
+        return 0
+    chosen = MUTANTS
+    if a.only:
+        unknown = set(a.only) - set(ids)
+        if unknown:
+            sys.exit(f"unknown mutant ids: {sorted(unknown)}; see --list")
+        chosen = [m for m in MUTANTS if m.id in a.only]
+    t0 = time.perf_counter()
+    rows = run(chosen, a.timeout, a.workdir)
+    total = time.perf_counter() - t0
+    csv_path = a.out.with_suffix(".csv")
+    note = ""
+    if a.update and csv_path.exists():
+        rows = merge(csv_path, rows)
+        total = sum(float(r["seconds"]) for r in rows)
+        note = "(Rows re-run with --update carry their own date; the time is the sum of rows.)"
+    report(rows, total, a.out, csv_path, note)
+    bad = [r for r in rows if r["status"] != "caught" and not (r["status"] == "survived"
+                                                                and r["equivalent"])]
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
