@@ -1,4 +1,4 @@
-// Planar gradient-deficient ANCF "cable" element (MODEL.md §2).
+// Planar gradient-deficient ANCF "cable" element (docs: Model § Rail).
 //
 // Nodal coordinates e_i = [x, y, dx/ds, dy/ds]; element vector e = [e_1; e_2] (8).
 // r(xi) = S(xi) e with the cubic Hermite functions (Shabana 1998; Gerstmayr & Irschik 2008):

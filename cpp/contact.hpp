@@ -1,4 +1,4 @@
-// Wheel/rail contact (MODEL.md §4).
+// Wheel/rail contact (docs: Model § Contact).
 //
 // The contact point on the rail is the foot of the normal from the wheel centre R_A:
 //   f(s) = (R_A - r(s)) . r_s(s) = 0, solved by Newton from the last s (warm start), moving

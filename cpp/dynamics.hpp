@@ -1,5 +1,5 @@
-// Time simulation of the wheels rolling over the flexible rail, the full path (MODEL.md
-// §3-§6, §8).
+// Time simulation of the wheels rolling over the flexible rail, the full path (docs: Model § Wheel,
+// § Contact, § Rolling and slip, § Equations of motion, § Outputs).
 //
 // Coordinates: rail e (full ANCF vector; fixed coordinates stay at their reference values),
 // per wheel Y_A and theta; X_A(t) = X_0 + x_offset + v t is prescribed (driving constraint; its

@@ -1,4 +1,5 @@
-// Linear eigenvalue analysis of the coupled wheel/rail/support system (MODEL.md §7).
+// Linear eigenvalue analysis of the coupled wheel/rail/support system (docs: Model § Eigen
+// analysis).
 //
 // The rail is linearised about the straight reference: the tangent of the ANCF element there is
 // exactly an Euler-Bernoulli Hermite beam in y plus a cubic bar in x, and the two decouple, so the

@@ -1,7 +1,8 @@
-// The linear vertical rail of the fast path (MODEL.md §2 linearised, §7): the Euler-Bernoulli
-// Hermite beam in y (exactly the ANCF element linearised about the straight rail, its y
-// coordinates only) on linear supports, with constant band matrices M, C, K over generalised
-// coordinates q: the y coordinates, or the lowest n_modes mass-normalised modes (q = Phi z).
+// The linear vertical rail of the fast path (docs: Model § Rail (linearised), § Eigen analysis):
+// the Euler-Bernoulli Hermite beam in y (exactly the ANCF element linearised about the straight
+// rail, its y coordinates only) on linear supports, with constant band matrices M, C, K over
+// generalised coordinates q: the y coordinates, or the lowest n_modes mass-normalised modes (q =
+// Phi z).
 #pragma once
 
 #include <Eigen/Core>

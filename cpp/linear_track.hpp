@@ -1,4 +1,5 @@
-// Reduced-fidelity fast path: the linear vertical track (MODEL.md §2 linearised, §7).
+// Reduced-fidelity fast path: the linear vertical track (docs: Model § Rail (linearised), § Eigen
+// analysis).
 //
 // The rail is the Euler-Bernoulli Hermite beam in y (exactly the ANCF element linearised about the
 // straight rail, its y coordinates only) on linear supports, with constant mass, damping and

@@ -1,5 +1,6 @@
 // The immutable model of one run: the rail with its supports, the wheels and the contact law,
-// passed to every algorithm as one object (MODEL.md §1-§5).
+// passed to every algorithm as one object (docs: Model § Scene, § Rail, § Wheel, § Contact, §
+// Rolling and slip).
 //
 // Defaults live in Python (trackwheel.Scene): these structs carry no physics defaults, so a
 // field the caller forgot is a zero that validation rejects, not a silently different wheel.
@@ -14,7 +15,8 @@
 
 namespace trackwheel {
 
-// One wheel: a rigid disc (X_A, Y_A, theta) carried at constant forward speed (MODEL.md §3).
+// One wheel: a rigid disc (X_A, Y_A, theta) carried at constant forward speed (docs: Model §
+// Wheel).
 struct WheelParams {
   double mass = 0.0;      // M [kg]
   double inertia = 0.0;   // polar moment of inertia J [kg m^2]

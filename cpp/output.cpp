@@ -24,7 +24,7 @@ const std::array<FieldInfo, kFieldCount>& output_fields() {
        "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + "
        "s'^2 y_ss (s'' y_s neglected)",
        true, false},
-      {"acc_A", "m/s^2", "rho cos(phi) theta' v phi_s (MODEL.md §8)", true, false},
+      {"acc_A", "m/s^2", "rho cos(phi) theta' v phi_s (docs: Model § Outputs)", true, false},
       {"acc_B", "m/s^2", "rho cos(phi) theta' phi_t", true, false},
       {"acc_C", "m/s^2", "rho cos(phi) v^2 phi_s^2", true, false},
       {"acc_D", "m/s^2", "rho cos(phi) phi_t^2", true, false},

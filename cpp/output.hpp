@@ -72,9 +72,9 @@ class Recording {
 // Bytes one kept sample takes for n_wheels wheels (output-size estimate before a run).
 std::size_t bytes_per_sample(int n_wheels, bool energy);
 
-// The vertical acceleration terms A-E of the contact point (MODEL.md §8), written once for the
-// full and linear paths: with rc = rho cos(phi), A = rc theta' v phi_s, B = rc theta' phi_t,
-// C = rc v^2 phi_s^2, D = rc phi_t^2, E = 2 rc phi_t v phi_s [m/s^2].
+// The vertical acceleration terms A-E of the contact point (docs: Model § Outputs), written once
+// for the full and linear paths: with rc = rho cos(phi), A = rc theta' v phi_s, B = rc theta'
+// phi_t, C = rc v^2 phi_s^2, D = rc phi_t^2, E = 2 rc phi_t v phi_s [m/s^2].
 void record_acc_terms(Recording& rec, double rc, double thetadot, double v, double phi_s,
                       double phi_t);
 

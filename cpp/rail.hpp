@@ -1,4 +1,4 @@
-// The rail: planar ANCF cable elements on discrete elastic supports (MODEL.md §1-§2).
+// The rail: planar ANCF cable elements on discrete elastic supports (docs: Model § Scene, § Rail).
 //
 // RailModel is immutable after construction (mesh, section, constant mass matrix, supports,
 // gravity load, boundary conditions). Algorithms take it by const reference together with

@@ -1,4 +1,4 @@
-// Rolling constraint and slip kinematics at the contact point (MODEL.md §5).
+// Rolling constraint and slip kinematics at the contact point (docs: Model § Rolling and slip).
 //
 // Slip velocity of the wheel's material point Q against the rail's material point B along the
 // tangent t = r_s/|r_s| at s*:

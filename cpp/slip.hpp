@@ -1,6 +1,6 @@
-// The slip state machine of one wheel's contact (MODEL.md §5): no contact (lambda = 0), stick
-// (lambda is the multiplier of the rolling constraint g = 0) or slide (lambda = sigma mu N,
-// sigma opposing the slip velocity g).
+// The slip state machine of one wheel's contact (docs: Model § Rolling and slip): no contact
+// (lambda = 0), stick (lambda is the multiplier of the rolling constraint g = 0) or slide (lambda =
+// sigma mu N, sigma opposing the slip velocity g).
 #pragma once
 
 #include "state.hpp"

@@ -1,4 +1,5 @@
-// Run settings and the dynamic state of the rail and its wheels (MODEL.md §3-§6).
+// Run settings and the dynamic state of the rail and its wheels (docs: Model § Wheel, § Contact, §
+// Rolling and slip, § Equations of motion).
 #pragma once
 
 #include <Eigen/Core>

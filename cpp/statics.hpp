@@ -1,4 +1,5 @@
-// Static equilibrium of the rail + wheel on its contact spring (MODEL.md §8, quasi-static line).
+// Static equilibrium of the rail + wheel on its contact spring (docs: Model § Outputs, quasi-static
+// line).
 //
 // Unknowns: the free rail coordinates and the wheel height Y_A; the wheel centre is held at
 // X_A = x_wheel. Equations: rail  Q_elastic(e) + Q_support(e) - Q_gravity - Q_contact = 0,

@@ -1,6 +1,6 @@
-// The system workspace of the full path (MODEL.md §6): evaluation of the rail, the wheels and
-// their contacts at a state, the equations of motion as residuals, the Newton iteration matrix
-// and the index-1 acceleration system, all over one bordered banded system.
+// The system workspace of the full path (docs: Model § Equations of motion): evaluation of the
+// rail, the wheels and their contacts at a state, the equations of motion as residuals, the Newton
+// iteration matrix and the index-1 acceleration system, all over one bordered banded system.
 //
 // Unknowns: the free rail coordinates (band, half bandwidth 7) and, per wheel w, a 3-wide
 // border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}. Equations:
