@@ -56,7 +56,7 @@ REPO = Path(__file__).resolve().parent.parent
 #: warning (an error under the project's settings) with a mutant that cannot change any result.
 TIMING_DEPENDENT = [
     "tests/test_fidelity.py::test_sweep_auto_fidelity_chooses_and_reports",
-    "tests/test_robustness.py::test_ctrl_c_interrupts_a_long_simulation_within_a_second",
+    "tests/test_time_loop.py::test_ctrl_c_interrupts_a_long_simulation_within_a_second",
     "tests/test_sweep.py::test_same_table_whatever_the_executor",
 ]
 #: the fast suite: tests/ without the notebooks (the project's addopts add --nbmake), the slow
@@ -79,6 +79,14 @@ class Mutant:
 
 M = Mutant
 DYN = "cpp/dynamics.cpp"
+SYS = "cpp/system.cpp"
+SLIP = "cpp/slip.cpp"
+GA = "cpp/generalized_alpha.cpp"
+RK4 = "cpp/explicit_rk4.cpp"
+FULL = "cpp/full_path.cpp"
+LOOP = "cpp/time_loop.cpp"
+OUT = "cpp/output.cpp"
+LRAIL = "cpp/linear_rail.hpp"
 LIN = "cpp/linear_track.cpp"
 ANCF = "cpp/ancf_cable.cpp"
 CON = "cpp/contact.cpp"
@@ -87,13 +95,15 @@ RAIL = "cpp/rail.cpp"
 EIG = "cpp/eigen_analysis.cpp"
 ANA = "python/trackwheel/analysis.py"
 
-#: The mutations. Keep the old texts short and specific: they must be unique in their file.
+#: The mutations. Keep the old texts short and specific: they must be unique in their file. The
+#: kernel's shared pieces (contact law, generalized-alpha coefficients, time loop) are mutated
+#: once: both paths see the bug.
 MUTANTS: list[Mutant] = [
     # --- the two of issue 17
-    M("slip-threshold", DYN, "std::abs(lambda) > set.friction * ev.cf.N",
-      "std::abs(lambda) > 1.1 * set.friction * ev.cf.N",
+    M("slip-threshold", SLIP, "std::abs(lambda) > friction * ev.cf.N",
+      "std::abs(lambda) > 1.1 * friction * ev.cf.N",
       "stick -> slide only when |lambda| > 1.1 mu N (Coulomb bound violated in stick)"),
-    M("linear-support-damping", LIN, "Cy.at(a, b) = r.support_damping().at(i, j);",
+    M("linear-support-damping", LRAIL, "Cy.at(a, b) = r.support_damping().at(i, j);",
       "Cy.at(a, b) = 0.0 * r.support_damping().at(i, j);",
       "linear path drops the support damping from its damping matrix"),
     # --- ANCF element: forces and Jacobians
@@ -110,76 +120,92 @@ MUTANTS: list[Mutant] = [
       "time-loop element force: exact curvature's |r_s|^-3 derivative dropped"),
     M("fused-force-axial", ANCF, "sa = wl * c.EA * eps;", "sa = 0.9 * wl * c.EA * eps;",
       "time-loop element force: axial force 10 % low (Jacobian path unchanged)"),
-    # --- rail: supports, gravity
+    # --- rail: supports, gravity (full path), and the linear path's rail
     M("full-support-damping", RAIL, "sup_.stiffness[j] * y + sup_.damping[j] * ydot",
       "sup_.stiffness[j] * y", "full path drops the support damping force"),
     M("rail-gravity", RAIL, "p_.rhoA * p_.gravity * nint[a]", "p_.rhoA * p_.gravity * 0.9 * nint[a]",
       "rail weight 10 % low"),
     M("rail-gravity-moments", RAIL, "l * l / 12.0, 0.5 * l, -l * l / 12.0",
       "0.0, 0.5 * l, 0.0", "consistent gravity load lumped (nodal moments dropped)"),
-    # --- contact
-    M("contact-stiffness", CON, "Ne = cp.stiffness * out.delta;",
-      "Ne = 1.05 * cp.stiffness * out.delta;", "linear contact law 5 % stiff (force only)"),
+    M("linear-rail-gravity", LRAIL, "Qgy(a) = r.gravity_force()(full_of_y[a]);", "Qgy(a) = 0.0;",
+      "linear path without the rail's weight"),
+    M("linear-iteration-damping", LIN, "1.0, tr_.M, cv, tr_.C", "1.0, tr_.M, 0.0, tr_.C",
+      "linear path's iteration matrix M + cq K without cv C (its Newton stops after one "
+      "iteration for the linear wheel models, so the matrix is part of the scheme there)"),
+    # --- contact: the law shared by both paths, the distance and the running surface
+    M("contact-stiffness", CON, "return k * delta;", "return 1.05 * k * delta;",
+      "linear contact law 5 % stiff (force only, both paths)"),
+    M("hertz-exponent", CON, "return k * delta * sq;", "return k * delta * std::cbrt(delta);",
+      "Hertz law N ~ delta^(4/3) instead of delta^(3/2) (force only, both paths)"),
     M("contact-damping-sign", CON, "Ne + cp.damping * delta_dot", "Ne - cp.damping * delta_dot",
       "contact damper pushes the wrong way"),
     M("contact-damping-jacobian", CON, "out.C = cp.damping *", "out.C = 0.5 * cp.damping *",
       "contact damping matrix half the damping"),
-    M("hertz-exponent", CON, "Ne = cp.stiffness * out.delta * sq;",
-      "Ne = cp.stiffness * out.delta * std::cbrt(out.delta);",
-      "Hertz law N ~ delta^(4/3) instead of delta^(3/2) (full path)"),
     M("contact-hessian", CON, "+ (pt.rho / fs) * w * w.transpose()", "",
       "distance Hessian without the contact-point motion term"),
-    M("linear-hertz-exponent", LIN, "return contact.stiffness * delta * sq;",
-      "return contact.stiffness * delta * std::cbrt(delta);",
-      "Hertz law N ~ delta^(4/3) on the linear path"),
-    M("linear-contact-stiffness", LIN, "return contact.stiffness * delta;\n",
-      "return 1.05 * contact.stiffness * delta;\n", "linear path's contact spring 5 % stiff"),
-    M("linear-rail-gravity", LIN, "Qgy(a) = r.gravity_force()(full_of_y[a]);", "Qgy(a) = 0.0;",
-      "linear path without the rail's weight"),
+    M("surface-slope", CON, "pt.ps.y() += R.rx * pt.rs.x();", "pt.ps.y() += 0.0 * pt.rs.x();",
+      "running surface's tangent without the profile slope r'(x) (surface_at)"),
+    M("profile-curvature-hessian", CON, "-= pt.n.y() * pt.profile.rxx",
+      "-= 0.0 * pt.profile.rxx",
+      "distance Hessian without the profile's curvature term r''(x) S_x S_x^T"),
     # --- rolling constraint and slip
     M("rolling-radius", ROLL, "k.g = t.dot(u) - pt.rho * thetadot;",
       "k.g = t.dot(u) - (pt.rho + 1e-4) * thetadot;",
       "rolling radius 0.1 mm too large in the constraint (undeformed instead of deformed)"),
-    M("slide-force-sign", DYN, "return st.sigma * set_.friction * ev.cf.N;",
-      "return -st.sigma * set_.friction * ev.cf.N;",
+    M("slide-force-sign", SLIP, "return ws.sigma * friction * ev.cf.N;",
+      "return -ws.sigma * friction * ev.cf.N;",
       "sliding friction drives the slip instead of opposing it"),
-    M("slide-jacobian", DYN, "sm * ev.cf.grad_rho(c) * (ev.cf.dN_ddelta * cq + contact_.damping * cv)",
-      "sm * ev.cf.grad_rho(c) * (ev.cf.dN_ddelta * cq)",
+    M("landing-slip-direction", SLIP, "ws.sigma = ev.rk.g > 0 ? -1.0 : 1.0;",
+      "ws.sigma = ev.rk.g > 0 ? 1.0 : -1.0;",
+      "a wheel landing with slip slides with friction along its slip velocity"),
+    M("slide-jacobian", SYS, "+ model_.contact.damping * cv)", ")",
       "Newton matrix of the sliding row without dN/dqdot",
       equivalent="only the Newton matrix changes: the iteration converges to the same residual "
                  "tolerance (modified Newton), results agree to newton_tol; kept as a control"),
-    # --- integrators
-    M("alpha-gamma", DYN, "const double gam = 0.5 - am + af,", "const double gam = 0.6 - am + af,",
-      "generalized-alpha gamma off its second-order value (full path)"),
-    M("alpha-beta", DYN, "bet = 0.25 * (1.0 - am + af) * (1.0 - am + af);",
-      "bet = 0.3 * (1.0 - am + af) * (1.0 - am + af);",
-      "generalized-alpha beta off its optimal value (full path)"),
-    M("linear-alpha-gamma", LIN, "const double gam = 0.5 - am + af,",
-      "const double gam = 0.6 - am + af,",
-      "generalized-alpha gamma off its second-order value (linear path)"),
-    M("rk4-weights", DYN, "st.edot += w * (e1 + 2.0 * e2a + 2.0 * e3 + e4);",
-      "st.edot += w * (e1 + 2.0 * e2a + 1.0 * e3 + 2.0 * e4);",
+    M("baumgarte-sign", SYS, "- set_.baumgarte * we.rk.g;", "+ set_.baumgarte * we.rk.g;",
+      "Baumgarte stabilisation destabilises the constraint drift"),
+    # --- integrators: generalized-alpha coefficients (shared by both paths), RK4
+    M("alpha-gamma", GA, "gam = 0.5 - am + af;", "gam = 0.6 - am + af;",
+      "generalized-alpha gamma off its second-order value (both paths)"),
+    M("alpha-beta", GA, "bet = 0.25 * (1.0 - am + af)", "bet = 0.3 * (1.0 - am + af)",
+      "generalized-alpha beta off its optimal value (both paths)"),
+    M("alpha-position-factor", GA, "bp = bet * (1.0 - af) / (1.0 - am);",
+      "bp = 1.1 * bet * (1.0 - af) / (1.0 - am);",
+      "d q_{n+1} / d qdd_{n+1} 10 % off: the full path's Newton matrix, the linear path's "
+      "position update"),
+    M("rk4-weights", RK4, "2.0 * a3_.edd + a4_.edd", "1.0 * a3_.edd + 2.0 * a4_.edd",
       "RK4 weights (1,2,1,2)/6 on the rail velocities: consistent but first order"),
-    M("rk4-last-stage", DYN, "stage(1.0, e3, y3, th3, k3);", "stage(0.5, e3, y3, th3, k3);",
+    M("rk4-last-stage", RK4, "stage(1.0, a3_, k3_, k4_);", "stage(0.5, a3_, k3_, k4_);",
       "RK4 fourth stage evaluated at half a step"),
     M("explicit-stability-limit", DYN, "return 2.0 * std::sqrt(2.0) / omega_max;",
       "return 4.0 * std::sqrt(2.0) / omega_max;",
       "predicted RK4 stability limit twice too long"),
-    M("baumgarte-sign", DYN, "- set_.baumgarte * ev.rk.g;", "+ set_.baumgarte * ev.rk.g;",
-      "Baumgarte stabilisation destabilises the constraint drift"),
-    # --- outputs
-    M("energy-wheel-load", DYN, "wheel.total_load() * st.y -", "wheel.load * st.y -",
+    # --- time loop and outputs
+    M("output-decimation", LOOP, "if (n % set.output_every == 0) s.record(n);",
+      "if ((n - 1) % set.output_every == 0) s.record(n);",
+      "every path records the step after the one it should (output_every > 1)"),
+    M("energy-runaway-threshold", LOOP, "if (!(Ev <= wd.energy_cap))",
+      "if (!(Ev <= 1e3 * wd.energy_cap))",
+      "the energy-runaway watchdog fires only at 1000 times its cap"),
+    M("output-field-order", OUT,
+      '{"acc_A", "m/s^2", "rho cos(phi) theta\' v phi_s (docs: Model § Outputs)", true, false},\n'
+      '      {"acc_B", "m/s^2", "rho cos(phi) theta\' phi_t", true, false},',
+      '{"acc_B", "m/s^2", "rho cos(phi) theta\' phi_t", true, false},\n'
+      '      {"acc_A", "m/s^2", "rho cos(phi) theta\' v phi_s (docs: Model § Outputs)", true, false},',
+      "output table: acc_A and acc_B swapped (columns carry each other's values)"),
+    M("energy-wheel-load", SYS, "E += model.wheels[w].total_load() * st.wheels[w].y;",
+      "E += model.wheels[w].load * st.wheels[w].y;",
       "energy output: wheel-load potential without M g"),
-    M("energy-torque", DYN, "wheel.torque * st.theta;", "-wheel.torque * st.theta;",
+    M("energy-torque", SYS, "E -= model.wheels[w].torque * st.wheels[w].theta;",
+      "E += model.wheels[w].torque * st.wheels[w].theta;",
       "energy output: torque potential with the wrong sign"),
-    M("linear-decimation", LIN, "if (n % set.output_every == 0) record(t1);",
-      "if ((n - 1) % set.output_every == 0) record(t1);",
-      "linear path records the step after the one it should (output_every > 1)"),
+    M("reaction-friction", FULL, "lambda * we.rk.b(0)", "0.0 * we.rk.b(0)",
+      "driving reaction output without the tangential force's horizontal part"),
     # --- analysis
     M("main-frequency-window", ANA, "w = np.hanning(x.size)", "w = np.ones(x.size)",
       "spectrum without the Hann window"),
-    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s[\"n_elements\"]), x)",
-      "_quasi_static_line(result.scene, int(s[\"n_elements\"]), x + 0.005)",
+    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x)",
+      "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005)",
       "quasi-static line taken 5 mm ahead of the wheel"),
     M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(positions[p]);",
       "const MeshPoint mp = rail.locate(positions[p] + 0.05);",
