@@ -209,7 +209,9 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("torque", &WheelParams::torque)
       .def_readwrite("gravity", &WheelParams::gravity)
       .def_readwrite("x_offset", &WheelParams::x_offset,
-                     "X_A - (X_0 + v t), the wheel's place along the vehicle [m]");
+                     "X_A - (X_0 + v t), the wheel's place along the vehicle [m]")
+      .def_readwrite("out_of_round", &WheelParams::out_of_round,
+                     "Delta rho(psi) [m] over one revolution psi in [0, 2 pi] (empty: round)");
   py::enum_<ContactLaw>(m, "ContactLaw")
       .value("linear", ContactLaw::Linear)
       .value("hertz", ContactLaw::Hertz);

@@ -145,6 +145,14 @@ class WheelParams:
     def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def out_of_round(self) -> ...:
+        """
+        Delta rho(psi) [m] over one revolution psi in [0, 2 pi] (empty: round)
+        """
+    @out_of_round.setter
+    def out_of_round(self, arg0: ...) -> None:
+        ...
+    @property
     def radius(self) -> float:
         ...
     @radius.setter
