@@ -200,6 +200,24 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("position", &SupportParams::position)
       .def_readwrite("stiffness", &SupportParams::stiffness)
       .def_readwrite("damping", &SupportParams::damping);
+  py::class_<Profile>(m, "Profile",
+                      "Running-surface profile r(X): piecewise cubic on a uniform grid")
+      .def(py::init<>())
+      .def(py::init([](double x0, double dx, const Eigen::Matrix<double, 4, Eigen::Dynamic>& c) {
+             // c: scipy PPoly coefficients, shape (4, m), highest power first
+             std::vector<double> v(c.data(), c.data() + c.size());
+             return Profile(x0, dx, std::move(v));
+           }),
+           py::arg("x0"), py::arg("dx"), py::arg("coefficients"))
+      .def_property_readonly("empty", &Profile::empty)
+      .def(
+          "__call__",
+          [](const Profile& p, double x) {
+            const ProfileValue v = p(x);
+            return py::make_tuple(v.r, v.rx, v.rxx);
+          },
+          "(r, dr/dX, d2r/dX2) at X");
+
   py::class_<WheelParams>(m, "WheelParams")
       .def(py::init<>())
       .def_readwrite("mass", &WheelParams::mass)
@@ -222,24 +240,6 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("damping", &ContactParams::damping)
       .def_readwrite("radius", &ContactParams::radius)
       .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
-
-  py::class_<Profile>(m, "Profile",
-                      "Running-surface profile r(X): piecewise cubic on a uniform grid")
-      .def(py::init<>())
-      .def(py::init([](double x0, double dx, const Eigen::Matrix<double, 4, Eigen::Dynamic>& c) {
-             // c: scipy PPoly coefficients, shape (4, m), highest power first
-             std::vector<double> v(c.data(), c.data() + c.size());
-             return Profile(x0, dx, std::move(v));
-           }),
-           py::arg("x0"), py::arg("dx"), py::arg("coefficients"))
-      .def_property_readonly("empty", &Profile::empty)
-      .def(
-          "__call__",
-          [](const Profile& p, double x) {
-            const ProfileValue v = p(x);
-            return py::make_tuple(v.r, v.rx, v.rxx);
-          },
-          "(r, dr/dX, d2r/dX2) at X");
 
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())

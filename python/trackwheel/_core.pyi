@@ -117,6 +117,23 @@ class SupportParams:
     @stiffness.setter
     def stiffness(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
+class Profile:
+    """
+    Running-surface profile r(X): piecewise cubic on a uniform grid
+    """
+    def __call__(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float]:
+        """
+        (r, dr/dX, d2r/dX2) at X
+        """
+    @typing.overload
+    def __init__(self) -> None:
+        ...
+    @typing.overload
+    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, coefficients: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, n]"]) -> None:
+        ...
+    @property
+    def empty(self) -> bool:
+        ...
 class WheelParams:
     def __init__(self) -> None:
         ...
@@ -145,12 +162,12 @@ class WheelParams:
     def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def out_of_round(self) -> ...:
+    def out_of_round(self) -> Profile:
         """
         Delta rho(psi) [m] over one revolution psi in [0, 2 pi] (empty: round)
         """
     @out_of_round.setter
-    def out_of_round(self, arg0: ...) -> None:
+    def out_of_round(self, arg0: Profile) -> None:
         ...
     @property
     def radius(self) -> float:
@@ -246,23 +263,6 @@ class ContactParams:
         ...
     @stiffness.setter
     def stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class Profile:
-    """
-    Running-surface profile r(X): piecewise cubic on a uniform grid
-    """
-    def __call__(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float]:
-        """
-        (r, dr/dX, d2r/dX2) at X
-        """
-    @typing.overload
-    def __init__(self) -> None:
-        ...
-    @typing.overload
-    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, coefficients: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, n]"]) -> None:
-        ...
-    @property
-    def empty(self) -> bool:
         ...
 class RailModel:
     @typing.overload
