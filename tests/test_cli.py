@@ -351,17 +351,10 @@ def test_excitation_options_build_the_api_scene():
 
 def test_joint_turns_the_contact_filter_on():
     """--joint sets Contact.patch_filter (the Kabo cusp curves more sharply than any wheel) and
-    says so; --patch-filter alone sets it too. In a build whose Contact has no patch_filter yet
-    (before the kernel half of issue 13), --joint warns and --patch-filter is refused."""
-    has_filter = "patch_filter" in {f.name for f in dataclasses.fields(tw.Contact)}
+    says so; --patch-filter alone sets it too."""
     scene, notes = _scene_of(["--joint", "0.002,0.5,2.0"])
-    if has_filter:
-        assert scene.contact.patch_filter is True and "contact filter on" in notes[0]
-        assert _scene_of(["--patch-filter"])[0].contact.patch_filter is True
-    else:
-        assert notes[0].startswith("warning:") and "patch_filter" in notes[0]
-        with pytest.raises(cli._OptionError, match="--patch-filter"):
-            _scene_of(["--patch-filter"])
+    assert scene.contact.patch_filter is True and "contact filter on" in notes[0]
+    assert _scene_of(["--patch-filter"])[0].contact.patch_filter is True
 
 
 def test_run_prints_the_force_statistics(capsys):
