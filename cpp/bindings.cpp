@@ -200,27 +200,6 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("position", &SupportParams::position)
       .def_readwrite("stiffness", &SupportParams::stiffness)
       .def_readwrite("damping", &SupportParams::damping);
-  py::class_<WheelParams>(m, "WheelParams")
-      .def(py::init<>())
-      .def_readwrite("mass", &WheelParams::mass)
-      .def_readwrite("inertia", &WheelParams::inertia)
-      .def_readwrite("radius", &WheelParams::radius)
-      .def_readwrite("load", &WheelParams::load)
-      .def_readwrite("torque", &WheelParams::torque)
-      .def_readwrite("gravity", &WheelParams::gravity)
-      .def_readwrite("x_offset", &WheelParams::x_offset,
-                     "X_A - (X_0 + v t), the wheel's place along the vehicle [m]");
-  py::enum_<ContactLaw>(m, "ContactLaw")
-      .value("linear", ContactLaw::Linear)
-      .value("hertz", ContactLaw::Hertz);
-  py::class_<ContactParams>(m, "ContactParams")
-      .def(py::init<>())
-      .def_readwrite("law", &ContactParams::law)
-      .def_readwrite("stiffness", &ContactParams::stiffness)
-      .def_readwrite("damping", &ContactParams::damping)
-      .def_readwrite("radius", &ContactParams::radius)
-      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
-
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
       .def(py::init<>())
@@ -238,6 +217,29 @@ PYBIND11_MODULE(_core, m) {
             return py::make_tuple(v.r, v.rx, v.rxx);
           },
           "(r, dr/dX, d2r/dX2) at X");
+
+  py::class_<WheelParams>(m, "WheelParams")
+      .def(py::init<>())
+      .def_readwrite("mass", &WheelParams::mass)
+      .def_readwrite("inertia", &WheelParams::inertia)
+      .def_readwrite("radius", &WheelParams::radius)
+      .def_readwrite("load", &WheelParams::load)
+      .def_readwrite("torque", &WheelParams::torque)
+      .def_readwrite("gravity", &WheelParams::gravity)
+      .def_readwrite("x_offset", &WheelParams::x_offset,
+                     "X_A - (X_0 + v t), the wheel's place along the vehicle [m]")
+      .def_readwrite("out_of_round", &WheelParams::out_of_round,
+                     "Delta rho(psi) [m] over one revolution psi in [0, 2 pi] (empty: round)");
+  py::enum_<ContactLaw>(m, "ContactLaw")
+      .value("linear", ContactLaw::Linear)
+      .value("hertz", ContactLaw::Hertz);
+  py::class_<ContactParams>(m, "ContactParams")
+      .def(py::init<>())
+      .def_readwrite("law", &ContactParams::law)
+      .def_readwrite("stiffness", &ContactParams::stiffness)
+      .def_readwrite("damping", &ContactParams::damping)
+      .def_readwrite("radius", &ContactParams::radius)
+      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
 
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())

@@ -130,7 +130,7 @@ double linearised_stiffness(ContactLaw law, double k, double P) {
 }
 
 ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, const Vec10& qdot,
-                           bool want_jacobian) {
+                           bool want_jacobian, double radius_rate) {
   ContactForce out;
   Mat10 H;
   distance_derivatives(pt, out.grad_rho, want_jacobian ? &H : nullptr);
@@ -141,7 +141,7 @@ ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, cons
   if (out.delta <= 0.0) return out;
   double dNe;  // derivative of the elastic force with respect to delta
   const double Ne = elastic_normal_force(cp.law, cp.stiffness, out.delta, dNe);
-  const double delta_dot = -out.grad_rho.dot(qdot);
+  const double delta_dot = radius_rate - out.grad_rho.dot(qdot);
   const double N = Ne + cp.damping * delta_dot;
   if (N <= 0.0) return out;  // a damper cannot pull
   out.N = N;

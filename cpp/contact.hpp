@@ -81,8 +81,10 @@ struct ContactForce {
 };
 
 // Evaluate the contact force at a found contact point; qdot = [V_A; edot_el] (for damping).
+// cp.radius is the wheel's radius at the contact (rho0 + its out-of-roundness there) and
+// radius_rate its rate of change [m/s], which the contact damper sees too.
 ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, const Vec10& qdot,
-                           bool want_jacobian);
+                           bool want_jacobian, double radius_rate = 0.0);
 
 // T = dp/de_el at fixed s (2 x 8; S without a profile) and its s-derivative T_s.
 Mat28 surface_jacobian(const ContactPoint& pt);

@@ -15,11 +15,19 @@ namespace {
 // One wheel on the linear track: its coupling at X_A, state and 2-wide border [Y'', N].
 struct LinearWheel {
   Eigen::VectorXd s, ss, sss;  // s(X), s_s(X), s_ss(X) over q at the current X_A
-  Eigen::MatrixXd W;           // A^-1 of the four y basis vectors of the element (cached)
-  Eigen::VectorXd Z;           // A^-1 s(X)
+  // d(N - N_contact)/d q'' of the border's force row = cs s + css s_s
+  double cs = 0.0, css = 0.0;
+  Eigen::MatrixXd W;  // A^-1 of the four y basis vectors of the element (cached)
+  Eigen::VectorXd Z;  // A^-1 s(X)
   int cache_el = -1;
   double Y = 0.0, Yd = 0.0, Ydd = 0.0, aY = 0.0, N = 0.0;
 };
+
+// u . x for the border's force row u = cs s + css s_s of wheel lw
+double u_dot(const LinearWheel& lw, const Eigen::VectorXd& x) {
+  const double a = lw.cs * lw.s.dot(x);
+  return lw.css == 0.0 ? a : a + lw.css * lw.ss.dot(x);
+}
 
 class LinearStepper : public Stepper {
  public:
@@ -44,10 +52,17 @@ class LinearStepper : public Stepper {
   ContactLaw law() const {
     return opt_.wheel_model == WheelModel::Sprung ? ContactLaw::Linear : ContactLaw::Hertz;
   }
+  // The running surfaces' excitation of wheel w at t: e = r(X_A) + Delta rho(psi), the
+  // profile under the wheel centre plus the out-of-roundness at psi = theta = v t / rho0 (the
+  // linear path rolls without slip) [m], and its rate [m/s].
+  double excitation(int w, double t, double& rate) const;
+  // Contact force of a sprung/Hertz wheel at the current state and t: N = N_e(delta) + c delta',
+  // delta = rho0 + e - Y + y(X_A); dN = dN_e/d delta (0 where the contact is open).
+  double contact_force(int w, double t, double& dN) const;
   void initial_state();
   void couple(double t1);
-  void border(int w, double cq, Eigen::Matrix2d& D, Eigen::Vector2d& r2, double& c) const;
-  void solve_border(long n, double cq, int m);
+  void border(int w, double t, double cq, double cv, Eigen::Matrix2d& D, Eigen::Vector2d& r2);
+  void solve_border(long n, double t, double cq, double cv, int m);
 
   const Model& model_;
   const SimSettings& set_;
@@ -88,6 +103,33 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
 }
 
+double LinearStepper::excitation(int w, double t, double& rate) const {
+  const WheelParams& p = model_.wheels[w];
+  const double v = set_.speed;
+  const ProfileValue r = model_.rail.profile()(X(w, t));
+  const ProfileValue d = p.radius_change(v * t / p.radius);
+  rate = r.rx * v + d.rx * v / p.radius;
+  return r.r + d.r;
+}
+
+double LinearStepper::contact_force(int w, double t, double& dN) const {
+  const LinearWheel& lw = wh_[w];
+  const WheelParams& p = model_.wheels[w];
+  double rate;
+  const double e = excitation(w, t, rate);
+  const double delta = p.radius + e - lw.Y + lw.s.dot(q_);
+  const double Ne = elastic_normal_force(law(), model_.contact.stiffness, delta, dN);
+  const double c = model_.contact.damping;
+  if (c == 0.0) return Ne;
+  const double delta_dot = rate - lw.Yd + lw.s.dot(qd_) + set_.speed * lw.ss.dot(q_);
+  const double N = Ne + c * delta_dot;
+  if (law() == ContactLaw::Hertz && (delta <= 0.0 || N <= 0.0)) {  // open, or a pulling damper
+    dN = 0.0;
+    return 0.0;
+  }
+  return N;
+}
+
 // Static equilibrium under the wheels (or the rail's own weight for a sudden start) and the
 // accelerations with the initial contact forces.
 void LinearStepper::initial_state() {
@@ -107,14 +149,17 @@ void LinearStepper::initial_state() {
     const WheelParams& p = model_.wheels[w];
     const double P = p.total_load(), k = model_.contact.stiffness;
     const double compression = rigid() || opt_.sudden ? 0.0 : static_compression(law(), k, P);
-    lw.Y = lw.s.dot(q_) + p.radius + opt_.drop_height - compression;
+    double rate;
+    const double e = opt_.wheel_model == WheelModel::MovingForce ? 0.0 : excitation(w, 0.0, rate);
+    lw.Y = lw.s.dot(q_) + p.radius + e + opt_.drop_height - compression;
+    lw.Yd = 0.0;
     double dN;
     if (opt_.wheel_model == WheelModel::MovingForce)
       lw.N = P;
     else if (opt_.wheel_model == WheelModel::MovingMass)
       lw.N = opt_.sudden ? 0.0 : P;
     else
-      lw.N = elastic_normal_force(law(), k, p.radius - lw.Y + lw.s.dot(q_), dN);
+      lw.N = contact_force(w, 0.0, dN);
     rhs -= lw.N * lw.s;
   }
   tr_.K.multiply(q_, Kq);
@@ -152,40 +197,48 @@ void LinearStepper::couple(double t1) {
   }
 }
 
-// Wheel w's border rows: D [dY''; dN] + c s^T x1 e_1 = r2 (rail rows: A x1 + s dN = r1).
-void LinearStepper::border(int w, double cq, Eigen::Matrix2d& D, Eigen::Vector2d& r2,
-                           double& c) const {
-  const LinearWheel& lw = wh_[w];
+// Wheel w's border rows: D [dY''; dN] + u^T x1 e_1 = r2 (rail rows: A x1 + s dN = r1), with
+// u = cs s + css s_s the force row's dependence on q'' (through y(X_A) = s.q and, for the
+// damper, s.q' and the convected s_s.q v).
+void LinearStepper::border(int w, double t, double cq, double cv, Eigen::Matrix2d& D,
+                           Eigen::Vector2d& r2) {
+  LinearWheel& lw = wh_[w];
   const WheelParams& p = model_.wheels[w];
   const double P = p.total_load();
   D.setZero();
-  c = 0.0;
   switch (opt_.wheel_model) {
     case WheelModel::MovingForce:
       r2(0) = -lw.Ydd;  // dummy: the 'wheel' follows nothing
       r2(1) = -(lw.N - P);
       D(0, 0) = 1.0;
       D(1, 1) = 1.0;
+      lw.cs = lw.css = 0.0;
       break;
-    case WheelModel::MovingMass:
+    case WheelModel::MovingMass: {
+      double rate;
+      const double e = excitation(w, t, rate);
       r2(0) = -(p.mass * lw.Ydd - lw.N + P);
-      r2(1) = -(lw.Y - lw.s.dot(q_) - p.radius) / cq;
+      r2(1) = -(lw.Y - lw.s.dot(q_) - p.radius - e) / cq;
       D(0, 0) = p.mass;
       D(0, 1) = -1.0;
       D(1, 0) = 1.0;
-      c = -1.0;
+      lw.cs = -1.0;
+      lw.css = 0.0;
       break;
+    }
     default: {
       double dN;
-      const double Nd =
-          elastic_normal_force(law(), model_.contact.stiffness, p.radius - lw.Y + lw.s.dot(q_), dN);
+      const double Nd = contact_force(w, t, dN);
+      const double c = Nd == 0.0 && law() == ContactLaw::Hertz ? 0.0 : model_.contact.damping;
+      const double k = dN * cq + c * cv;  // d N_contact / d(-Y'') = d N_contact / d(s.q'')
       r2(0) = -(p.mass * lw.Ydd - lw.N + P);
       r2(1) = -(lw.N - Nd);
       D(0, 0) = p.mass;
       D(0, 1) = -1.0;
       D(1, 1) = 1.0;
-      D(1, 0) = dN * cq;
-      c = -dN * cq;
+      D(1, 0) = k;
+      lw.cs = -k;
+      lw.css = -c * set_.speed * cq;
     }
   }
 }
@@ -193,14 +246,13 @@ void LinearStepper::border(int w, double cq, Eigen::Matrix2d& D, Eigen::Vector2d
 // The Schur complement S [dY''; dN]_w = rhs on the 2-wide borders; xb_ gets the solution. One
 // wheel takes a fixed-size 2x2 solve (the common case; a dynamic LU costs more than the rest of
 // the border work).
-void LinearStepper::solve_border(long n, double cq, int m) {
+void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) {
   Eigen::Matrix2d D;
   Eigen::Vector2d r2;
-  double c;
   if (nw_ == 1) {
-    border(0, cq, D, r2, c);
-    D(1, 1) -= c * wh_[0].s.dot(wh_[0].Z);
-    const Eigen::Vector2d rhs(r2(0), r2(1) - c * wh_[0].s.dot(x1_));
+    border(0, t, cq, cv, D, r2);
+    D(1, 1) -= u_dot(wh_[0], wh_[0].Z);
+    const Eigen::Vector2d rhs(r2(0), r2(1) - u_dot(wh_[0], x1_));
     const double det = D.determinant();
     if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
     xb_ = D.partialPivLu().solve(rhs);
@@ -209,11 +261,11 @@ void LinearStepper::solve_border(long n, double cq, int m) {
   S_.setZero(m, m);
   rhs_.resize(m);
   for (int w = 0; w < nw_; ++w) {
-    border(w, cq, D, r2, c);
+    border(w, t, cq, cv, D, r2);
     S_.block<2, 2>(2 * w, 2 * w) = D;
-    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= c * wh_[w].s.dot(wh_[v].Z);
+    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= u_dot(wh_[w], wh_[v].Z);
     rhs_(2 * w) = r2(0);
-    rhs_(2 * w + 1) = r2(1) - c * wh_[w].s.dot(x1_);
+    rhs_(2 * w + 1) = r2(1) - u_dot(wh_[w], x1_);
   }
   lu_.compute(S_);
   const double det = lu_.determinant();
@@ -278,7 +330,7 @@ void LinearStepper::step(long n) {
     // Schur complement on the 2-wide borders with Z_w = A^-1 s_w from the element cache
     x1_ = r1_;
     A_.solve_in_place(x1_);
-    solve_border(n, cq, m);
+    solve_border(n, t1, cq, cv, m);
     for (int v = 0; v < nw_; ++v) x1_ -= xb_(2 * v + 1) * wh_[v].Z;
     ++out_.newton_iterations;
     qdd1_ += x1_;
@@ -303,7 +355,7 @@ void LinearStepper::step(long n) {
         lw.Yd = Ydh_[w] + cv * lw.Ydd;
         lw.aY = aYh_[w] + ((1.0 - af) / (1.0 - am)) * lw.Ydd;
         if (opt_.wheel_model == WheelModel::MovingForce) {
-          lw.Y = lw.s.dot(q_) + model_.wheels[w].radius;
+          lw.Y = lw.s.dot(q_) + model_.wheels[w].radius;  // follows the rail, for the record
           lw.Yd = 0.0;
         }
       }
@@ -353,7 +405,8 @@ void LinearStepper::record_sample(double t) {
     rec.push(Field::v_error, 0.0);
     const double phi = std::atan(ys), g = 1.0 + ys * ys;
     const double phi_s = yss / g, phi_t = yst / g;
-    delta[w] = rigid() ? 0.0 : r0 - lw.Y + yc;
+    double rate;
+    delta[w] = rigid() ? 0.0 : r0 + excitation(w, t, rate) - lw.Y + yc;
     rec.push(Field::phi, phi);
     record_acc_terms(rec, (r0 - delta[w]) * std::cos(phi), v / r0, v, phi_s, phi_t);
     rec.push(Field::acc_contact, s.dot(qdd_) + 2.0 * v * ss.dot(qd_) + v * v * yss);

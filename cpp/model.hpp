@@ -6,6 +6,7 @@
 // field the caller forgot is a zero that validation rejects, not a silently different wheel.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,7 +26,18 @@ struct WheelParams {
   double torque = 0.0;    // external torque about the centre, positive in rolling direction [N m]
   double gravity = 0.0;   // g acting on the wheel mass [m/s^2]
   double x_offset = 0.0;  // X_A - (X_0 + v t): the wheel's place along the vehicle [m]
+  // Out-of-roundness: the radius change Delta rho(psi) [m] at the wheel angle psi [rad], a
+  // piecewise cubic over one revolution [0, 2 pi] (empty: a round wheel). The wheel touches
+  // the rail at psi = theta, the rolling angle (the obliquity's shift of the contact point on
+  // the wheel, ~1e-3 rad, is neglected), so a defect returns with the rolled, not the
+  // travelled, distance (docs: Model § Irregularities).
+  Profile out_of_round;
   double total_load() const { return load + mass * gravity; }  // P = F + M g [N]
+  ProfileValue radius_change(double psi) const {               // Delta rho, d/dpsi, d2/dpsi2 at psi
+    if (out_of_round.empty()) return ProfileValue();
+    const double two_pi = 6.283185307179586;
+    return out_of_round(psi - two_pi * std::floor(psi / two_pi));
+  }
 };
 
 struct Model {

@@ -38,7 +38,11 @@ void System::contact_terms(const SimState& st, bool jac, Eval& ev) const {
     qdot(0) = set_.speed;
     qdot(1) = st.wheels[w].ydot;
     qdot.tail<8>() = st.edot.segment<8>(d0);
-    we.cf = contact_force(model_.contact_of(w), we.pt, qdot, jac);
+    // an out-of-round wheel: the radius at the contact is rho0 + Delta rho(theta)
+    we.drho = model_.wheels[w].radius_change(st.wheels[w].theta);
+    ContactParams c = model_.contact_of(w);
+    c.radius += we.drho.r;
+    we.cf = contact_force(c, we.pt, qdot, jac, we.drho.rx * st.wheels[w].thetadot);
     we.rk = rolling_kinematics(we.pt, we.cf.grad_rho, qdot, st.wheels[w].thetadot, jac);
   }
 }
@@ -58,7 +62,8 @@ void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd&
     const int d0 = we.pt.mp.dof0(), o = kBorderPerWheel * w;
     fr.segment<8>(d0) += we.cf.F.tail<8>() + lam(w) * we.rk.b.segment<8>(2);
     fb(o + kY) = -p.total_load() + we.cf.F(1) + lam(w) * we.rk.b(1);
-    fb(o + kTheta) = p.torque + lam(w) * we.rk.b(10);
+    // the normal force of an out-of-round wheel has a moment: -dV/dtheta = -N dDelta rho/dpsi
+    fb(o + kTheta) = p.torque + lam(w) * we.rk.b(10) - we.cf.N * we.drho.rx;
   }
 }
 
@@ -187,6 +192,9 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
     }
     add_entry(i, o + kLambda, -we.rk.b(a));  // d r / d lambda
   }
+  int g[11];
+  for (int a = 0; a <= 10; ++a) g[a] = glob(a);
+  add_out_of_round_block(we, g, o, cq, cv);
   if (sticking(set_.rolling, ws, we)) {
     // row: (cq dg/dq + cv b) / cv
     for (int c = 1; c <= 10; ++c) {
@@ -197,12 +205,30 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
   }
   Db_(o - nf_ + kLambda, o - nf_ + kLambda) = 1.0;
   if (set_.rolling && ws.state == SlipState::Slip && we.cf.active) {
-    // lambda - sigma mu N(q, qdot):  dN/dq = -dNe grad_rho, dN/dqdot = -c grad_rho
+    // lambda - sigma mu N(q, qdot):  dN/dq = -dNe grad_rho, dN/dqdot = -c grad_rho,
+    // dN/dtheta = dNe dDelta rho/dpsi, dN/dthetadot = c dDelta rho/dpsi
     const double sm = ws.sigma * model_.contact.friction;
-    for (int c = 1; c <= 9; ++c)
-      add_entry(o + kLambda, glob(c),
-                sm * we.cf.grad_rho(c) * (we.cf.dN_ddelta * cq + model_.contact.damping * cv));
+    const double dn = we.cf.dN_ddelta * cq + model_.contact.damping * cv;
+    for (int c = 1; c <= 9; ++c) add_entry(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
+    add_entry(o + kLambda, o + kTheta, -sm * we.drho.rx * dn);
   }
+}
+
+// The coupling of an out-of-round wheel's rotation with its contact force (a round wheel adds
+// nothing): N = N_e(delta) + c delta', delta = rho0 + Delta rho(theta) - rho(q), the force
+// N grad_rho on q and the moment -N Delta rho' on theta (the damper's own dependence on q and
+// theta neglected, as in contact_force's K).
+void System::add_out_of_round_block(const WheelEval& we, const int* g, int o, double cq,
+                                    double cv) {
+  const double d1 = we.drho.rx, d2 = we.drho.rxx;
+  if (!we.cf.active || (d1 == 0.0 && d2 == 0.0)) return;
+  const double dNe = we.cf.dN_ddelta, c = model_.contact.damping;
+  const double dn = dNe * cq + c * cv;
+  for (int a = 1; a <= 9; ++a) {
+    add_entry(g[a], o + kTheta, -we.cf.grad_rho(a) * d1 * dn);
+    add_entry(o + kTheta, g[a], -we.cf.grad_rho(a) * d1 * dn);
+  }
+  add_entry(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
 }
 
 bool System::factorize_iteration_matrix() { return solver_.factorize(J_, Bb_, Cb_, Db_); }

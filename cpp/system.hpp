@@ -26,7 +26,8 @@ constexpr int kY = 0, kTheta = 1, kLambda = 2;
 
 // One wheel's contact evaluated at a state.
 struct WheelEval {
-  double x = 0.0;  // X_A [m]
+  double x = 0.0;     // X_A [m]
+  ProfileValue drho;  // out-of-roundness Delta rho and its psi-derivatives at psi = theta
   ContactPoint pt;
   ContactForce cf;
   RollingKinematics rk;
@@ -100,6 +101,8 @@ class System {
   void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
                        double cv);
   void add_entry(int i, int j, double v);
+  // g: the global row/column of wheel-local index 1..10 (-1: none)
+  void add_out_of_round_block(const WheelEval& we, const int* g, int o, double cq, double cv);
 
   const Model& model_;
   const SimSettings& set_;

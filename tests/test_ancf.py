@@ -1,8 +1,8 @@
 """The planar ANCF cable element (docs: Model § Rail): energies, forces, Jacobians, mass, quadrature.
 
 Element vector e = [x1, y1, x1_s, y1_s, x2, y2, x2_s, y2_s]; positions in m, slopes in m/m.
-Random states are the straight element of length l = 0.25 m (the paper's mesh) perturbed by
-1e-3 .. 1e-2 of l in the positions and of 1 in the slopes (strains and rotations of the same
+Random states are the straight element of length le = 0.25 m (the paper's mesh) perturbed by
+1e-3 .. 1e-2 of le in the positions and of 1 in the slopes (strains and rotations of the same
 order, far beyond a rail's service deformation but still "moderate"), plus one stretched,
 rotated and translated element.
 """
@@ -63,8 +63,8 @@ def fd_with_tolerance(f, x, h, exact):
     return j_h, FD_SAFETY * (truncation + roundoff) / np.linalg.norm(exact)
 
 
-def reference_element(l=L_EL):
-    return np.array([0.0, 0.0, 1.0, 0.0, l, 0.0, 1.0, 0.0])
+def reference_element(le=L_EL):
+    return np.array([0.0, 0.0, 1.0, 0.0, le, 0.0, 1.0, 0.0])
 
 
 def rigid(e, angle, shift=(0.0, 0.0), stretch=1.0):
@@ -169,78 +169,78 @@ def test_elastic_force_is_objective(section, rel, exact):
     assert U1 == pytest.approx(U0, rel=1e-10)
 
 
-def hermite_beam_stiffness(EI_, l):
+def hermite_beam_stiffness(EI_, le):
     """Euler-Bernoulli beam element on (w1, w1', w2, w2') [N/m, N, N m]."""
-    return EI_ / l**3 * np.array([[12, 6 * l, -12, 6 * l],
-                                  [6 * l, 4 * l**2, -6 * l, 2 * l**2],
-                                  [-12, -6 * l, 12, -6 * l],
-                                  [6 * l, 2 * l**2, -6 * l, 4 * l**2]])
+    return EI_ / le**3 * np.array([[12, 6 * le, -12, 6 * le],
+                                  [6 * le, 4 * le**2, -6 * le, 2 * le**2],
+                                  [-12, -6 * le, 12, -6 * le],
+                                  [6 * le, 2 * le**2, -6 * le, 4 * le**2]])
 
 
-def hermite_bar_stiffness(EA_, l):
+def hermite_bar_stiffness(EA_, le):
     """EA int N_i' N_j' ds for the cubic Hermite functions on (u1, u1', u2, u2')."""
-    return EA_ / (30.0 * l) * np.array([[36, 3 * l, -36, 3 * l],
-                                        [3 * l, 4 * l**2, -3 * l, -l**2],
-                                        [-36, -3 * l, 36, -3 * l],
-                                        [3 * l, -l**2, -3 * l, 4 * l**2]])
+    return EA_ / (30.0 * le) * np.array([[36, 3 * le, -36, 3 * le],
+                                        [3 * le, 4 * le**2, -3 * le, -le**2],
+                                        [-36, -3 * le, 36, -3 * le],
+                                        [3 * le, -le**2, -3 * le, 4 * le**2]])
 
 
-def hermite_consistent_mass(m, l):
+def hermite_consistent_mass(m, le):
     """Consistent mass of the cubic Hermite element on (w1, w1', w2, w2') [kg, kg m, kg m^2]."""
-    return m * l / 420.0 * np.array([[156, 22 * l, 54, -13 * l],
-                                     [22 * l, 4 * l**2, 13 * l, -3 * l**2],
-                                     [54, 13 * l, 156, -22 * l],
-                                     [-13 * l, -3 * l**2, -22 * l, 4 * l**2]])
+    return m * le / 420.0 * np.array([[156, 22 * le, 54, -13 * le],
+                                     [22 * le, 4 * le**2, 13 * le, -3 * le**2],
+                                     [54, 13 * le, 156, -22 * le],
+                                     [-13 * le, -3 * le**2, -22 * le, 4 * le**2]])
 
 
 @pytest.mark.parametrize("exact", [True, False])
-@pytest.mark.parametrize("l", [0.25, 0.1, 1.3])
-def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, l):
-    c = section(length=l, exact=exact)
-    Q, K, _ = _core.cable_elastic(c, reference_element(l))
+@pytest.mark.parametrize("le", [0.25, 0.1, 1.3])
+def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, le):
+    c = section(length=le, exact=exact)
+    Q, K, _ = _core.cable_elastic(c, reference_element(le))
     scale = np.abs(K).max()
-    assert np.abs(Q).max() < 1e-12 * scale * l  # the straight rail is unstressed
+    assert np.abs(Q).max() < 1e-12 * scale * le  # the straight rail is unstressed
     # bending in y: exactly the Hermite beam (the integrand is a polynomial the 5-point rule
     # integrates exactly, so only round-off separates them)
-    np.testing.assert_allclose(K[np.ix_(Y_DOFS, Y_DOFS)], hermite_beam_stiffness(EI, l),
+    np.testing.assert_allclose(K[np.ix_(Y_DOFS, Y_DOFS)], hermite_beam_stiffness(EI, le),
                                rtol=0, atol=1e-12 * scale)
     # stretching in x: the cubic Hermite bar
-    np.testing.assert_allclose(K[np.ix_(X_DOFS, X_DOFS)], hermite_bar_stiffness(EA, l),
+    np.testing.assert_allclose(K[np.ix_(X_DOFS, X_DOFS)], hermite_bar_stiffness(EA, le),
                                rtol=0, atol=1e-12 * scale)
     # no x-y coupling about the straight configuration
     assert np.abs(K[np.ix_(X_DOFS, Y_DOFS)]).max() <= 1e-14 * scale
 
 
-@pytest.mark.parametrize("l", [0.25, 0.1, 1.3])
-def test_mass_matrix_is_consistent_hermite_mass(section, l):
-    M = _core.cable_mass(section(length=l))
-    Mh = hermite_consistent_mass(RHO_A, l)
+@pytest.mark.parametrize("le", [0.25, 0.1, 1.3])
+def test_mass_matrix_is_consistent_hermite_mass(section, le):
+    M = _core.cable_mass(section(length=le))
+    Mh = hermite_consistent_mass(RHO_A, le)
     np.testing.assert_allclose(M[np.ix_(Y_DOFS, Y_DOFS)], Mh, rtol=0, atol=1e-13 * Mh.max())
     np.testing.assert_allclose(M[np.ix_(X_DOFS, X_DOFS)], Mh, rtol=0, atol=1e-13 * Mh.max())
     assert np.abs(M[np.ix_(X_DOFS, Y_DOFS)]).max() == 0.0
-    # a rigid translation carries the element mass rho A l
+    # a rigid translation carries the element mass rho A le
     t = np.array([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
-    assert t @ M @ t == pytest.approx(RHO_A * l, rel=1e-14)
+    assert t @ M @ t == pytest.approx(RHO_A * le, rel=1e-14)
 
 
 def test_hermite_functions_interpolate_nodes_and_differentiate(fd):
-    l = 0.37
-    n0, ns0, _ = _core.hermite(0.0, l)
-    n1, ns1, _ = _core.hermite(1.0, l)
+    le = 0.37
+    n0, ns0, _ = _core.hermite(0.0, le)
+    n1, ns1, _ = _core.hermite(1.0, le)
     np.testing.assert_allclose(n0, [1, 0, 0, 0], atol=1e-15)
     np.testing.assert_allclose(ns0, [0, 1, 0, 0], atol=1e-14)
     np.testing.assert_allclose(n1, [0, 0, 1, 0], atol=1e-15)
     np.testing.assert_allclose(ns1, [0, 0, 0, 1], atol=1e-14)
     for xi in (0.13, 0.5, 0.91):
-        n, ns, nss = _core.hermite(xi, l)
+        n, ns, nss = _core.hermite(xi, le)
         assert n[0] + n[2] == pytest.approx(1.0, abs=1e-15)  # rigid translation
-        # derivatives are with respect to s = xi l; the functions are cubics, so the central
-        # difference error is h^2/6 n''' <= ~1e-11 for h = 1e-6 l
+        # derivatives are with respect to s = xi le; the functions are cubics, so the central
+        # difference error is h^2/6 n''' <= ~1e-11 for h = 1e-6 le
         h = 1e-6
         np.testing.assert_allclose(
-            fd(lambda x: _core.hermite(x[0], l)[0], [xi], h)[:, 0] / l, ns, rtol=0, atol=1e-8)
+            fd(lambda x: _core.hermite(x[0], le)[0], [xi], h)[:, 0] / le, ns, rtol=0, atol=1e-8)
         np.testing.assert_allclose(
-            fd(lambda x: _core.hermite(x[0], l)[1], [xi], h)[:, 0] / l, nss, rtol=0, atol=1e-7)
+            fd(lambda x: _core.hermite(x[0], le)[1], [xi], h)[:, 0] / le, nss, rtol=0, atol=1e-7)
 
 
 @pytest.mark.parametrize("n", range(1, 11))

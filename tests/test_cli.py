@@ -5,6 +5,7 @@ is computed, in the command line's units. (``reproduce``: tests/test_reproduce.p
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import subprocess
 import sys
 
@@ -281,19 +282,31 @@ def test_version_is_written_once():
     assert importlib.metadata.version("trackwheel") == tw.__version__
 
 
-@pytest.mark.parametrize("stiffness, message", [
-    (1e6, "the simulation could not start: static solve: the wheel lost contact with the rail"),
-    (140e6, "the analysis failed: static solve: the wheel lost contact with the rail"),
-])
-def test_a_failed_static_solve_is_one_line(stiffness, message, capsys, monkeypatch):
+def test_a_failed_static_solve_at_the_start_is_one_line(capsys, monkeypatch):
     """A wheel load of 2e7 N pushes the rail through 1 MN/m supports at the start (the kernel's
-    static solve fails), and through 140 MN/m ones somewhere along the quasi-static line of the
-    analysis: exit code 1 and one line, not a traceback."""
+    static solve fails): exit code 1 and one line, not a traceback."""
     scene = tw.Scene.kato2005()
     heavy = dataclasses.replace(scene, wheel=dataclasses.replace(scene.wheel, load=2e7),
-                                supports=dataclasses.replace(scene.supports, stiffness=stiffness))
+                                supports=dataclasses.replace(scene.supports, stiffness=1e6))
     monkeypatch.setattr(cli, "_scene", lambda stiffness=None: heavy)
     assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
+    message = "the simulation could not start: static solve: the wheel lost contact with the rail"
+    assert capsys.readouterr().err == f"trackwheel run: {message}\n"
+
+
+def test_a_failed_static_solve_in_the_analysis_is_one_line(capsys, monkeypatch):
+    """The kernel's static solve failing on the quasi-static line of the analysis (forced here:
+    which loads make it fail depends on the solver's start, not on anything the CLI does) is
+    exit code 1 and one line, not a traceback."""
+    analysis = importlib.import_module("trackwheel.analysis")
+
+    def fail(*args, **kwargs):
+        raise RuntimeError("static solve: the wheel lost contact with the rail")
+
+    monkeypatch.setattr(analysis, "quasi_static", fail)
+    analysis._qs_series.cache_clear()  # nothing cached may hide the failing solver
+    assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
+    message = "the analysis failed: static solve: the wheel lost contact with the rail"
     assert capsys.readouterr().err == f"trackwheel run: {message}\n"
 
 
@@ -338,17 +351,10 @@ def test_excitation_options_build_the_api_scene():
 
 def test_joint_turns_the_contact_filter_on():
     """--joint sets Contact.patch_filter (the Kabo cusp curves more sharply than any wheel) and
-    says so; --patch-filter alone sets it too. In a build whose Contact has no patch_filter yet
-    (before the kernel half of issue 13), --joint warns and --patch-filter is refused."""
-    has_filter = "patch_filter" in {f.name for f in dataclasses.fields(tw.Contact)}
+    says so; --patch-filter alone sets it too."""
     scene, notes = _scene_of(["--joint", "0.002,0.5,2.0"])
-    if has_filter:
-        assert scene.contact.patch_filter is True and "contact filter on" in notes[0]
-        assert _scene_of(["--patch-filter"])[0].contact.patch_filter is True
-    else:
-        assert notes[0].startswith("warning:") and "patch_filter" in notes[0]
-        with pytest.raises(cli._OptionError, match="--patch-filter"):
-            _scene_of(["--patch-filter"])
+    assert scene.contact.patch_filter is True and "contact filter on" in notes[0]
+    assert _scene_of(["--patch-filter"])[0].contact.patch_filter is True
 
 
 def test_run_prints_the_force_statistics(capsys):

@@ -4,6 +4,7 @@ must, and the test shows where it stops agreeing."""
 from __future__ import annotations
 
 import dataclasses as dc
+import math
 
 import numpy as np
 import pytest
@@ -128,3 +129,20 @@ def test_sweep_auto_fidelity_chooses_and_reports():
     ref = tw.sweep(scene, speed=[tw.kmh(100), V], support_stiffness=[70e6, 140e6],
                    fidelity="linear/sprung", max_workers=1, progress=False, **kw)
     np.testing.assert_array_equal(df.amplitude.to_numpy(), ref.amplitude.to_numpy())
+
+
+def test_adequacy_says_whether_the_contact_filter_matters():
+    """The patch average H = sin(Omega a)/(Omega a) over the static Hertz patch (a ~ 3 mm for the
+    paper's wheel): a 10 mm corrugation loses 20 log10(1/H) ~ 7 dB (matters), a 0.5 m wave
+    ~2e-3 dB (does not)."""
+    scene = tw.Scene.kato2005()
+    for wavelength, matters in ((0.01, True), (0.5, False)):
+        rough = dc.replace(scene, irregularity=tw.Irregularity.sine(wavelength, 1e-6))
+        df = tw.adequacy(rough, speeds=[tw.kmh(100)], levels=("full",), n_elements=20,
+                         dt=1e-5, x_end=0.5)
+        judged = df.attrs["contact_filter"]
+        a = judged["half_width"]
+        om = 2 * math.pi / wavelength
+        assert judged["attenuation_db"] == pytest.approx(
+            -20 * math.log10(math.sin(om * a) / (om * a)), rel=1e-9)
+        assert judged["matters"] is matters

@@ -14,9 +14,10 @@ Parameters of ``Scene`` and ``simulate`` and where each is exercised here:
   act on the rolling constraint, which the linear (vertical) path does not model: they are
   compared between the integrators, and their physics is in test_slip_physics.py.
 - Contact: law and stiffness (both levels, Hertz constant from the moduli); friction only
-  matters to the rolling constraint (integrators); damping: the linear path does NOT model it
-  (see test_linear_path_models_contact_damping).
-- Scene: gravity, rail_gravity -- on and off.
+  matters to the rolling constraint (integrators); damping -- test_linear_path_models_contact_
+  damping (both laws).
+- Scene: gravity, rail_gravity -- on and off; irregularity and the wheel's defects --
+  tests/test_irregularity_response.py (linear and full paths under the same profile).
 - simulate: speed, dt, n_elements, x_start, x_end, rho_inf, output_every, start ("static",
   "sudden"), drop_height (contact lost and regained), n_modes (all modes = all coordinates),
   integrator and baumgarte (integrators), rolling (False: the frictionless full model, which
@@ -112,18 +113,19 @@ def test_linear_matches_full_with_every_parameter(level, kw, changes):
     assert a.lost_contact == b.lost_contact == ("drop_height" in kw)
 
 
-@pytest.mark.xfail(strict=True, reason="the linear path ignores Contact.damping (issue 17 "
-                   "audit): its contact law is k delta or C_H delta^1.5 without the damper")
-def test_linear_path_models_contact_damping():
-    """Contact damping 1e4 N s/m: the linear level should agree with the ANCF level as closely
-    as without it (TOL_TRACE); it is 5 % of the amplitude off, the size of the damper's
-    effect, because the linear path leaves the damper out."""
+@pytest.mark.parametrize("level", ["sprung", "hertz"])
+def test_linear_path_models_contact_damping(level):
+    """Contact damping 1e4 N s/m: the linear level agrees with the ANCF level as closely as
+    without it (TOL_TRACE); without the damper in the linear path it was 5 % of the amplitude
+    off, the size of the damper's effect."""
     base = tw.Scene.kato2005()
     scene = dc.replace(base, contact=dc.replace(base.contact, damping=1e4))
     kw = {"n_elements": 20, "dt": 1e-5}
-    full = tw.analyse(tw.simulate(scene, V, fidelity="ancf/sprung", **kw))
-    lin = tw.analyse(tw.simulate(scene, V, fidelity="linear/sprung", **kw))
+    full = tw.analyse(tw.simulate(scene, V, fidelity=f"ancf/{level}", **kw))
+    lin = tw.analyse(tw.simulate(scene, V, fidelity=f"linear/{level}", **kw))
     assert np.max(np.abs(lin.dynamic - full.dynamic)) < TOL_TRACE * full.amplitude
+    undamped = tw.analyse(tw.simulate(base, V, fidelity=f"linear/{level}", **kw))
+    assert np.max(np.abs(undamped.dynamic - lin.dynamic)) > 10 * TOL_TRACE * full.amplitude
 
 
 def test_modal_path_with_all_modes_equals_coordinates_with_damping():

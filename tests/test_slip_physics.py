@@ -1,4 +1,4 @@
-"""Stick and slide of the rolling contact (MODEL.md §5-§6, issue 17): the Coulomb bound holds in
+"""Stick and slide of the rolling contact (docs: Model § Rolling and slip, § Equations of motion; issue 17): the Coulomb bound holds in
 stick, and sliding starts when the tangential force reaches mu N.
 
 With the wheel centre's forward motion prescribed at constant speed, J theta'' = T - rho lambda;

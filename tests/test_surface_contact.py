@@ -45,6 +45,7 @@ def plain_params(model):
 
     p = _core.RailParams()
     p.length, p.EA, p.EI, p.rhoA, p.n_elements, p.gravity = 5.0, EA, EI, RHO_A, 20, 0.0
+    p.n_gauss = 5
     return p
 
 

@@ -15,7 +15,9 @@ is eps |R| / h with |R| dominated by the axial forces of the rail, EA |e| ~ 1.4e
 i.e. ~2e-9 per unit of a column whose entries are ~1-10 kg. Measured: 1.3e-8 of a column's
 largest entry (and 1e-5 with h = 1, where round-off dominates, falling as 1/h). Tolerance:
 1e-6 of each column's largest entry. The scene has no contact damping, whose q-dependence the
-matrix neglects on purpose.
+matrix neglects on purpose. The out-of-round cases add an 8th-order polygon of 50 um at
+theta = 0.3 rad: the radius change couples theta with the contact force (its moment
+-N dDelta rho/dpsi and the force's dependence on theta).
 """
 
 from __future__ import annotations
@@ -32,10 +34,12 @@ V = tw.kmh(300)
 DT = 1e-5
 
 
-def _probe_case(law, slide, n_wheels):
+def _probe_case(law, slide, n_wheels, polygon=False):
     scene = tw.Scene.kato2005()
     if law == "hertz":
         scene = dc.replace(scene, contact=dc.replace(scene.contact, law="hertz"))
+    if polygon:
+        scene = dc.replace(scene, wheel=dc.replace(scene.wheel, defects=(tw.Polygon(8, 5e-5),)))
     model = _kernel.rail_model(scene, 20)
     contact = _kernel.contact_params(scene)
     d = _core.static_solve(model, _kernel.wheel_params(scene), contact, 1.3)
@@ -46,10 +50,13 @@ def _probe_case(law, slide, n_wheels):
         p.x_offset = 2.0 * k
         w = _core.WheelState()
         x = 1.3 + p.x_offset
-        # wheel 0 at its static equilibrium; wheel 1 pressed 20 um into the rail
-        w.y = d["y_wheel"] if k == 0 else model.positions(e, [x])[0, 1] + 0.1 - 2e-5
+        # wheel 0 at its static equilibrium; wheel 1 pressed 20 um into the rail (80 um with the
+        # polygon, which takes 37 um off the radius at theta = 0.3)
+        press = 8e-5 if polygon else 2e-5
+        w.y = d["y_wheel"] if k == 0 else model.positions(e, [x])[0, 1] + 0.1 - press
         w.s = d["contact_s"] if k == 0 else x
         w.thetadot = V / scene.wheel.radius
+        w.theta = 0.3 if polygon else 0.0
         w.state = _core.SlipState.slip if slide else _core.SlipState.stick
         w.sigma = -1.0
         wheels.append(p)
@@ -61,10 +68,11 @@ def _probe_case(law, slide, n_wheels):
     return model, wheels, contact, s, st
 
 
-@pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("linear", True, 1),
-                                                  ("hertz", False, 2), ("hertz", True, 2)])
-def test_iteration_matrix_matches_central_differences(law, slide, n_wheels):
-    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels)
+@pytest.mark.parametrize("law, slide, n_wheels, polygon", [
+    ("linear", False, 1, False), ("linear", True, 1, False), ("hertz", False, 2, False),
+    ("hertz", True, 2, False), ("linear", False, 1, True), ("hertz", True, 2, True)])
+def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, polygon):
+    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, polygon)
 
     def R(x=None):
         return _core.ga_probe(model, wheels, contact, s, st, DT, x)
@@ -91,6 +99,10 @@ def test_iteration_matrix_matches_central_differences(law, slide, n_wheels):
         lam = model.n_free + 3 * k + 2
         assert np.count_nonzero(J[:model.n_free, lam]) >= 4
         assert np.count_nonzero(J[lam, :model.n_free]) >= 4
+        if polygon:  # theta couples with the rail and Y through the radius change
+            th = model.n_free + 3 * k + 1
+            assert np.count_nonzero(J[:model.n_free, th]) >= 4
+            assert J[model.n_free + 3 * k, th] != 0.0
 
 
 @pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("hertz", True, 2)])

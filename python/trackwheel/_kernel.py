@@ -5,6 +5,7 @@ The kernel's ``RailModel`` is immutable; it is built once per (scene, mesh) and 
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -18,6 +19,10 @@ from .scene import Scene
 #: the amplitude, and a joint's cusp is rounded over about 1 mm only.
 PROFILE_DX = 1e-3
 PROFILE_POINTS_PER_WAVELENGTH = 40
+#: The wheel's out-of-roundness reaches the kernel the same way, as a periodic cubic spline
+#: through samples every WHEEL_ARC_STEP [m] of its circumference (rounding a new flat's corners
+#: over about that arc).
+WHEEL_ARC_STEP = 5e-4
 
 
 @lru_cache(maxsize=64)
@@ -82,7 +87,29 @@ def wheel_params(scene: Scene) -> _core.WheelParams:
     p.load = w.load
     p.torque = w.torque
     p.gravity = scene.gravity
+    p.out_of_round = out_of_round(scene)
     return p
+
+
+def out_of_round(scene: Scene) -> _core.Profile:
+    """The wheel's defects summed as the kernel's periodic piecewise cubic Delta rho(psi) over
+    one revolution (round wheel: empty)."""
+    defects = scene.wheel.defects
+    if not defects:
+        return _core.Profile()
+    from scipy.interpolate import CubicSpline
+
+    rho0 = scene.wheel.radius
+    n = max(64, math.ceil(2.0 * math.pi * rho0 / WHEEL_ARC_STEP))
+    drho = sum(d.table(rho0, n)[2] for d in defects)
+    psi = 2.0 * math.pi * np.arange(n + 1) / n
+    spline = CubicSpline(psi, np.append(drho, drho[0]), bc_type="periodic")
+    return _core.Profile(0.0, 2.0 * math.pi / n, spline.c)
+
+
+def radius_change_at_start(scene: Scene) -> float:
+    """Delta rho [m] at psi = 0, where the wheel stands at the start (theta = 0)."""
+    return float(sum(d.delta_rho(0.0, scene.wheel.radius) for d in scene.wheel.defects))
 
 
 def contact_params(scene: Scene) -> _core.ContactParams:

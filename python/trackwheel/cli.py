@@ -457,14 +457,6 @@ def _profile(args: argparse.Namespace) -> Irregularity | None:
     return irr
 
 
-def _with_contact_filter(scene: Scene) -> Scene | None:
-    """The scene with Contact.patch_filter on, or None if this build's Contact has none."""
-    if "patch_filter" not in {f.name for f in dataclasses.fields(scene.contact)}:
-        return None
-    return dataclasses.replace(scene, contact=dataclasses.replace(scene.contact,
-                                                                  patch_filter=True))
-
-
 def _excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[str]]:
     """``scene`` with the excitation options applied, and notes to print (stdout) or warn
     (lines starting "warning:"). Raises _OptionError for bad values."""
@@ -488,18 +480,11 @@ def _excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[
         except ValueError as exc:
             raise _OptionError(f"--wheel-flat: {exc}") from None
     if args.patch_filter or args.joint is not None:
-        filtered = _with_contact_filter(scene)
-        if filtered is not None:
-            scene = filtered
-            if not args.patch_filter:
-                notes.append("--joint turns the contact filter on (Contact.patch_filter = True: "
-                             "the dip's cusp curves more sharply than the wheel)")
-        elif args.patch_filter:
-            raise _OptionError("--patch-filter: this build's Contact has no patch_filter (it "
-                               "comes with the kernel half of issue 13)")
-        else:
-            notes.append("warning: this build's Contact has no patch_filter; the joint runs "
-                         "without the contact filter")
+        scene = dataclasses.replace(scene, contact=dataclasses.replace(scene.contact,
+                                                                       patch_filter=True))
+        if not args.patch_filter:
+            notes.append("--joint turns the contact filter on (Contact.patch_filter = True: "
+                         "the dip's cusp curves more sharply than the wheel)")
     return scene, notes
 
 
@@ -518,7 +503,7 @@ def _describe(scene: Scene) -> str:
     for d in scene.wheel.defects:
         words.append(f"wheel flat {d.length * 1e3:g} mm" if d.kind == "wheel_flat"
                      else f"polygon order {d.order}")
-    if getattr(scene.contact, "patch_filter", False):
+    if scene.contact.patch_filter:
         words.append("contact filter on")
     return ", ".join(words) if words else "none (smooth rail, round wheel)"
 

@@ -40,7 +40,8 @@ __all__ = [
 
 #: Highest forward speed of a run [m/s] (1080 km/h): far above any railway speed; keeps the
 #: convective terms of the moving contact (v^2 y_ss) in the range the contact search was tested in.
-MAX_SPEED = 300.0
+#: Defined once, in the kernel (cpp/limits.hpp), which checks it too.
+MAX_SPEED = v.MAX_SPEED
 #: Elements per support bay of the derived default mesh (see :func:`default_settings`).
 ELEMENTS_PER_BAY = 8
 #: Time steps per period of the highest frequency of interest (see :func:`default_settings`).

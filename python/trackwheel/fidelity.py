@@ -8,6 +8,7 @@ the cheapest level whose outputs stay within ``tol`` of it at every speed.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -15,6 +16,7 @@ import numpy as np
 from . import _validate as v
 from .analysis import analyse
 from .defaults import MAX_SPEED, default_settings
+from .irregularity import contact_half_width, filter_attenuation, filter_matters
 from .scene import Scene
 from .simulate import FIDELITY_LEVELS, simulate
 
@@ -43,6 +45,13 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
 
     The main frequency is compared relative to itself; the frequency resolution of a run is
     1/T (T the run's duration), so frequency differences below it are not meaningful.
+
+    With a rail profile, ``df.attrs["contact_filter"]`` says whether the contact filter
+    (``Contact(patch_filter=True)``, the profile averaged over the static Hertz patch of
+    half-length a) matters for it: ``{"half_width": a [m], "shortest_wavelength": [m],
+    "attenuation_db": [dB], "matters": bool}``, where it matters when the patch average takes
+    more than 1 dB off the profile's shortest wavelength
+    (:func:`trackwheel.irregularity.filter_matters`).
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
@@ -91,7 +100,19 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     df.attrs["tol"] = tol
     df.attrs["reference"] = reference
     df.attrs["recommended"] = recommend(df)
+    if scene.irregularity is not None and scene.irregularity.parts:
+        df.attrs["contact_filter"] = contact_filter_judgement(scene)
     return df
+
+
+def contact_filter_judgement(scene: Scene) -> dict:
+    """Whether the contact filter matters for the scene's rail profile (see :func:`adequacy`)."""
+    a = contact_half_width(scene)
+    lam = scene.irregularity.shortest_wavelength()
+    h = abs(float(filter_attenuation(lam, a)[0])) if lam > 2.0 * a else 0.0
+    return {"half_width": a, "shortest_wavelength": lam,
+            "attenuation_db": -20.0 * math.log10(h) if h > 0.0 else math.inf,
+            "matters": filter_matters(lam, a)}
 
 
 def recommend(df) -> str:

@@ -109,6 +109,8 @@ def _scene_for(scene: Scene, fidelity: str) -> Scene:
 def _initial_state(scene, model, speed, x_start, start, drop_height):
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
+    # an out-of-round wheel starts at theta = 0, touching with its radius rho0 + Delta rho(0)
+    contact.radius += _kernel.radius_change_at_start(scene)
     st = _core.SimState()
     if start == "static":
         d = _core.static_solve(model, wheel, contact, x_start)
@@ -116,7 +118,7 @@ def _initial_state(scene, model, speed, x_start, start, drop_height):
     else:  # sudden: rail under its own weight, wheel just touching (or drop_height above)
         e = np.asarray(_core.rail_static(model))
         y_rail = model.positions(e, [x_start])[0, 1]
-        y = y_rail + scene.wheel.radius + drop_height
+        y = y_rail + contact.radius + drop_height
     c = _core.contact_eval(model, e, x_start, y, x_start, contact, np.zeros(10))
     w = _core.WheelState()
     w.y = y
