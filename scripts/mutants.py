@@ -132,6 +132,8 @@ MUTANTS: list[Mutant] = [
     M("linear-iteration-damping", LIN, "1.0, tr_.M, cv, tr_.C", "1.0, tr_.M, 0.0, tr_.C",
       "linear path's iteration matrix M + cq K without cv C (its Newton stops after one "
       "iteration for the linear wheel models, so the matrix is part of the scheme there)"),
+    M("linear-contact-damping-convection", LIN, "+ set_.speed * lw.ss.dot(q_);", ";",
+      "linear path's contact damper without the convected rate v y_s(X_A) of the rail"),
     # --- contact: the law shared by both paths, the distance and the running surface
     M("contact-stiffness", CON, "return k * delta;", "return 1.05 * k * delta;",
       "linear contact law 5 % stiff (force only, both paths)"),
@@ -158,10 +160,12 @@ MUTANTS: list[Mutant] = [
     M("landing-slip-direction", SLIP, "ws.sigma = ev.rk.g > 0 ? -1.0 : 1.0;",
       "ws.sigma = ev.rk.g > 0 ? 1.0 : -1.0;",
       "a wheel landing with slip slides with friction along its slip velocity"),
-    M("slide-jacobian", SYS, "+ model_.contact.damping * cv)", ")",
+    M("slide-jacobian", SYS, "dN_ddelta * cq + model_.contact.damping * cv;", "dN_ddelta * cq;",
       "Newton matrix of the sliding row without dN/dqdot",
       equivalent="only the Newton matrix changes: the iteration converges to the same residual "
                  "tolerance (modified Newton), results agree to newton_tol; kept as a control"),
+    M("out-of-round-moment", SYS, "- we.cf.N * we.drho.rx;", ";",
+      "an out-of-round wheel's normal force without its moment -N d(Delta rho)/d psi"),
     M("baumgarte-sign", SYS, "- set_.baumgarte * we.rk.g;", "+ set_.baumgarte * we.rk.g;",
       "Baumgarte stabilisation destabilises the constraint drift"),
     # --- integrators: generalized-alpha coefficients (shared by both paths), RK4
@@ -274,8 +278,8 @@ def run_suite(py: Path, src: Path, timeout: float) -> tuple[str, str, float]:
     dt = time.perf_counter() - t0
     if p.returncode == 0:
         return "survived", "", dt
-    # -ra summary line: "FAILED <node id> - <first line of the error>"
-    m = re.search(r"^(?:FAILED|ERROR) (\S+)(?: - (.*))?$", p.stdout, re.MULTILINE)
+    # -ra summary line: "FAILED <node id> - <first line of the error>" (ids may hold spaces)
+    m = re.search(r"^(?:FAILED|ERROR) (.+?)(?: - (.*))?$", p.stdout, re.MULTILINE)
     if not m:
         return "caught", f"pytest exit {p.returncode}", dt
     why = (m.group(2) or "").strip()
