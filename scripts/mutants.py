@@ -27,6 +27,8 @@ running Python environment, as for an editable install):
     python scripts/mutants.py                 # all mutants, table to stdout and benchmarks/
     python scripts/mutants.py --only slip-threshold linear-support-damping
     python scripts/mutants.py --list          # the mutants without running anything
+    python scripts/mutants.py --only linear-support-damping --deselect tests/test_golden.py \
+        --out /tmp/m.md                       # which physics test catches it after the golden
 
 It takes about half a minute per mutant on two cores (the incremental rebuild and the suite up
 to its first failure) after a first build of two to three minutes; run it on demand, not in CI.
@@ -373,6 +375,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workdir", type=Path, default=None, help="parent of the scratch copy")
     ap.add_argument("--out", type=Path, default=REPO / "benchmarks" / "mutants.md",
                     help="markdown report (a CSV is written next to it)")
+    ap.add_argument("--deselect", nargs="+", default=[], metavar="NODE",
+                    help="also leave out these tests (e.g. tests/test_golden.py, to see which "
+                         "physics test catches a mutant the golden regression catches first)")
     ap.add_argument("--update", action="store_true",
                     help="with --only: replace these mutants' rows in the existing report")
     a = ap.parse_args(argv)
@@ -389,6 +394,7 @@ def main(argv: list[str] | None = None) -> int:
         if unknown:
             sys.exit(f"unknown mutant ids: {sorted(unknown)}; see --list")
         chosen = [m for m in MUTANTS if m.id in a.only]
+    PYTEST_ARGS[-1:-1] = [x for node in a.deselect for x in ("--deselect", node)]
     t0 = time.perf_counter()
     rows = run(chosen, a.timeout, a.workdir)
     total = time.perf_counter() - t0
