@@ -30,8 +30,9 @@ running Python environment, as for an editable install):
     python scripts/mutants.py --only linear-support-damping --deselect tests/test_golden.py \
         --out /tmp/m.md                       # which physics test catches it after the golden
 
-It takes about half a minute per mutant on two cores (the incremental rebuild and the suite up
-to its first failure) after a first build of two to three minutes; run it on demand, not in CI.
+It takes 5-50 s per mutant on two cores (the incremental rebuild and the suite up to its first
+failure) after a first build and unmutated suite run of about two minutes: 17 minutes for the
+41 mutants; run it on demand, not in CI.
 """
 
 from __future__ import annotations
