@@ -56,6 +56,16 @@ def _root_figure(ax: Axes) -> Figure:
     return fig
 
 
+def _figure_and_axes(ax: Axes | None, figsize: tuple[float, float]) -> tuple[Figure, Axes]:
+    """A new one-axes figure of ``figsize`` [in], or ``ax`` (checked) and its figure."""
+    if ax is None:
+        fig = Figure(figsize=figsize, layout="constrained")
+        return fig, fig.add_subplot()
+    if not isinstance(ax, Axes):
+        raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
+    return _root_figure(ax), ax
+
+
 def _check_result(result) -> EigenResult:
     if not isinstance(result, EigenResult):
         raise TypeError(
@@ -93,13 +103,7 @@ def eigen(result: EigenResult, n_modes: int = 4, ax: Axes | None = None) -> Figu
     """
     result = _check_result(result)
     n_modes = v.integer("n_modes", n_modes, low=1, high=result.frequencies.shape[1])
-    if ax is None:
-        fig = Figure(figsize=(7.0, 4.5), layout="constrained")
-        ax = fig.add_subplot()
-    elif not isinstance(ax, Axes):
-        raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
-    else:
-        fig = _root_figure(ax)
+    fig, ax = _figure_and_axes(ax, (7.0, 4.5))
     x = result.positions
     _mark_supports(ax, result)
     for k in range(n_modes):
@@ -748,11 +752,7 @@ def contact_force(x, n, *, defect_at: float | None = None, static_load: float | 
     if xa.ndim != 1 or xa.shape != na.shape:
         raise ValueError(f"x and n must be 1-d arrays of the same length, got shapes "
                          f"{xa.shape} and {na.shape}")
-    if ax is None:
-        fig = Figure(figsize=(7.0, 3.5), layout="constrained")
-        ax = fig.subplots()
-    else:
-        fig = _root_figure(ax)
+    fig, ax = _figure_and_axes(ax, (7.0, 3.5))
     ax.plot(xa, na / 1e3, linewidth=0.9, label="contact force N", gid="force")
     if static_load is not None:
         p0 = v.positive("static_load", static_load, "N")
@@ -777,11 +777,7 @@ def force_bands(stats, *, ax: Axes | None = None) -> Figure:
     if not isinstance(stats, ForceStatistics):
         raise TypeError(f"stats must be a trackwheel.ForceStatistics, "
                         f"got {type(stats).__name__}")
-    if ax is None:
-        fig = Figure(figsize=(6.0, 3.5), layout="constrained")
-        ax = fig.subplots()
-    else:
-        fig = _root_figure(ax)
+    fig, ax = _figure_and_axes(ax, (6.0, 3.5))
     keep = stats.band_rms > 0.0  # log axes cannot show an empty band
     ax.loglog(stats.band_centres[keep], stats.band_rms[keep], marker="o", gid="bands")
     ax.set_xlabel("one-third-octave band centre [Hz]")

@@ -305,9 +305,7 @@ def _fig4_time_step(ctx: Context) -> None:
     ref = runs[int(np.argmin(p.fig4_explicit_dt))]
     table = convergence_table(runs, [ref] * len(runs))
     ctx.table(table, "fig4_time_step.csv", CONVERGENCE_UNITS)
-    x0 = float(runs[0].x_wheel[0])
-    where = (f"X = {x0:g}–{x0 + p.fig4_stretch:g} m ({p.fig4_stretch * 1e3:g} mm of track, "
-             f"{p.fig4_stretch / kmh(p.fig4_speed_kmh) * 1e3:.2g} ms)")
+    where = _stretch(runs[0], p.fig4_stretch, p.fig4_speed_kmh)
     fig = plots.time_step_convergence(
         runs, title=f"Effect of the time step (Kato et al. 2005, Fig. 4): "
                     f"{p.fig4_speed_kmh:g} km/h, {p.fig4_n_elements} elements,\n"
@@ -325,6 +323,13 @@ def _fig4_time_step(ctx: Context) -> None:
     s.extend(convergence_conclusions(table, "dt"))
 
 
+def _stretch(run, stretch: float, speed_kmh: float) -> str:
+    """Where a convergence figure looks: X range [m], track length [mm] and duration [ms]."""
+    x0 = float(run.x_wheel[0])
+    return (f"X = {x0:g}–{x0 + stretch:g} m ({stretch * 1e3:g} mm of track, "
+            f"{stretch / kmh(speed_kmh) * 1e3:.2g} ms)")
+
+
 def _fig5_elements(ctx: Context) -> None:
     """Paper Fig. 5: 20, 40, 80 elements at 200 km/h, explicit at 1e-7 s and generalized-alpha
     at 1e-5 s; each compared with the same integrator on the finest mesh."""
@@ -340,9 +345,7 @@ def _fig5_elements(ctx: Context) -> None:
     table = convergence_table(runs, [explicit[i_ref]] * len(explicit)
                               + [alpha[i_ref]] * len(alpha))
     ctx.table(table, "fig5_elements.csv", CONVERGENCE_UNITS)
-    x0 = float(runs[0].x_wheel[0])
-    where = (f"X = {x0:g}–{x0 + p.fig5_stretch:g} m ({p.fig5_stretch * 1e3:g} mm of track, "
-             f"{p.fig5_stretch / kmh(p.fig5_speed_kmh) * 1e3:.2g} ms)")
+    where = _stretch(runs[0], p.fig5_stretch, p.fig5_speed_kmh)
     fig = plots.element_convergence(
         runs, title=f"Effect of the number of elements (Kato et al. 2005, Fig. 5): "
                     f"{p.fig5_speed_kmh:g} km/h,\n{where}: a short stretch")
