@@ -94,12 +94,17 @@ def wheel_params(scene: Scene) -> _core.WheelParams:
 def out_of_round(scene: Scene) -> _core.Profile:
     """The wheel's defects summed as the kernel's periodic piecewise cubic Delta rho(psi) over
     one revolution (round wheel: empty)."""
-    defects = scene.wheel.defects
+    return _out_of_round(scene.wheel.defects, scene.wheel.radius)
+
+
+@lru_cache(maxsize=64)
+def _out_of_round(defects: tuple, rho0: float) -> _core.Profile:
+    # cached: wheel_params is built several times per run (start, step, kernel call) and for
+    # every static solve, and the spline is the same each time
     if not defects:
         return _core.Profile()
     from scipy.interpolate import CubicSpline
 
-    rho0 = scene.wheel.radius
     n = max(64, math.ceil(2.0 * math.pi * rho0 / WHEEL_ARC_STEP))
     drho = sum(d.table(rho0, n)[2] for d in defects)
     psi = 2.0 * math.pi * np.arange(n + 1) / n
