@@ -18,7 +18,7 @@ from .fidelity import adequacy, recommend
 from .force_statistics import ForceStatistics, force_statistics
 from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
-from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
+from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .statics import QuasiStatic, StaticResult, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
@@ -26,6 +26,7 @@ from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.
 
 __all__ = [
     "FIDELITY_LEVELS",
+    "AbsorbingEnds",
     "Analysis",
     "Contact",
     "Convergence",

@@ -38,6 +38,9 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     p.n_gauss = r.n_gauss
     p.gravity = scene.gravity if scene.rail_gravity else 0.0
     p.pin_far_end = r.far_end == "pinned"
+    if r.absorbing_ends is not None:
+        p.absorbing_length = r.absorbing_ends.length
+        p.absorbing_damping = r.absorbing_damping
     s = _core.SupportParams()
     pos = scene.support_positions
     s.position = list(pos)

@@ -4,8 +4,15 @@ The rail is the ANCF rail linearised about the straight reference, which is exac
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
 ``axial_frequencies``). The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
-be a node. ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
-(Eigen, in the C++ kernel) for each position.
+be a node. ``K x = omega^2 M x`` is solved for each position by one of two methods:
+
+- ``"dense"``: the symmetric-definite generalised eigensolver (Eigen, in the C++ kernel), all
+  modes, O(n^2) memory and O(n^3) time, at most ``MAX_DENSE_EIGEN_DOF`` coordinates;
+- ``"sparse"``: the lowest modes only, by shift-invert Lanczos (ARPACK through
+  :func:`scipy.sparse.linalg.eigsh`, shift 0: K is positive definite, the rail being pinned at
+  both ends) on the banded K and M the kernel exports, O(n) memory and time per mode;
+
+``"auto"`` takes the sparse method above ``AUTO_SPARSE_DOF`` coordinates.
 """
 
 from __future__ import annotations
@@ -17,6 +24,16 @@ import numpy as np
 from . import _core, _kernel
 from . import _validate as v
 from .scene import MAX_ELEMENTS, Scene
+
+#: ``method="auto"`` solves problems with more coordinates than this by the sparse method [-]:
+#: below it the dense solve takes milliseconds and gives every mode.
+AUTO_SPARSE_DOF = 400
+MAX_DENSE_EIGEN_DOF = v.MAX_DENSE_EIGEN_DOF
+METHODS = ("auto", "dense", "sparse")
+#: Lanczos basis size (ARPACK's ncv, at least 2 n_modes + 1) and relative tolerance of the
+#: eigenvalues of the sparse method [-].
+SPARSE_BASIS = 64
+SPARSE_TOL = 1e-12
 
 
 @dataclass(frozen=True)
@@ -62,9 +79,10 @@ class EigenResult:
 
 
 def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None = None,
-          n_axial: int = 3) -> EigenResult:
+          n_axial: int = 3, method: str = "auto") -> EigenResult:
     """Lowest ``n_modes`` vertical natural frequencies [Hz] with the wheel at each of
-    ``positions`` [m] (0 <= X <= L).
+    ``positions`` [m] (0 <= X <= L); ``method`` is "auto", "dense" or "sparse" (module
+    docstring).
 
     >>> r = eigen(Scene.kato2005(), [2.5])
     >>> r.frequencies.shape
@@ -73,29 +91,110 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    model = _kernel.rail_model(scene, ne)
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1)
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
+    sparse = _sparse(method, n_y + 1)
+    # ARPACK finds at most n - 1 modes of an n x n problem
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y if sparse else n_y + 1)
     # at most the n_x axial modes the mesh has (one element has only one or two)
-    n_axial = min(v.integer("n_axial", n_axial, low=0), n_x)
-    freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
-                                         x.tolist(), n_modes)
-    axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial
-             else np.empty(0))
+    n_axial = min(v.integer("n_axial", n_axial, low=0), n_x - 1 if _sparse(method, n_x) else n_x)
+    if sparse:
+        res = [_sparse_modes(model, 1, n_modes, scene.wheel.mass, scene.contact_stiffness, xi)
+               for xi in x]
+        freqs = np.array([f for f, _ in res])
+        shapes = np.array([s for _, s in res])
+    else:
+        _check_dense(n_y + 1)
+        freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
+                                             x.tolist(), n_modes)
+    axial = np.empty(0)
+    if n_axial and _sparse(method, n_x):
+        axial = _sparse_modes(model, 0, n_axial)[0]
+    elif n_axial:
+        _check_dense(n_x)
+        axial = np.asarray(_core.axial_modes(model, n_axial)[0]).ravel()
     return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
-                       shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne)
+                       shapes=np.asarray(shapes), axial_frequencies=axial,
+                       n_elements=model.n_nodes - 1)
 
 
-def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None
-                     ) -> np.ndarray:
-    """Vertical natural frequencies of the rail on its supports without the wheel [Hz]."""
+def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None,
+                     method: str = "auto") -> np.ndarray:
+    """Vertical natural frequencies of the rail on its supports without the wheel [Hz]
+    (``method`` as in :func:`eigen`)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    model = _kernel.rail_model(scene, ne)
-    freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], v.integer("n_modes", n_modes, low=1))
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
+    sparse = _sparse(method, n_y)
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y - 1 if sparse else n_y)
+    if sparse:
+        return _sparse_modes(model, 1, n_modes)[0]
+    _check_dense(n_y)
+    freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], n_modes)
     return np.asarray(freqs).ravel()
+
+
+def vertical_matrices(scene: Scene, *, n_elements: int | None = None):
+    """The linear vertical rail's sparse M [kg], C [N s/m] and K [N/m] (scipy CSR) over its free
+    y coordinates (y, y_s per node), at the straight reference, with the support and end-zone
+    dampers in C, and the full ANCF index of each coordinate: ``(M, C, K, dofs)``. The same
+    band matrices the linear path integrates (docs: Model § Rail (linearised))."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    d = _core.direction_pencil(model, 1)
+    return (*(_csr(d, key) for key in ("M", "C", "K")), np.asarray(d["dofs"]))
+
+
+def _mesh(scene: Scene, n_elements) -> int:
+    if n_elements is None:
+        return scene.rail.n_elements
+    return v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
+
+
+def _sparse(method: str, n: int) -> bool:
+    v.choice("method", method, set(METHODS))
+    return method == "sparse" or (method == "auto" and n > AUTO_SPARSE_DOF)
+
+
+def _check_dense(n: int) -> None:
+    if n > MAX_DENSE_EIGEN_DOF:
+        raise ValueError(f"method='dense' takes at most MAX_DENSE_EIGEN_DOF = "
+                         f"{MAX_DENSE_EIGEN_DOF} coordinates, this mesh has {n}; allowed: "
+                         "method='sparse' or 'auto', or fewer elements")
+
+
+def _csr(d: dict, key: str):
+    from scipy.sparse import csr_matrix
+
+    n = d["n"]
+    return csr_matrix((np.asarray(d[key]), (np.asarray(d["row"]), np.asarray(d["col"]))),
+                      shape=(n, n))
+
+
+def _sparse_modes(model, component: int, n_modes: int, wheel_mass: float = 0.0,
+                  contact_stiffness: float = 0.0, position: float = 0.0):
+    """(frequencies (n_modes,) [Hz], mass-normalised shapes over the full rail coordinates then
+    the wheel's Y (vertical) or over the rail's (axial)) of the lowest ``n_modes`` modes by
+    shift-invert Lanczos about 0. The start vector is fixed, so the result is reproducible."""
+    from scipy.sparse.linalg import eigsh
+
+    d = _core.direction_pencil(model, component, wheel_mass, contact_stiffness, position)
+    K, M = _csr(d, "K").tocsc(), _csr(d, "M").tocsc()
+    # a long rail's lowest modes crowd just above the cut-on frequency (thousands within 1 Hz at
+    # 500 m): a wide Lanczos basis and a relative tolerance of 1e-12 instead of machine epsilon
+    # keep ARPACK's restarts few (100 m on the paper's supports: 1.5 s instead of 70 s)
+    ncv = min(d["n"] - 1, max(2 * n_modes + 1, SPARSE_BASIS))
+    w2, vec = eigsh(K, k=n_modes, M=M, sigma=0.0, which="LM", v0=np.ones(d["n"]), ncv=ncv,
+                    tol=SPARSE_TOL)
+    order = np.argsort(w2)
+    w2, vec = w2[order], vec[:, order]
+    vec = vec / np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
+    dofs = np.asarray(d["dofs"])
+    shapes = np.zeros((model.n_dof + (1 if component == 1 else 0), n_modes))
+    shapes[dofs] = vec[:dofs.size]
+    if component == 1:
+        shapes[-1] = vec[-1] if wheel_mass > 0.0 else 0.0
+    return np.sqrt(np.maximum(w2, 0.0)) / (2.0 * np.pi), shapes
