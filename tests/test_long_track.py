@@ -37,7 +37,7 @@ def test_static_converges_on_a_fine_mesh_and_agrees_with_the_coarse_one():
 def test_static_on_a_200_m_rail_matches_winkler():
     """200 m of rail on supports every 0.1 m at the paper's k_f = 280 MN/m^2 (beta = 1.82 /m,
     beta d_s = 0.18: a continuous foundation; the ends exp(-180) away), 4000 elements, load at
-    mid-rail: the Winkler deflection P beta / (2 k_f) (MODEL.md Part I §9) within 0.1 % (the
+    mid-rail: the Winkler deflection P beta / (2 k_f) (docs: Model § Validation) within 0.1 % (the
     discrete-support error measured on 30 m is 8e-6 above a support, tests/test_statics.py)."""
     d = 0.1
     scene = long_scene(200.0, 4000, tw.Supports(stiffness=280e6 * d, spacing=d), gravity=False)
