@@ -29,9 +29,9 @@ ZONE = 10.0  # absorbing end zone at each end [m]
 
 
 def track(length: float) -> tw.Scene:
-    """A UIC60-like rail (MODEL.md §11: E = 210 GPa, A = 7.69e-3 m^2, I = 3.055e-5 m^4) on single
-    spring supports every 0.6 m (pads 180 MN/m, 18 kN s/m), `length` [m] long with absorbing
-    ends, under the paper's wheel."""
+    """A UIC60-like rail (E = 210 GPa, A = 7.69e-3 m^2, I = 3.055e-5 m^4, the set issue 12's
+    ballasted preset is to use) on single spring supports every 0.6 m (the pads alone:
+    180 MN/m, 18 kN s/m), `length` [m] long with absorbing ends, under the paper's wheel."""
     s = tw.Scene.kato2005()
     rail = dataclasses.replace(s.rail, length=length, youngs_modulus=210e9, area=7.69e-3,
                                second_moment=3.055e-5,
