@@ -62,21 +62,33 @@ def test_sparse_and_dense_eigen_agree():
 
 
 def test_long_bare_rail_modes_match_the_simply_supported_beam():
-    """A 200 m rail without supports, 4000 elements (8000 vertical coordinates, beyond the dense
-    limit): f_n = (n pi / L)^2 sqrt(EI / m) / (2 pi), n = 1..6. The discretisation error is
-    negligible (~(k l_e)^4 ~ 1e-11 for 0.05 m elements and 67 m wavelengths); what limits the
-    agreement is round-off: the bare rail's K spans ~(L / l_e)^4 between its lowest and highest
-    eigenvalues, and the lowest mode comes out with a relative error measured 7e-5 (the
-    higher ones 1e-6 and below), hence 2e-4."""
-    scene = long_scene(200.0, 4000, tw.Supports(positions=()))
+    """A 100 m rail without supports, 400 elements, by the sparse solver: f_n = (n pi / L)^2
+    sqrt(EI / m) / (2 pi), n = 1..6, within 1e-6. The discretisation error is negligible
+    (~(k l_e)^4 < 1e-7 for 0.25 m elements and 33 m and longer wavelengths); round-off is what
+    limits it, since a bare rail's K spans ~(L / l_e)^4 between its lowest and highest
+    eigenvalues (on a 4000-element 200 m bare rail the lowest mode is only good to ~1e-3)."""
+    scene = long_scene(100.0, 400, tw.Supports(positions=()))
     rail = scene.rail
     n = np.arange(1, 7)
     exact = (n * np.pi / rail.length) ** 2 * np.sqrt(
         rail.bending_stiffness / rail.mass_per_length) / (2 * np.pi)
-    np.testing.assert_allclose(rail_frequencies(scene, 6), exact, rtol=2e-4)
+    np.testing.assert_allclose(rail_frequencies(scene, 6, method="sparse"), exact, rtol=1e-6)
+
+
+def test_beyond_the_dense_limit_auto_takes_the_sparse_solver():
+    """210 m of the paper's track, 2100 elements (4200 vertical coordinates): the dense solver
+    is refused with the limit named, "auto" solves it; the lowest mode with the wheel is the
+    wheel on the track (below the cut-on frequency sqrt(k_f / m) / 2 pi = 360 Hz of the rail
+    alone), the next ones crowd just above the cut-on (within 1 %: a long rail)."""
+    scene = long_scene(210.0, 2100)
+    assert 2 * 2100 > MAX_DENSE_EIGEN_DOF
     with pytest.raises(ValueError, match="MAX_DENSE_EIGEN_DOF"):
-        rail_frequencies(scene, 6, method="dense")
-    assert 2 * 4000 > MAX_DENSE_EIGEN_DOF
+        tw.eigen(scene, [105.0], method="dense")
+    f = tw.eigen(scene, [105.0], n_modes=4, n_axial=0).frequencies[0]
+    cut_on = np.sqrt(scene.winkler_modulus / scene.rail.mass_per_length) / (2 * np.pi)
+    assert np.all(np.diff(f) >= 0)
+    assert f[0] < cut_on
+    np.testing.assert_allclose(f[1:], cut_on, rtol=1e-2)
 
 
 # ----------------------------------------------------------------------- absorbing end zones
