@@ -121,8 +121,8 @@ def pulse_response(scene, x_source, n_steps):
 ZONE, GAP, EXTRA = 10.0, 2.25, 40.0  # zone length, source to zone, reference extension [m]
 #: frequency bands [Hz] of the reflection test; 2000-2400 Hz, around the pinned-pinned frequency
 #: of the 0.5 m bays (2.15 kHz), is left out: there the measured reflection rises to 27 % in
-#: 100 Hz bands, with longer windows and references too (docs: Model § Long tracks and absorbing
-#: ends): a known limitation of the zones, not of the measurement
+#: 100 Hz bands, with longer windows and references too: a known limitation of the zones, not
+#: of the measurement (docs: Model § Long tracks and absorbing ends)
 BANDS = ((500.0, 1000.0), (1000.0, 2000.0), (2400.0, 3000.0))
 
 
