@@ -340,6 +340,10 @@ PYBIND11_MODULE(_core, m) {
     d["normal_force"] = N;
     return d;
   });
+  m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("load"), py::arg("x"),
+        py::arg("n_modes") = 0, py::call_guard<py::gil_scoped_release>(),
+        "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
+        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.");
   m.def(
       "vertical_modes",
       [](const RailModel& rail, double M, double k, const std::vector<double>& x, int n_modes) {

@@ -453,4 +453,21 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
   return out;
 }
 
+Eigen::VectorXd linear_static_line(const RailModel& rail, double load, const std::vector<double>& x,
+                                   int n_modes) {
+  const LinearTrack tr(rail, n_modes);
+  BandMatrix K = tr.K;
+  if (!K.factorize()) throw std::runtime_error("rail stiffness is singular");
+  Eigen::VectorXd q_rail = tr.Qg, s, ss, sss;  // the rail under its own weight
+  K.solve_in_place(q_rail);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    tr.coupling(x[i], s, ss, sss);
+    Eigen::VectorXd u = s;  // K^-1 s: the rail under a unit upward load at X_i
+    K.solve_in_place(u);
+    y(static_cast<Eigen::Index>(i)) = s.dot(q_rail) - load * s.dot(u);
+  }
+  return y;
+}
+
 }  // namespace trackwheel

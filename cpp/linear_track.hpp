@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "model.hpp"
 #include "time_loop.hpp"
@@ -38,5 +39,12 @@ struct LinearOptions {
 // Every model wheel is of options.wheel_model; wheel w acts at X_0 + x_offset_w + v t.
 SimOutput simulate_linear(const Model& model, const SimSettings& settings,
                           const LinearOptions& options, const ProgressFn& progress = nullptr);
+
+// The quasi-static line of the linear track: the rail displacement y(X_i) [m] under the wheel
+// load P [N] resting at X_i, for each X_i, from the track's own statics K q = Q_g - P s(X)
+// (so a linear run starts on it, whatever its contact law: at rest N = P). n_modes as in
+// LinearOptions. One band factorisation, then one band solve per position.
+Eigen::VectorXd linear_static_line(const RailModel& rail, double load, const std::vector<double>& x,
+                                   int n_modes);
 
 }  // namespace trackwheel

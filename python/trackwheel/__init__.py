@@ -20,7 +20,7 @@ from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
 from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
-from .statics import QuasiStatic, StaticResult, quasi_static, static
+from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
 
@@ -50,6 +50,7 @@ __all__ = [
     "default_settings",
     "eigen",
     "kmh",
+    "linear_quasi_static",
     "load_sweep",
     "main_frequency",
     "quasi_static",

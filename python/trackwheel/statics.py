@@ -101,3 +101,21 @@ def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> Q
     return QuasiStatic(positions=x, y_contact=np.asarray(d["y_contact"]),
                        y_wheel=np.asarray(d["y_wheel"]), contact_s=np.asarray(d["contact_s"]),
                        normal_force=np.asarray(d["normal_force"]))
+
+
+def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = None,
+                        n_modes: int | None = None) -> np.ndarray:
+    """The quasi-static line of the linear track (the ``linear/*`` levels): the rail
+    displacement y_qs(X) [m] under the wheel at each position X [m], from the linear track's
+    own statics K q = Q_g - P s(X) with P = F + M g (docs: Model § Rail (linearised)).
+
+    A linear run starts on this line whatever its contact law (at rest N = P), and it differs
+    from :func:`quasi_static`'s ANCF line only by the ANCF model's nonlinearity. ``n_modes``:
+    the line of the modal reduction the run used (None: all coordinates).
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    x = v.positions("positions", positions, 0.0, scene.rail.length)
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
+    return np.asarray(_core.linear_static_line(model, scene.static_load, x.tolist(), modes))
