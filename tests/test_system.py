@@ -34,8 +34,8 @@ V = tw.kmh(300)
 DT = 1e-5
 
 
-def _probe_case(law, slide, n_wheels, polygon=False):
-    scene = tw.Scene.kato2005()
+def _probe_case(law, slide, n_wheels, polygon=False, irregularity=None):
+    scene = dc.replace(tw.Scene.kato2005(), irregularity=irregularity)
     if law == "hertz":
         scene = dc.replace(scene, contact=dc.replace(scene.contact, law="hertz"))
     if polygon:
