@@ -2,7 +2,8 @@
 // analysis).
 //
 // The rail is the Euler-Bernoulli Hermite beam in y (exactly the ANCF element linearised about the
-// straight rail, its y coordinates only) on linear supports, with constant mass, damping and
+// straight rail, its y coordinates only), or the Timoshenko beam of linear_beam.hpp, on linear
+// supports, with constant mass, damping and
 // stiffness matrices: M q'' + C q' + K q = Q_g + s(X)^T F. Optionally it is reduced to its lowest
 // n_modes modes (modal superposition, q = Phi z). The wheel acts at X_A(t) = X_0 + v t through
 // the shape functions s(X) and is one of:
@@ -21,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "linear_beam.hpp"
 #include "model.hpp"
 #include "time_loop.hpp"
 
@@ -33,6 +35,7 @@ struct LinearOptions {
   int n_modes = 0;           // 0: all coordinates (factorise once); > 0: modal superposition
   bool sudden = false;       // start: false = static equilibrium, true = rail under own weight
   double drop_height = 0.0;  // wheel lifted this much at the start [m]
+  BeamParams beam;           // the rail's beam theory (default Euler-Bernoulli)
 };
 
 // Every model wheel is of options.wheel_model; wheel w acts at X_0 + x_offset_w + v t.
