@@ -3,7 +3,7 @@
 The rail is the ANCF rail linearised about the straight reference, which is exactly an
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
 ``axial_frequencies``); with ``Rail(beam="timoshenko")`` it is the linear track's Timoshenko
-beam (docs: Model § Shear-deformable rail), whose mode shapes carry the section rotation psi in
+beam (docs: Model, section "Shear-deformable rail (Timoshenko)"), whose mode shapes carry the section rotation psi in
 the slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
 be a node. ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
