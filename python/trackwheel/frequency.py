@@ -108,7 +108,7 @@ def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
     d, L = scene.supports.spacing, scene.rail.length
     span = EN15461_SPANS[-1] * d
     if x0 is None:
-        x0 = (math.floor((L - span) / 2.0 / d) + 0.5) * d
+        x0 = (max(math.floor((L - span) / 2.0 / d), 0) + 0.5) * d
     x0 = v.number("x0", x0, low=0.0, high=L, unit="m")
     if x0 + span > L:
         raise ValueError(
