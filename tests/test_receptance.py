@@ -180,3 +180,19 @@ def test_bad_input(kw, match):
 def test_decay_rate_needs_room_for_the_standard_positions():
     with pytest.raises(ValueError, match="EN 15461 positions"):
         tw.decay_rate(tw.Scene.kato2005(), [500.0])
+
+
+def test_plots():
+    from trackwheel import plots
+
+    s = tw.Scene.kato2005()
+    f = np.geomspace(50.0, 3000.0, 30)
+    fig = plots.receptance(s, f)
+    mag = {ln.get_gid(): ln for ax in fig.axes for ln in ax.get_lines()}
+    np.testing.assert_allclose(mag["magnitude: mid-span"].get_ydata(),
+                               np.abs(tw.receptance(s, 2.25, f)))
+    assert "magnitude: above a support" in mag
+    long = _long_track()
+    fig = plots.decay_rate(long, f)
+    gids = {a.get_gid() for a in fig.axes[0].get_children()}
+    assert {"decay rate", "ISO 3095 limit"} <= gids
