@@ -147,17 +147,15 @@ def test_linear_simulation_takes_the_beam_theory():
     assert dt_ < de < 0
 
 
-@pytest.mark.parametrize("call", ["simulate", "static", "quasi_static"])
+@pytest.mark.parametrize("call", ["simulate", "static"])
 def test_full_ancf_path_refuses_timoshenko(call):
     s = tw.Scene.kato2005()
     st = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko"))
     with pytest.raises(ValueError, match="Rail.beam='timoshenko' is supported by the linear"):
         if call == "simulate":
             tw.simulate(st, 30.0, x_start=2.0, x_end=2.1)
-        elif call == "static":
-            tw.static(st, 2.5)
         else:
-            tw.quasi_static(st, [2.5])
+            tw.static(st, 2.5)
 
 
 def test_rail_beam_validation():
@@ -169,3 +167,41 @@ def test_rail_beam_validation():
     r = tw.Rail(beam="timoshenko", shear_coefficient=0.4)
     assert r.shear_modulus == pytest.approx(r.youngs_modulus / 2.6)
     assert r.shear_stiffness == pytest.approx(0.4 * r.shear_modulus * r.area)
+
+
+def test_shear_judgement_compares_the_two_beams():
+    """adequacy's shear column: the pinned-pinned closed forms (those of the span test above)
+    and the relative differences of the linear/hertz runs with each beam, as separate runs give
+    them; a Timoshenko scene's ANCF levels run on the Euler-Bernoulli rail instead of failing."""
+    from trackwheel.analysis import analyse
+    from trackwheel.fidelity import shear_judgement
+
+    s = tw.Scene.kato2005()
+    kw = dict(x_start=2.0, x_end=2.6, dt=2e-5)
+    j = shear_judgement(s, [30.0], tol=0.005, **kw)
+    assert j["pinned_pinned_euler"] == pytest.approx(2147.16, rel=1e-4)
+    assert j["pinned_pinned_timoshenko"] == pytest.approx(
+        _timoshenko_pinned_pinned(s.rail, 0.5), rel=1e-12)
+    runs = [analyse(tw.simulate(dc.replace(s, rail=dc.replace(s.rail, beam=b)), 30.0,
+                                fidelity="linear/hertz", **kw)) for b in ("euler", "timoshenko")]
+    d = abs(runs[1].max_contact_force / runs[0].max_contact_force - 1)
+    assert j["d_peak_contact_force"] == pytest.approx(d, rel=1e-12)
+    assert j["matters"] == any(j["d_" + k] > 0.005
+                               for k in ("amplitude", "main_frequency", "peak_contact_force"))
+    st = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko"))
+    df = tw.adequacy(st, speeds=[30.0], levels=("ancf/sprung",), reference="ancf/sprung",
+                     n_elements=20, **kw)
+    assert (df.error == "").all()
+    assert "shear" in df.attrs
+
+
+def test_linear_static_line_of_the_euler_rail_is_the_ancf_quasi_static_line():
+    """With the Euler-Bernoulli beam the linear track's static line (load P plus the rail's
+    weight) equals the nonlinear ANCF quasi-static line to 1e-6 (geometric nonlinearity and
+    the contact-point shift ~1e-6 of the deflection)."""
+    from trackwheel.frequency import linear_static_line
+
+    s = tw.Scene.kato2005()
+    x = [1.3, 2.25, 2.5]
+    np.testing.assert_allclose(linear_static_line(s, x), tw.quasi_static(s, x).y_contact,
+                               rtol=1e-6)

@@ -31,7 +31,8 @@ from . import _validate as v
 from .scene import MAX_ELEMENTS, Scene
 
 __all__ = ["EN15461_SPANS", "ISO3095_BANDS", "ISO3095_VERTICAL_LIMIT", "decay_rate",
-           "decay_rate_limit", "decay_rate_positions", "receptance"]
+           "decay_rate_limit", "decay_rate_positions", "en15461_decay", "linear_static_line",
+           "receptance"]
 
 #: The EN 15461 measurement positions as distances from the excitation point (a mid-span), in
 #: support spacings: 29 points from 0 to 66 spacings (the standard's grid, dense near the
@@ -151,4 +152,27 @@ def decay_rate_limit(freqs) -> np.ndarray:
     out = np.full(f.shape, np.nan)
     for fc, lim in zip(centres, ISO3095_VERTICAL_LIMIT):
         out[(f >= fc * 2 ** (-1 / 6)) & (f < fc * 2 ** (1 / 6))] = lim
+    return out
+
+
+def linear_static_line(scene: Scene, positions, *, n_elements: int | None = None
+                       ) -> np.ndarray:
+    """Static rail displacement under the wheel [m] with the wheel load P = F + M g resting at
+    each of ``positions`` [m], on the linear track of the scene's beam theory (the quasi-static
+    line of a Timoshenko rail, whose ANCF statics do not exist):
+    y(X) = -P alpha(X, X, 0) - rho A g int alpha(X, xi, 0) dxi, the rail's weight by 2-point
+    Gauss per element (alpha is cubic in xi inside an element: exact)."""
+    scene = _check_scene(scene)
+    x = v.positions("positions", positions, 0.0, scene.rail.length)
+    ne = _mesh(scene, n_elements)
+    model = _kernel.rail_model(scene, ne)
+    beam = _kernel.beam_params(scene)
+    h = scene.rail.length / ne
+    xi = (np.arange(ne)[:, None] + 0.5 + np.array([-0.5, 0.5]) / math.sqrt(3.0)) * h
+    q = scene.rail.mass_per_length * scene.gravity * (0.5 * h) if scene.rail_gravity else 0.0
+    out = np.empty(x.size)
+    for i, xa in enumerate(x):
+        a = np.asarray(_core.receptance(model, beam, float(xa), [float(xa), *xi.ravel()],
+                                        [0.0])).real[0]
+        out[i] = -scene.static_load * a[0] - q * a[1:].sum()
     return out

@@ -91,15 +91,33 @@ def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> St
 
 def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> QuasiStatic:
     """The quasi-static line y_qs(X) [m] at each wheel position X [m] (vectorised; each solve
-    warm-starts from the previous one)."""
+    warm-starts from the previous one). A Timoshenko rail's is the linear track's (the ANCF
+    statics are Euler-Bernoulli): :func:`trackwheel.frequency.linear_static_line`."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
-    _kernel.require_euler(scene, "quasi_static")
     ne = _mesh(scene, n_elements)
+    if scene.rail.beam != "euler":
+        return _linear_quasi_static(scene, x, ne)
     model = _kernel.rail_model(scene, ne)
     d = _core.quasi_static(model, _kernel.wheel_params(scene), _kernel.contact_params(scene),
                            x.tolist())
     return QuasiStatic(positions=x, y_contact=np.asarray(d["y_contact"]),
                        y_wheel=np.asarray(d["y_wheel"]), contact_s=np.asarray(d["contact_s"]),
                        normal_force=np.asarray(d["normal_force"]))
+
+
+def _linear_quasi_static(scene: Scene, x: np.ndarray, ne: int) -> QuasiStatic:
+    """The linear track's quasi-static line: the load P at X, the wheel on its static contact
+    compression (linear spring P/k, or Hertz (P/C_H)^(2/3))."""
+    from .frequency import linear_static_line
+
+    y = linear_static_line(scene, x, n_elements=ne)
+    P = scene.static_load
+    c = scene.contact
+    if c.law == "linear":
+        comp = P / scene.contact_stiffness
+    else:
+        comp = (P / (c.stiffness if c.stiffness is not None else scene.hertz_constant)) ** (2 / 3)
+    return QuasiStatic(positions=x, y_contact=y, y_wheel=y + scene.wheel.radius - comp,
+                       contact_s=x.copy(), normal_force=np.full(x.size, P))
