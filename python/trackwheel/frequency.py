@@ -1,5 +1,6 @@
-"""The track in the frequency domain: receptance and decay rate (docs: Model § Receptance and
-decay rate).
+"""The track in the frequency domain: receptance and decay rate.
+
+Docs: Model § Receptance and decay rate.
 
 The linear track (the rail as an Euler-Bernoulli or, with ``Rail(beam="timoshenko")``, a
 Timoshenko beam on the scene's supports with their damping, no wheel) in steady harmonic motion
