@@ -160,9 +160,24 @@ def test_layered_support_with_a_stiff_ballast_and_light_sleeper_is_the_single_sp
 
 
 def test_decay_rate_limit_is_the_iso3095_band_value():
-    lim = decay_rate_limit([250.0, 1000.0, 1100.0, 5000.0, 100.0])
-    np.testing.assert_array_equal(lim[:4], [2.0, 0.5, 0.5, 1.0])
-    assert np.isnan(lim[4])
+    """Each frequency takes its one-third-octave band's limit; the bands tile 223-5623 Hz."""
+    lim = decay_rate_limit([224.0, 400.0, 1000.0, 1100.0, 5000.0, 5600.0, 100.0, 6000.0])
+    np.testing.assert_array_equal(lim[:6], [2.0, 6.0, 0.8, 0.8, 0.8, 0.8])
+    assert np.isnan(lim[6:]).all()
+    edges = tw.frequency.iso3095_band_edges()
+    np.testing.assert_allclose(np.sqrt(edges[:-1] * edges[1:]), tw.frequency.ISO3095_BANDS,
+                               rtol=0.03)  # nominal centres are rounded exact ones
+
+
+def test_en15461_grid_and_intervals():
+    """29 positions to 66 spacings; the A.2 intervals add up to the grid's length plus half the
+    last step (the last position stands for rail symmetric about itself)."""
+    spans = np.asarray(tw.frequency.EN15461_SPANS)
+    assert spans.size == 29 and spans[-1] == 66.0
+    x = 0.6 * spans
+    flat = np.ones((1, x.size))
+    total = x[-1] + 0.5 * (x[-1] - x[-2])
+    assert en15461_decay(x, flat)[0] == pytest.approx(10 * math.log10(math.e) / total)
 
 
 @pytest.mark.parametrize("kw, match", [

@@ -32,21 +32,26 @@ from . import _validate as v
 from .scene import MAX_ELEMENTS, Scene
 
 __all__ = ["EN15461_SPANS", "ISO3095_BANDS", "ISO3095_VERTICAL_LIMIT", "decay_rate",
-           "decay_rate_limit", "decay_rate_positions", "en15461_decay", "linear_static_line",
+           "decay_rate_limit", "decay_rate_positions", "en15461_decay", "iso3095_band_edges", "linear_static_line",
            "receptance"]
 
-#: The EN 15461 measurement positions as distances from the excitation point (a mid-span), in
-#: support spacings: 29 points from 0 to 66 spacings (the standard's grid, dense near the
-#: excitation where the near field and short-range decay live, sparse far away).
-EN15461_SPANS = (0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0,
-                 7.0, 8.0, 10.0, 12.0, 14.0, 16.0, 20.0, 24.0, 30.0, 36.0, 42.0, 48.0, 54.0, 66.0)
+#: The EN 15461 measurement positions as distances from the excitation point (the middle of a
+#: sleeper bay), in support spacings (EN 15461:2008+A1:2010, 6.7 and Figure 2): every quarter
+#: bay to 2.5, every half bay to 4, every bay to 8, then 10, 12, 16, 20, 24, 30, 36, 42, 48, 54
+#: and 66; 29 points (the grid as reproduced from BS EN 15461:2008+A1:2010 in the phonometry
+#: package, J. M. Requena Plens, environment/sources/track_decay.py).
+EN15461_SPANS = (0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 3.0, 3.5, 4.0, 5.0,
+                 6.0, 7.0, 8.0, 10.0, 12.0, 16.0, 20.0, 24.0, 30.0, 36.0, 42.0, 48.0, 54.0, 66.0)
 
-#: One-third-octave band centre frequencies [Hz] of the ISO 3095:2013 decay-rate limit.
+#: One-third-octave band centre frequencies [Hz] of the ISO 3095:2013 decay-rate limit (no
+#: limit below 250 Hz).
 ISO3095_BANDS = (250.0, 315.0, 400.0, 500.0, 630.0, 800.0, 1000.0, 1250.0, 1600.0, 2000.0,
                  2500.0, 3150.0, 4000.0, 5000.0)
-#: ISO 3095:2013 lower limit of the vertical track decay rate [dB/m] in ``ISO3095_BANDS`` (a
-#: test track for pass-by noise must decay at least this fast).
-ISO3095_VERTICAL_LIMIT = (2.0, 2.0, 2.0, 2.0, 1.0, 0.6, 0.5, 0.5, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
+#: ISO 3095:2013 (6.2.6, Figure 3, the table beside the curves) lower limit of the vertical track
+#: decay rate [dB/m] in ``ISO3095_BANDS``: a test track for pass-by noise must decay at least
+#: this fast. Values as reproduced in the phonometry package (J. M. Requena Plens,
+#: environment/sources/rolling_stock_noise.py, REFERENCE_TRACK_DECAY_LIMITS_DB_PER_M).
+ISO3095_VERTICAL_LIMIT = (2.0, 2.0, 6.0, 6.0, 6.0, 2.19, 0.8, 0.8, 0.8, 0.8, 0.8, 0.8, 0.8, 0.8)
 
 
 def _check_scene(scene) -> Scene:
@@ -123,11 +128,13 @@ def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
 
 def en15461_decay(x: np.ndarray, a: np.ndarray) -> np.ndarray:
     """DR [dB/m] of transfer receptances ``a`` (n_freq, n_pos) at positions ``x`` (n_pos,) [m],
-    x[0] the excitation point: 4.343 / sum_n |a_n / a_0|^2 dx_n (trapezoidal dx_n)."""
-    dx = np.empty_like(x)
-    dx[0] = 0.5 * (x[1] - x[0])
-    dx[-1] = 0.5 * (x[-1] - x[-2])
-    dx[1:-1] = 0.5 * (x[2:] - x[:-2])
+    x[0] the excitation point: 4.343 / sum_n |a_n / a_0|^2 dx_n, dx_n by EN 15461 A.2 (from
+    half-way to the previous position to half-way to the next; the first from x_0, the last
+    symmetric about itself)."""
+    mid = 0.5 * (x[1:] + x[:-1])
+    lower = np.concatenate(([x[0]], mid))
+    upper = np.concatenate((mid, [x[-1] + 0.5 * (x[-1] - x[-2])]))
+    dx = upper - lower
     ratio = np.abs(a) ** 2 / np.abs(a[:, :1]) ** 2
     return 10.0 * math.log10(math.e) / (ratio @ dx)
 
@@ -146,14 +153,22 @@ def decay_rate(scene: Scene, freqs, *, x0: float | None = None,
 
 def decay_rate_limit(freqs) -> np.ndarray:
     """ISO 3095:2013 lower limit of the vertical decay rate [dB/m] at ``freqs`` [Hz]: the
-    one-third-octave band value of the band holding each frequency (band edges at
-    f_c 2^(+-1/6)); NaN outside 250 Hz..5 kHz."""
+    one-third-octave band value of the band holding each frequency (:func:`iso3095_band_edges`);
+    NaN outside the 250 Hz..5 kHz bands."""
     f = _freqs(freqs)
-    centres = np.asarray(ISO3095_BANDS)
+    edges = iso3095_band_edges()
+    i = np.searchsorted(edges, f, side="right") - 1
+    inside = (i >= 0) & (i < len(ISO3095_BANDS))
     out = np.full(f.shape, np.nan)
-    for fc, lim in zip(centres, ISO3095_VERTICAL_LIMIT):
-        out[(f >= fc * 2 ** (-1 / 6)) & (f < fc * 2 ** (1 / 6))] = lim
+    out[inside] = np.asarray(ISO3095_VERTICAL_LIMIT)[i[inside]]
     return out
+
+
+def iso3095_band_edges() -> np.ndarray:
+    """Edges [Hz] of the ``ISO3095_BANDS`` one-third-octave bands: the exact base-2 centres
+    1000 * 2^(n/3) times 2^(-+1/6), so that neighbouring bands share an edge."""
+    n = np.round(3.0 * np.log2(np.asarray(ISO3095_BANDS) / 1000.0))
+    return 1000.0 * 2.0 ** (np.append(n - 0.5, n[-1] + 0.5) / 3.0)
 
 
 def linear_static_line(scene: Scene, positions, *, n_elements: int | None = None

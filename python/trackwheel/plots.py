@@ -823,16 +823,14 @@ def decay_rate(scene, freqs, *, n_elements: int | None = None, ax: Axes | None =
     """Vertical track decay rate [dB/m] (EN 15461, :func:`trackwheel.decay_rate`, gid
     "decay rate") against frequency [Hz], with the ISO 3095:2013 lower limit per
     one-third-octave band (steps, gid "ISO 3095 limit")."""
-    from .frequency import ISO3095_BANDS, ISO3095_VERTICAL_LIMIT
+    from .frequency import ISO3095_VERTICAL_LIMIT, iso3095_band_edges
     from .frequency import decay_rate as _decay_rate
 
     f = np.asarray(freqs, dtype=float)
     fig, ax = _figure_and_axes(ax, (6.0, 3.5))
     ax.semilogx(f, _decay_rate(scene, f, n_elements=n_elements), marker="o", ms=3,
                 label="track (EN 15461)", gid="decay rate")
-    centres = np.asarray(ISO3095_BANDS)
-    edges = np.append(centres * 2 ** (-1 / 6), centres[-1] * 2 ** (1 / 6))
-    ax.stairs(ISO3095_VERTICAL_LIMIT, edges, color="k", ls="--",
+    ax.stairs(ISO3095_VERTICAL_LIMIT, iso3095_band_edges(), color="k", ls="--",
               label="ISO 3095 lower limit (vertical)", gid="ISO 3095 limit")
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("decay rate [dB/m]")
