@@ -143,9 +143,11 @@ def decay_rate(scene: Scene, freqs, *, x0: float | None = None,
                n_elements: int | None = None) -> np.ndarray:
     """Vertical track decay rate [dB/m] at each of ``freqs`` [Hz] by the EN 15461 method
     (module docstring) from the transfer receptances of :func:`receptance` at
-    :func:`decay_rate_positions`. The rail must be longer than 66 support spacings, and its
-    ends far enough (or damped enough) that their reflections do not reach back to the
-    positions; shape ``(n_freq,)``."""
+    :func:`decay_rate_positions` (d = ``Supports.spacing``). The rail must be longer than 66
+    support spacings, and its ends far enough (or damped enough) that their reflections do not
+    reach back to the positions; shape ``(n_freq,)``. As in the standard (Formula 2, clause
+    7), a rate below 2 x 4.343 / x_max (x_max = 66 d, 0.22 dB/m for d = 0.6 m) is only an
+    upper bound of the true one: the grid is too short to see the decay."""
     x = decay_rate_positions(scene, x0)
     a = receptance(scene, float(x[0]), freqs, x, n_elements=n_elements)
     return en15461_decay(x, a)
