@@ -32,8 +32,8 @@ from . import _validate as v
 from .scene import MAX_ELEMENTS, Scene
 
 __all__ = ["EN15461_SPANS", "ISO3095_BANDS", "ISO3095_VERTICAL_LIMIT", "decay_rate",
-           "decay_rate_limit", "decay_rate_positions", "en15461_decay", "iso3095_band_edges", "linear_static_line",
-           "receptance"]
+           "decay_rate_limit", "decay_rate_positions", "en15461_decay", "iso3095_band_edges",
+           "linear_static_line", "receptance"]
 
 #: The EN 15461 measurement positions as distances from the excitation point (the middle of a
 #: sleeper bay), in support spacings (EN 15461:2008+A1:2010, 6.7 and Figure 2): every quarter
