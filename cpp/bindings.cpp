@@ -17,8 +17,10 @@
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "eigen_analysis.hpp"
+#include "frequency.hpp"
 #include "generalized_alpha.hpp"
 #include "limits.hpp"
+#include "linear_beam.hpp"
 #include "linear_track.hpp"
 #include "model.hpp"
 #include "output.hpp"
@@ -199,7 +201,10 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)
       .def_readwrite("stiffness", &SupportParams::stiffness)
-      .def_readwrite("damping", &SupportParams::damping);
+      .def_readwrite("damping", &SupportParams::damping)
+      .def_readwrite("sleeper_mass", &SupportParams::sleeper_mass)
+      .def_readwrite("ballast_stiffness", &SupportParams::ballast_stiffness)
+      .def_readwrite("ballast_damping", &SupportParams::ballast_damping);
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
       .def(py::init<>())
@@ -340,8 +345,9 @@ PYBIND11_MODULE(_core, m) {
     d["normal_force"] = N;
     return d;
   });
-  m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("load"), py::arg("x"),
-        py::arg("n_modes") = 0, py::call_guard<py::gil_scoped_release>(),
+  m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("beam"),
+        py::arg("load"), py::arg("x"), py::arg("n_modes") = 0,
+        py::call_guard<py::gil_scoped_release>(),
         "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
         "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.");
   m.def(
@@ -358,6 +364,54 @@ PYBIND11_MODULE(_core, m) {
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
+
+  // ---------------------------------------------------------------- linear beam, frequency domain
+  py::class_<BeamParams>(m, "BeamParams")
+      .def(py::init<>())
+      .def_readwrite("shear_stiffness", &BeamParams::shear_stiffness,
+                     "kappa G A [N]; 0: Euler-Bernoulli")
+      .def_readwrite("rotary_inertia", &BeamParams::rotary_inertia, "rho I [kg m]");
+  m.def("timoshenko_stiffness", &timoshenko_stiffness, py::arg("EI"), py::arg("kGA"), py::arg("l"),
+        "Exact IIE Timoshenko element stiffness (4x4) over [w1, psi1, w2, psi2]");
+  m.def("timoshenko_mass", &timoshenko_mass, py::arg("rhoA"), py::arg("rhoI"), py::arg("EI"),
+        py::arg("kGA"), py::arg("l"), "Consistent IIE element mass (4x4) with rotary inertia");
+  m.def("timoshenko_energy", &timoshenko_energy, py::arg("EI"), py::arg("kGA"), py::arg("l"),
+        py::arg("q"), "IIE element strain energy [J]");
+  m.def(
+      "timoshenko_shapes",
+      [](double xi, double l, double phi) {
+        const BeamShapes s = timoshenko_shapes(xi, l, phi);
+        Eigen::Matrix<double, 5, 4> out;
+        for (int a = 0; a < 4; ++a) out.col(a) << s.w[a], s.ws[a], s.wss[a], s.psi[a], s.psis[a];
+        return out;
+      },
+      py::arg("xi"), py::arg("l"), py::arg("phi"),
+      "IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]");
+  m.def(
+      "receptance",
+      [](const RailModel& rail, const BeamParams& beam, double x, const std::vector<double>& xr,
+         const std::vector<double>& freqs) {
+        py::gil_scoped_release nogil;
+        return receptance(rail, beam, x, xr, freqs);
+      },
+      py::arg("rail"), py::arg("beam"), py::arg("x"), py::arg("x_response"), py::arg("freqs"),
+      "Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x");
+  m.def(
+      "track_modes",
+      [](const RailModel& rail, const BeamParams& beam, double M, double k,
+         const std::vector<double>& x, int n_modes) {
+        std::vector<Eigen::MatrixXd> shapes;
+        Eigen::MatrixXd f;
+        {
+          py::gil_scoped_release nogil;
+          f = track_modes(rail, beam, M, k, x, n_modes, &shapes);
+        }
+        return py::make_tuple(f, shapes);
+      },
+      py::arg("rail"), py::arg("beam"), py::arg("wheel_mass"), py::arg("contact_stiffness"),
+      py::arg("positions"), py::arg("n_modes"),
+      "Linear-track modes: (frequencies (n_pos, n_modes) [Hz], shapes per position (ny + 1, "
+      "n_modes) over the y coordinates then the wheel)");
 
   // ---------------------------------------------------------------- dynamics
   py::enum_<Integrator>(m, "Integrator")
@@ -478,7 +532,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("wheel_model", &LinearOptions::wheel_model)
       .def_readwrite("n_modes", &LinearOptions::n_modes)
       .def_readwrite("sudden", &LinearOptions::sudden)
-      .def_readwrite("drop_height", &LinearOptions::drop_height);
+      .def_readwrite("drop_height", &LinearOptions::drop_height)
+      .def_readwrite("beam", &LinearOptions::beam);
   m.def(
       "simulate_linear",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
@@ -496,7 +551,7 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
       py::arg("options"), py::arg("progress") = py::none(),
-      "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
+      "Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)");
 
   // ---------------------------------------------------------------- test hooks
   m.def(

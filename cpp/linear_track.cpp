@@ -88,7 +88,7 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
     : model_(model),
       set_(set),
       opt_(opt),
-      tr_(model.rail, opt.n_modes),
+      tr_(model.rail, opt.n_modes, opt.beam),
       out_(out),
       div_(div),
       c_(set.rho_inf),
@@ -184,16 +184,16 @@ void LinearStepper::couple(double t1) {
     LinearWheel& lw = wh_[w];
     const double X1 = X(w, t1);
     tr_.coupling(X1, lw.s, lw.ss, lw.sss);
-    const MeshPoint mp = model_.rail.locate(X1);
-    if (mp.element != lw.cache_el) {
+    const BeamPoint bp = tr_.point(X1);
+    if (bp.element != lw.cache_el) {
       for (int k = 0; k < 4; ++k) {
-        lw.W.col(k) = tr_.basis(mp.dof0() + 2 * k + 1);
+        lw.W.col(k) = tr_.basis(4 * bp.element + 2 * k + 1);
         if (!lw.W.col(k).isZero(0.0)) A_.solve_in_place(lw.W.col(k));
       }
-      lw.cache_el = mp.element;
+      lw.cache_el = bp.element;
     }
-    lw.Z = mp.h.n[0] * lw.W.col(0) + mp.h.n[1] * lw.W.col(1) + mp.h.n[2] * lw.W.col(2) +
-           mp.h.n[3] * lw.W.col(3);
+    lw.Z = bp.n[0] * lw.W.col(0) + bp.n[1] * lw.W.col(1) + bp.n[2] * lw.W.col(2) +
+           bp.n[3] * lw.W.col(3);
   }
 }
 
@@ -453,9 +453,9 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
   return out;
 }
 
-Eigen::VectorXd linear_static_line(const RailModel& rail, double load, const std::vector<double>& x,
-                                   int n_modes) {
-  const LinearTrack tr(rail, n_modes);
+Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam, double load,
+                                   const std::vector<double>& x, int n_modes) {
+  const LinearTrack tr(rail, n_modes, beam);
   BandMatrix K = tr.K;
   if (!K.factorize()) throw std::runtime_error("rail stiffness is singular");
   Eigen::VectorXd q_rail = tr.Qg, s, ss, sss;  // the rail under its own weight

@@ -34,9 +34,12 @@ struct RailParams {
 };
 
 struct SupportParams {
-  std::vector<double> position;   // X_j along the undeformed rail [m]
-  std::vector<double> stiffness;  // k_s per support [N/m]
-  std::vector<double> damping;    // c_s per support [N s/m]
+  std::vector<double> position;           // X_j along the undeformed rail [m]
+  std::vector<double> stiffness;          // k_s per support [N/m]
+  std::vector<double> damping;            // c_s per support [N s/m]
+  std::vector<double> sleeper_mass;       // m_s per support [kg] (empty: single springs)
+  std::vector<double> ballast_stiffness;  // k_b per support [N/m]
+  std::vector<double> ballast_damping;    // c_b per support [N s/m]
 };
 
 // Where a material point s lies in the mesh.

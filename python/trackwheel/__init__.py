@@ -16,6 +16,7 @@ from .defaults import MeshWarning, StabilityWarning, default_settings, stability
 from .eigen import EigenResult, eigen
 from .fidelity import adequacy, recommend
 from .force_statistics import ForceStatistics, force_statistics
+from .frequency import decay_rate, receptance
 from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
 from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
@@ -23,6 +24,7 @@ from .simulate import FIDELITY_LEVELS, simulate
 from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
+from . import frequency as frequency  # the module (trackwheel.frequency.decay_rate_limit, ...)
 
 __all__ = [
     "FIDELITY_LEVELS",
@@ -65,4 +67,6 @@ __all__ = [
     "WheelFlat",
     "ForceStatistics",
     "force_statistics",
+    "receptance",
+    "decay_rate",
 ]

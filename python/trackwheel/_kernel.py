@@ -46,6 +46,25 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     return _core.RailModel(p, s, profile(scene))
 
 
+def beam_params(scene: Scene) -> _core.BeamParams:
+    """The linear track's beam theory: Euler-Bernoulli (shear stiffness 0) or Timoshenko."""
+    b = _core.BeamParams()
+    if scene.rail.beam == "timoshenko":
+        b.shear_stiffness = scene.rail.shear_stiffness
+        b.rotary_inertia = scene.rail.rotary_inertia
+    return b
+
+
+def require_euler(scene: Scene, what: str) -> None:
+    """Raise ValueError if the scene asks for a Timoshenko rail where the nonlinear ANCF rail
+    (Euler-Bernoulli) runs."""
+    if scene.rail.beam != "euler":
+        raise ValueError(
+            f"Rail.beam='{scene.rail.beam}' is supported by the linear levels, receptance and "
+            f"eigen of the linear track; the full ANCF model ({what}) is Euler-Bernoulli: use "
+            "Rail.beam='euler' or a 'linear/...' fidelity level")
+
+
 def profile(scene: Scene) -> _core.Profile:
     """The scene's rail profile as the kernel's piecewise cubic over [0, L] (none: empty),
     patch-filtered if ``scene.contact.patch_filter``.

@@ -2,7 +2,9 @@
 
 The rail is the ANCF rail linearised about the straight reference, which is exactly an
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
-``axial_frequencies``). The wheel is the mass M on the contact spring k (linearised Hertz),
+``axial_frequencies``); with ``Rail(beam="timoshenko")`` it is the linear track's Timoshenko
+beam (docs: Model, section "Shear-deformable rail (Timoshenko)"), whose mode shapes carry the section rotation psi in
+the slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
 be a node. ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
 (Eigen, in the C++ kernel) for each position.
@@ -81,8 +83,11 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
     # at most the n_x axial modes the mesh has (one element has only one or two)
     n_axial = min(v.integer("n_axial", n_axial, low=0), n_x)
-    freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
-                                         x.tolist(), n_modes)
+    if scene.rail.beam == "euler":
+        freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
+                                             x.tolist(), n_modes)
+    else:
+        freqs, shapes = _timoshenko_modes(scene, model, x, n_modes)
     axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial
              else np.empty(0))
     return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
@@ -97,5 +102,22 @@ def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None =
     ne = scene.rail.n_elements if n_elements is None else v.integer(
         "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     model = _kernel.rail_model(scene, ne)
-    freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], v.integer("n_modes", n_modes, low=1))
+    n_modes = v.integer("n_modes", n_modes, low=1)
+    if scene.rail.beam == "euler":
+        freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], n_modes)
+    else:
+        freqs, _ = _core.track_modes(model, _kernel.beam_params(scene), 0.0, 0.0, [0.0], n_modes)
     return np.asarray(freqs).ravel()
+
+
+def _timoshenko_modes(scene: Scene, model, x: np.ndarray, n_modes: int):
+    """The linear track's modes with the Timoshenko rail, shapes scattered into the ANCF
+    numbering: the deflection w in the y slot, the section rotation psi in the slope slot."""
+    freqs, per_pos = _core.track_modes(model, _kernel.beam_params(scene), scene.wheel.mass,
+                                       scene.contact_stiffness, x.tolist(), n_modes)
+    y_dofs = [i for i in model.free_to_full if i % 2 == 1]
+    shapes = np.zeros((len(per_pos), model.n_dof + 1, n_modes))
+    for p, s in enumerate(per_pos):
+        shapes[p, y_dofs, :] = np.asarray(s)[:-1]
+        shapes[p, -1, :] = np.asarray(s)[-1]
+    return freqs, shapes

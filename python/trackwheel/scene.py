@@ -49,6 +49,13 @@ class Rail:
     n_gauss: int = 5  #: Gauss points per element for the elastic forces [-], in
     #: ``_validate.GAUSS_RANGE`` = (2, 10) (one point under-integrates the bending stiffness:
     #: singular, zero-frequency modes)
+    #: "euler" (Euler-Bernoulli) or "timoshenko" (shear deformation and rotary inertia: the
+    #: linear levels, receptance and eigen analysis of the linear track; the full ANCF model is
+    #: Euler-Bernoulli and refuses "timoshenko")
+    beam: str = "euler"
+    #: kappa, shear coefficient of the section [-], in (0, 1] (about 0.4 for a rail's vertical
+    #: bending; used with beam="timoshenko")
+    shear_coefficient: float = 0.4
 
     def __post_init__(self):
         v.positive("Rail.length", self.length, "m")
@@ -61,6 +68,9 @@ class Rail:
         v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
         v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
         v.integer("Rail.n_gauss", self.n_gauss, low=v.GAUSS_RANGE[0], high=v.GAUSS_RANGE[1])
+        v.choice("Rail.beam", self.beam, {"euler", "timoshenko"})
+        v.number("Rail.shear_coefficient", self.shear_coefficient, low=0.0, high=1.0,
+                 low_open=True)
 
     @property
     def mass_per_length(self) -> float:
@@ -76,6 +86,21 @@ class Rail:
     def axial_stiffness(self) -> float:
         """EA [N]."""
         return self.youngs_modulus * self.area
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2 (1 + nu)) [Pa]."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+    @property
+    def shear_stiffness(self) -> float:
+        """kappa G A [N] (Timoshenko beam)."""
+        return self.shear_coefficient * self.shear_modulus * self.area
+
+    @property
+    def rotary_inertia(self) -> float:
+        """rho I, mass moment of inertia per length [kg m] (Timoshenko beam)."""
+        return self.density * self.second_moment
 
 
 @dataclass(frozen=True)
