@@ -215,3 +215,16 @@ def test_ballasted_preset_track_resonances():
     assert abs(above[0] / f2 - 1.0) < 1e-2
     # the lower branch fills the band up to the sleeper frequency
     assert np.count_nonzero((f > f1) & (f < fs)) > 20
+
+
+def test_cli_runs_the_ballasted_track(capsys):
+    """``trackwheel run --track ballasted`` simulates Scene.ballasted_track() (pad stiffness
+    180 MN/m, static wheel load 70 kN) and reports it by name."""
+    from trackwheel import cli
+
+    code = cli.main(["run", "--track", "ballasted", "--speed-kmh", "300", "--x-start", "14.1",
+                     "--x-end", "15.3", "--fidelity", "linear/sprung"])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "Scene.ballasted_track(), k_p = 180 MN/m" in out
+    assert "static load 70000.0 N" in out
