@@ -1,5 +1,5 @@
-"""Layered supports: rail pad (k_p, c_p), sleeper m_s, ballast (k_b, c_b) (docs: Model § Layered
-supports), and the ballasted preset.
+"""Layered supports: rail pad (k_p, c_p), sleeper m_s, ballast (k_b, c_b), and the ballasted
+preset (docs: Model § Layered supports).
 
 Checks: the single-spring limit (k_b -> inf, m_s -> 0), the series stiffness and the sleeper's
 bounce frequency against closed forms, the static balance of the ballast forces, the energy

@@ -188,8 +188,8 @@ def _track_option(p: argparse.ArgumentParser) -> None:
     p.add_argument("--track", choices=tuple(_TRACKS), default="kato2005",
                    help="the scene: kato2005 (the paper's 5 m rail on single springs, default) "
                         "or ballasted (Scene.ballasted_track(): 30 m of UIC60 on rail pads, "
-                        "sleepers and ballast, a high-speed wheel; docs: Model § Layered "
-                        "supports)")
+                        "sleepers and ballast, a high-speed wheel; "
+                        "docs: Model § Layered supports)")
 
 
 def _simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:

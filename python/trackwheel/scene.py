@@ -277,7 +277,7 @@ class Scene:
         """A high-speed wheel on UIC60 rail on ballasted track with concrete monobloc sleepers
         (docs: Model § Layered supports).
 
-        Track (the parameter set of docs: Model § Layered supports / MODEL.md §11): UIC60 rail,
+        Track (the parameter set of docs: Model § Layered supports): UIC60 rail,
         E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3, A = 7.69e-3 m^2, I = 3.055e-5 m^4 (the
         section values of EN 13674-1); sleepers every 0.6 m, rail pad k_p = 180 MN/m and
         c_p = 18 kN s/m, half a monobloc sleeper m_s = 150 kg, ballast k_b = 105 MN/m and
