@@ -405,10 +405,20 @@ def _cmd_reproduce(args: argparse.Namespace, parser: argparse.ArgumentParser) ->
     return 0
 
 
-def _scene(stiffness: float | None = None, track: str = "kato2005") -> Scene:
-    """The --track preset (Scene.kato2005() by default), with the support (pad) stiffness
-    replaced if given [N/m]."""
+def _preset(track: str, stiffness: float | None = None) -> Scene:
+    """The --track preset, with the support (pad) stiffness replaced if given [N/m]."""
+    if track == "kato2005":
+        return _scene(stiffness)
     scene = _TRACKS[track]()
+    if stiffness is not None:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
+    return scene
+
+
+def _scene(stiffness: float | None = None) -> Scene:
+    """Scene.kato2005(), with the support stiffness replaced if given [N/m]."""
+    scene = Scene.kato2005()
     if stiffness is not None:
         scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
                                                                         stiffness=stiffness))
@@ -579,7 +589,7 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.plot is not None:
         _output_file(args.plot, "--plot", parser, formats=_figure_formats())
     try:
-        scene, notes = _excited_scene(_scene(args.support_stiffness, args.track), args)
+        scene, notes = _excited_scene(_preset(args.track, args.support_stiffness), args)
     except _OptionError as exc:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
@@ -681,7 +691,7 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         if args.seed is not None:
             parser.error("give --seed (one realisation) or --seeds (several), not both")
     try:
-        scene, notes = _excited_scene(_scene(track=args.track), args)
+        scene, notes = _excited_scene(_preset(args.track), args)
     except _OptionError as exc:
         parser.error(str(exc))
     _print_notes(notes, "sweep")
