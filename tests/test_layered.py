@@ -228,3 +228,16 @@ def test_cli_runs_the_ballasted_track(capsys):
     assert code == 0
     assert "Scene.ballasted_track(), k_p = 180 MN/m" in out
     assert "static load 70000.0 N" in out
+
+
+def test_cli_eigen_of_the_ballasted_track(capsys):
+    """``trackwheel eigen --track ballasted`` prints the preset's modes: the first two as
+    ``trackwheel.eigen`` gives them (to the printed 0.01 Hz)."""
+    from trackwheel import cli
+
+    assert cli.main(["eigen", "--track", "ballasted", "--position", "15", "--n-modes", "2"]) == 0
+    out = capsys.readouterr().out
+    f = tw.eigen(tw.Scene.ballasted_track(), [15.0], 2).frequencies[0]
+    assert "Scene.ballasted_track(), wheel at X = 15 m" in out
+    for k, fk in enumerate(f, start=1):
+        assert f"{k}  {fk:10.2f} Hz" in out or f"{fk:.2f} Hz" in out

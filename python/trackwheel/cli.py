@@ -306,6 +306,7 @@ def _add_eigen(sub) -> None:
                    help=f"wheel position X [m], 0 <= X <= L (default {X_REPORT})")
     p.add_argument("--n-modes", type=_positive_int, default=6, metavar="N",
                    help="number of vertical modes (default 6)")
+    _track_option(p)
     p.set_defaults(run=_cmd_eigen, parser=p)
 
 
@@ -718,7 +719,7 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
 
 
 def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    scene = Scene.kato2005()
+    scene = _preset(args.track)
     length = scene.rail.length
     if not 0.0 <= args.position <= length:
         parser.error(f"--position {args.position:g} m is outside the rail; "
@@ -727,7 +728,8 @@ def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         res = _eigen(scene, [args.position], n_modes=args.n_modes)
     except ValueError as exc:  # e.g. more modes than the mesh has
         parser.error(str(exc).replace("n_modes", "--n-modes"))
-    print(f"Scene.kato2005(), wheel at X = {args.position:g} m ({res.n_elements} elements)")
+    name = "Scene.kato2005()" if args.track == "kato2005" else "Scene.ballasted_track()"
+    print(f"{name}, wheel at X = {args.position:g} m ({res.n_elements} elements)")
     print("vertical modes:")
     for k, f in enumerate(res.frequencies[0], 1):
         print(f"  {k:>3}  {f:10.2f} Hz")

@@ -294,6 +294,8 @@ class Scene:
         length [m]: the rail between its rigid end supports (default 30 m: room for a passage
         of several metres away from the ends); supports every 0.6 m between them. Elements:
         ``elements_per_bay`` per 0.6 m bay (default 4: 0.15 m elements, sleepers on nodes).
+        The rail's ends rest on rigid supports, so the track stiffens within a few metres of
+        them: run passages well inside, e.g. ``simulate(scene, v, x_start=10.0, x_end=20.0)``.
         """
         spacing = 0.6
         length = v.number("length", length, low=3 * spacing, unit="m")
