@@ -241,3 +241,35 @@ def test_cli_eigen_of_the_ballasted_track(capsys):
     assert "Scene.ballasted_track(), wheel at X = 15 m" in out
     for k, fk in enumerate(f, start=1):
         assert f"  {k:>3}  {fk:10.2f} Hz\n" in out
+
+
+def test_kernel_names_bad_layer_vectors():
+    """The kernel checks what Python did not: one entry per support in each layer vector."""
+    scene = layered_kato()
+    r = scene.rail
+    p = _core.RailParams()
+    p.length, p.EA, p.EI = r.length, r.axial_stiffness, r.bending_stiffness
+    p.rhoA = r.mass_per_length
+    p.n_elements, p.n_gauss = 20, 5
+    s = _core.SupportParams()
+    s.position = list(scene.support_positions)
+    s.stiffness = [140e6] * 9
+    s.damping = [0.0] * 9
+    s.sleeper_mass = [150.0] * 8
+    s.ballast_stiffness = [105e6] * 9
+    s.ballast_damping = [0.0] * 9
+    with pytest.raises(ValueError, match="one entry per support"):
+        _core.RailModel(p, s)
+    s.sleeper_mass = [150.0] * 8 + [0.0]
+    with pytest.raises(ValueError, match="sleeper_mass must be > 0 kg"):
+        _core.RailModel(p, s)
+
+
+@pytest.mark.parametrize("fidelity", ["full", "linear/hertz"])
+def test_layered_runs_are_bit_identical(fidelity):
+    """Same inputs, same outputs, to the bit, with sleepers too."""
+    scene = layered_kato(damping=2e4, ballast_damping=5e4)
+    kw = {"x_start": 2.0, "x_end": 2.3, "dt": 1e-5, "fidelity": fidelity}
+    a, b = tw.simulate(scene, tw.kmh(300), **kw), tw.simulate(scene, tw.kmh(300), **kw)
+    assert np.array_equal(a.normal_force, b.normal_force)
+    assert np.array_equal(a.y_contact, b.y_contact)
