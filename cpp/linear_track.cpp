@@ -105,7 +105,7 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
   if (tr_.modal && !sl_.empty())
     throw std::invalid_argument(
         "n_modes (modal superposition) does not take layered supports (sleeper_mass given); "
-        "allowed: n_modes = 0 (all coordinates) with sleepers");
+        "with sleepers use all coordinates (n_modes=None in trackwheel.simulate)");
   initial_state();
   const double h = set.dt, cq = c_.bp * h * h, cv = c_.gp * h;
   A_.resize(tr_.nq, tr_.bw);
