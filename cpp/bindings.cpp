@@ -43,6 +43,8 @@ py::dict static_to_dict(const StaticResult& r) {
   d["normal_force"] = r.normal_force;
   d["horizontal_reaction"] = r.horizontal_reaction;
   d["iterations"] = r.iterations;
+  d["sleeper_z"] = r.z;
+  d["ballast_force"] = r.ballast_force;
   return d;
 }
 
@@ -323,6 +325,17 @@ PYBIND11_MODULE(_core, m) {
     py::gil_scoped_release nogil;
     return solve_rail_static(rail);
   });
+  m.def(
+      "track_static",
+      [](const RailModel& rail) {
+        StaticResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = solve_track_static(rail);
+        }
+        return static_to_dict(r);
+      },
+      "Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}");
   m.def("quasi_static", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
                            const std::vector<double>& x) {
     std::vector<StaticResult> rs;
@@ -360,7 +373,8 @@ PYBIND11_MODULE(_core, m) {
         }
         return modal_to_tuple(r);
       },
-      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))");
+      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, "
+      "n_modes))");
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
@@ -451,7 +465,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("e", &SimState::e, "rail coordinates (n_dof,)")
       .def_readwrite("edot", &SimState::edot, "rail velocities (n_dof,)")
       .def_readwrite("wheels", &SimState::wheels,
-                     "one WheelState per wheel (a copy: assign the whole list)");
+                     "one WheelState per wheel (a copy: assign the whole list)")
+      .def_readwrite("z", &SimState::z,
+                     "sleeper heights (n_sleepers,) [m]; empty: at rest under the initial rail")
+      .def_readwrite("zdot", &SimState::zdot, "sleeper velocities (n_sleepers,) [m/s]");
 
   // trackwheel.DivergenceError(message, time=, step=, cause=) for the kernel's DivergenceError
   py::register_exception_translator([](std::exception_ptr p) {
@@ -566,6 +583,10 @@ PYBIND11_MODULE(_core, m) {
           throw std::invalid_argument("initial needs one WheelState per wheel");
         System sys(model, s);
         SimState st = init;
+        if (!sys.sleepers().empty() && st.z.size() == 0) {  // at rest under the given rail
+          st.z = sys.sleepers().static_z(st.e);
+          st.zdot = Eigen::VectorXd::Zero(st.z.size());
+        }
         Eval ev;
         Accel acc;
         sys.evaluate(0.0, st, true, ev);
@@ -574,33 +595,36 @@ PYBIND11_MODULE(_core, m) {
         SimOutput out;
         const Divergence div(s, [] { return std::string("probe"); });
         GeneralizedAlpha ga(sys, st, ev, acc, out, div);
-        const int nf = sys.n_free(), m = sys.n_border();
-        Eigen::VectorXd start(nf + m);
-        start << rail.to_free(acc.edd), acc.x;
+        const int nf = sys.n_free(), m = sys.n_border(), ns = sys.sleepers().size();
+        Eigen::VectorXd start(nf + m + ns);
+        start << rail.to_free(acc.edd), acc.x, acc.zdd;
         Accel it = acc;
         if (x) {
-          if (x->size() != nf + m)
-            throw std::invalid_argument(
-                "x must have n_free + 3 n_wheels = " + std::to_string(nf + m) + " entries");
+          if (x->size() != nf + m + ns)
+            throw std::invalid_argument("x must have n_free + 3 n_wheels + n_sleepers = " +
+                                        std::to_string(nf + m + ns) + " entries");
           it.edd = Eigen::VectorXd::Zero(rail.n_dof());
           rail.add_from_free(x->head(nf), it.edd);
-          it.x = x->tail(m);
+          it.x = x->segment(nf, m);
+          it.zdd = x->tail(ns);
         }
-        Eigen::VectorXd minus_r;
+        Eigen::VectorXd minus_r, dx;
         Eigen::MatrixXd J;
-        ga.probe(t1, it, minus_r, J);
+        ga.probe(t1, it, minus_r, J, dx);
         py::dict d;
         d["start"] = start;
         d["residual"] = minus_r;
         d["matrix"] = J;
+        d["solution"] = dx;
         return d;
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
       py::arg("initial"), py::arg("t1"), py::arg("x") = py::none(),
       "Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] "
-      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel] (None: the start "
-      "accelerations). Returns {'start': the start accelerations in that layout, 'residual': "
-      "-r, 'matrix': the iteration matrix dr/dx (assembled, dense)}");
+      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, z'' per sleeper] (None: "
+      "the start accelerations). Returns {'start': the start accelerations in that layout, "
+      "'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers "
+      "uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}");
   m.def(
       "band_solve",
       [](const Eigen::MatrixXd& A, int half_bandwidth, const Eigen::VectorXd& r) {

@@ -45,8 +45,8 @@ SimOutput simulate_linear(const Model& model, const SimSettings& settings,
 
 // The quasi-static line of the linear track: the rail displacement y(X_i) [m] under the wheel
 // load P [N] resting at X_i, for each X_i, from the track's own statics K q = Q_g - P s(X)
-// (so a linear run starts on it, whatever its contact law: at rest N = P). n_modes as in
-// LinearOptions. One band factorisation, then one band solve per position.
+// (so a linear run starts on it, whatever its contact law: at rest N = P), sleepers condensed at
+// rest. n_modes as in LinearOptions. One band factorisation, then one band solve per position.
 Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam, double load,
                                    const std::vector<double>& x, int n_modes);
 

@@ -43,6 +43,7 @@ struct WheelState {
 struct SimState {
   Eigen::VectorXd e, edot;         // rail coordinates (full, n_dof) [m, m, -, -] and rates
   std::vector<WheelState> wheels;  // one per model wheel
+  Eigen::VectorXd z, zdot;         // sleeper heights [m] and rates (layered supports; else empty)
 };
 
 }  // namespace trackwheel

@@ -4,11 +4,14 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sleepers.hpp"
+
 namespace trackwheel {
 
 namespace {
 
-// Newton over the free rail coordinates and (optionally) Y_A.
+// Newton over the free rail coordinates and (optionally) Y_A; sleepers (layered supports) are
+// condensed into the rail's band (sleepers.hpp, at rest: (cm, cv, cq) = (0, 0, 1)).
 StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
                            const ContactParams* contact, double x_wheel, Eigen::VectorXd e,
                            double y_wheel) {
@@ -24,11 +27,21 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
   double s_guess = x_wheel;
   StaticResult res;
   const double scale_e = rail.params().length;
+  Sleepers sl(rail);
+  sl.set_coefficients(0.0, 0.0, 1.0);
+  std::vector<int> identity(rail.n_dof());
+  for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+  Eigen::VectorXd z = sl.static_z(e), rs, dz;
   for (int it = 0; it < 60; ++it) {
     rail.internal_force(e, nullptr, Q);
     Eigen::VectorXd R = Q - Qg;  // full residual of the rail
     K.set_zero();
     rail.add_tangent(e, 1.0, K);
+    if (!sl.empty()) {
+      sl.add_rail_force(z, nullptr, identity, R);
+      sl.condense_matrix(f2f, K);
+      sl.forces(e, nullptr, identity, z, nullptr, rs);
+    }
     B.setZero();
     C.setZero();
     D.setZero();
@@ -60,6 +73,7 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
       res.horizontal_reaction = -cf.F(0);
     }
     for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
+    if (!sl.empty()) sl.condense_rhs(rs, f2f, r1);
     if (!r1.allFinite() || !r2.allFinite())
       throw std::runtime_error("static solve: non-finite residual");
     if (!solver.factorize(K, B, C, D))
@@ -67,6 +81,11 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
     solver.solve(r1, r2, dx1, dx2);
     rail.add_from_free(dx1, e);
     double step = dx1.lpNorm<Eigen::Infinity>();
+    if (!sl.empty()) {
+      sl.back_substitute(rs, dx1, f2f, dz);
+      z += dz;
+      step = std::max(step, dz.lpNorm<Eigen::Infinity>());
+    }
     if (wheel) {
       y_wheel += dx2(0);
       step = std::max(step, std::abs(dx2(0)));
@@ -74,6 +93,8 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
     res.iterations = it + 1;
     if (step <= 1e-13 * scale_e) {
       res.e = e;
+      res.z = z;
+      res.ballast_force = sl.ballast_force(z);
       res.x_wheel = x_wheel;
       res.y_wheel = y_wheel;
       if (wheel) {
@@ -118,8 +139,10 @@ StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
   return newton_static(rail, &wheel, &contact, x_wheel, e, y);
 }
 
-Eigen::VectorXd solve_rail_static(const RailModel& rail) {
-  return newton_static(rail, nullptr, nullptr, 0.0, rail.reference(), 0.0).e;
+Eigen::VectorXd solve_rail_static(const RailModel& rail) { return solve_track_static(rail).e; }
+
+StaticResult solve_track_static(const RailModel& rail) {
+  return newton_static(rail, nullptr, nullptr, 0.0, rail.reference(), 0.0);
 }
 
 std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,

@@ -3,7 +3,8 @@
 // iteration matrix and the index-1 acceleration system, all over one bordered banded system.
 //
 // Unknowns: the free rail coordinates (band, half bandwidth 7) and, per wheel w, a 3-wide
-// border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}. Equations:
+// border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}; with layered
+// supports the sleepers' z'' too, condensed exactly into the band (sleepers.hpp). Equations:
 //   rail    M e''   = Q_g - Q_kl - Q_kt - Q_s + sum_w (Q_contact,w + lambda_w b_rail,w)
 //   wheel w M Y_A'' = -(F + M g) + N n_y + lambda t_y,   J th'' = T - rho lambda
 //   lambda_w: rolling constraint g_w = 0 (stick), sigma mu N (slide) or 0 (no contact).
@@ -17,6 +18,7 @@
 #include "contact.hpp"
 #include "model.hpp"
 #include "rolling.hpp"
+#include "sleepers.hpp"
 #include "state.hpp"
 
 namespace trackwheel {
@@ -43,6 +45,7 @@ struct Eval {
 struct Accel {
   Eigen::VectorXd edd;
   Eigen::VectorXd x;
+  Eigen::VectorXd zdd;  // sleepers (layered supports; else empty)
 };
 
 class System {
@@ -74,7 +77,7 @@ class System {
   void accelerations(const SimState& st, const Eval& ev, Accel& acc);
 
   // Generalized-alpha residual (right-hand side -r of J dx = -r) at an iterate; cv = gamma' h
-  // scales the velocity-level constraint rows.
+  // scales the velocity-level constraint rows. The sleepers' part is kept for solve().
   void residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
                 Eigen::VectorXd& r1, Eigen::VectorXd& r2);
 
@@ -85,13 +88,16 @@ class System {
   void assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
                                  double cv, bool refresh_rail);
   bool factorize_iteration_matrix();
-  // The assembled (unfactorised) matrix as a dense (n_free + n_border) square (tests).
+  // The assembled (unfactorised) matrix as a dense (n_free + n_border + n_sleepers) square,
+  // the sleepers' block uncondensed (tests).
   Eigen::MatrixXd iteration_matrix_dense() const;
+  // The sleepers' negated residual of the last residual() call (tests).
+  const Eigen::VectorXd& sleeper_residual() const { return rs_; }
 
+  // Newton correction from the last residual(): rail, border and (layered) sleepers dz.
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
-             Eigen::VectorXd& x2) const {
-    solver_.solve(r1, r2, x1, x2);
-  }
+             Eigen::VectorXd& x2, Eigen::VectorXd& dz);
+  const Sleepers& sleepers() const { return sl_; }
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the
@@ -111,6 +117,9 @@ class System {
   Eigen::MatrixXd Bb_, Cb_, Db_;
   Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
   BorderedSolver solver_;
+  Sleepers sl_;
+  std::vector<int> identity_;  // full index -> itself
+  Eigen::VectorXd rs_, r1c_;
 };
 
 // Total mechanical energy [J]: kinetic + elastic + support springs + contact potentials

@@ -219,13 +219,19 @@ def test_linear_quasi_static_is_the_ancf_line_linearised():
     assert np.max(np.abs(lin - ancf)) < 3e-4 * np.max(np.abs(ancf))
 
 
-@pytest.mark.parametrize("fidelity", ["linear/hertz", "linear/moving_force"])
-def test_linear_runs_start_on_their_quasi_static_line(fidelity):
+@pytest.mark.parametrize("fidelity, layered", [("linear/hertz", False),
+                                               ("linear/moving_force", False),
+                                               ("linear/hertz", True)])
+def test_linear_runs_start_on_their_quasi_static_line(fidelity, layered):
     """analyse measures a linear run against the linear track's own static line, on which the
     run starts (static equilibrium, N = P): d(0) is round-off, ~1e-16 m against a deflection
-    of ~1e-4 m, also on an irregular rail (the profile lifts the wheel, not the rail)."""
+    of ~1e-4 m, also on an irregular rail (the profile lifts the wheel, not the rail) and on
+    pad-sleeper-ballast supports (the sleepers condensed at rest, with their weight)."""
     scene = dataclasses.replace(tw.Scene.kato2005(),
                                 irregularity=tw.Irregularity.sine(1.0, 1e-4))
+    if layered:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(
+            scene.supports, sleeper_mass=150.0, ballast_stiffness=105e6))
     r = tw.simulate(scene, tw.kmh(200), fidelity=fidelity, x_end=1.2, progress=False)
     a = tw.analyse(r)
     assert abs(a.dynamic[0]) < 1e-12 * np.max(np.abs(a.y_qs))

@@ -43,6 +43,10 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     s.position = list(pos)
     s.stiffness = [scene.supports.stiffness] * len(pos)
     s.damping = [scene.supports.damping] * len(pos)
+    if scene.supports.layered:
+        s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
+        s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
+        s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
     return _core.RailModel(p, s, profile(scene))
 
 

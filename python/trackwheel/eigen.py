@@ -6,7 +6,8 @@ Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reporte
 beam (docs: Model, section "Shear-deformable rail (Timoshenko)"), whose mode shapes carry the section rotation psi in
 the slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
-be a node. ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
+be a node. Layered supports add one DOF per sleeper (mass m_s between the pad and the ballast
+springs). ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
 (Eigen, in the C++ kernel) for each position.
 """
 
@@ -28,7 +29,9 @@ class EigenResult:
     scene: Scene
     positions: np.ndarray  #: wheel positions X, (n_pos,) [m]
     frequencies: np.ndarray  #: (n_pos, n_modes) [Hz], ascending in each row
-    shapes: np.ndarray  #: (n_pos, n_dof + 1, n_modes): rail ANCF coords then wheel Y [-]
+    #: (n_pos, n_dof + 1 + n_sleepers, n_modes): rail ANCF coords, wheel Y, then the sleepers'
+    #: z_j (layered supports) [-]
+    shapes: np.ndarray
     axial_frequencies: np.ndarray  #: lowest axial (x) modes, (min(n_axial, axial dofs),) [Hz]
     n_elements: int  #: mesh used
 
@@ -55,8 +58,9 @@ class EigenResult:
         model = _kernel.rail_model(self.scene, self.n_elements)
         vec = np.asarray(self.shapes[i_pos, :, mode])
         s = np.linspace(0.0, self.scene.rail.length, n_points)
-        y = model.positions(vec[:-1], s)[:, 1]
-        wheel = vec[-1]
+        n_dof = model.n_dof
+        y = model.positions(vec[:n_dof], s)[:, 1]
+        wheel = vec[n_dof]
         scale = max(np.max(np.abs(y)), abs(wheel))
         ref = wheel if abs(wheel) > 1e-3 * scale else y[np.argmax(np.abs(y))]
         scale *= np.sign(ref) or 1.0
@@ -79,7 +83,8 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
         "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     model = _kernel.rail_model(scene, ne)
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1)
+    n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1 + n_sleepers)
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
     # at most the n_x axial modes the mesh has (one element has only one or two)
     n_axial = min(v.integer("n_axial", n_axial, low=0), n_x)

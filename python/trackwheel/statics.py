@@ -8,7 +8,7 @@ y_qs(X), the line the dynamic contact-point displacement is measured from.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -30,6 +30,11 @@ class StaticResult:
     rail_coordinates: np.ndarray  #: ANCF coordinates e, (4 (n_e + 1),) [m, m, -, -]
     n_elements: int  #: mesh used
     iterations: int  #: Newton iterations
+    #: layered supports: sleeper heights z_j [m] (negative = down), one per support; else empty
+    sleeper_z: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: layered supports: ballast force under each sleeper, -k_b z_j [N] (positive =
+    #: compression); their sum is the wheel load plus the weight of rail and sleepers on them
+    ballast_force: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     def __repr__(self) -> str:
         return (f"<trackwheel.StaticResult: wheel at X = {self.x_wheel:.4g} m, "
@@ -86,7 +91,8 @@ def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> St
     return StaticResult(scene=scene, x_wheel=x, y_wheel=d["y_wheel"], contact_s=d["contact_s"],
                         y_contact=d["y_contact"], normal_force=d["normal_force"],
                         rail_coordinates=np.asarray(d["e"]), n_elements=ne,
-                        iterations=d["iterations"])
+                        iterations=d["iterations"], sleeper_z=np.asarray(d["sleeper_z"]),
+                        ballast_force=np.asarray(d["ballast_force"]))
 
 
 def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> QuasiStatic:
