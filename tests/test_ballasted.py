@@ -1,5 +1,7 @@
-"""The ballasted preset (Scene.ballasted_track) against the textbooks (docs: Model § Layered
-supports, § Shear-deformable rail, § Receptance and decay rate).
+"""The ballasted preset (Scene.ballasted_track) against the textbooks.
+
+Docs: Model § Layered supports, § Receptance and decay rate; the closed forms of the pinned-pinned
+frequency are in the section "Shear-deformable rail (Timoshenko)".
 
 Textbook: D. Thompson, *Railway Noise and Vibration* (Elsevier 2009), ch. 3 (track dynamics:
 receptance of rail on layered and discrete supports, the pinned-pinned resonance near 1 kHz for
@@ -33,7 +35,8 @@ def _beam(scene: tw.Scene, beam: str) -> tw.Scene:
 
 
 def timoshenko_pinned_pinned(rail: tw.Rail, d: float) -> float:
-    """Lower root [Hz] of the Timoshenko frequency equation (MODEL.md § 11)
+    """Lower root [Hz] of the Timoshenko frequency equation (docs: Model, section
+    "Shear-deformable rail (Timoshenko)")
     (rho I rho / (kappa G)) w^4 - (rho A + rho I k^2 + E I k^2 rho / (kappa G)) w^2
     + E I k^4 = 0 with k = pi / d, from the section data alone."""
     rho, e_mod, area, inertia = rail.density, rail.youngs_modulus, rail.area, rail.second_moment
@@ -66,7 +69,7 @@ def layered_beta(scene: tw.Scene, f: np.ndarray) -> np.ndarray:
 
 
 def layered_point_receptance(scene: tw.Scene, f: np.ndarray) -> np.ndarray:
-    """alpha(0, 0) = 1 / (8 EI beta^3) [m/N] (MODEL.md § 11)."""
+    """alpha(0, 0) = 1 / (8 EI beta^3) [m/N] (docs: Model § Receptance and decay rate)."""
     return 1.0 / (8.0 * scene.rail.bending_stiffness * layered_beta(scene, f) ** 3)
 
 

@@ -27,7 +27,8 @@ spectra, ``--joint DEPTH,LENGTH,AT`` (a Kabo dipped joint; turns the contact fil
     The vertical track decay rate [dB/m] per one-third-octave band (EN 15461, trackwheel.
     decay_rate) beside the ISO 3095 lower limit.
 
-Track (every command but reproduce, docs: Model § Layered supports, § Shear-deformable rail):
+Track (every command but reproduce; docs: Model § Layered supports and the section
+"Shear-deformable rail (Timoshenko)"):
 ``--track kato2005|ballasted`` (``--length L`` [m] for the ballasted preset), ``--beam
 euler|timoshenko`` and ``--shear-coefficient K``. The full ANCF model is Euler-Bernoulli: a
 Timoshenko rail in ``run``/``sweep`` needs a ``--fidelity linear/...`` level.
@@ -200,7 +201,8 @@ _TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
 
 
 def _track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None:
-    g = p.add_argument_group("track (docs: Model § Layered supports, § Shear-deformable rail)")
+    g = p.add_argument_group("track (docs: Model § Layered supports and section "
+                             "\"Shear-deformable rail (Timoshenko)\")")
     g.add_argument("--track", choices=tuple(_TRACKS), default="kato2005",
                    help="the scene: kato2005 (the paper's 5 m rail on single springs, default) "
                         "or ballasted (Scene.ballasted_track(): UIC60 on rail pads, "
@@ -385,8 +387,8 @@ def _add_receptance(sub) -> None:
         "receptance", help="print the track's point receptance over frequency",
         description="Point receptance alpha = y / F [m/N] of the linear track (the rail on its "
                     "supports with their damping, no wheel) at one point, from --fmin to "
-                    "--fmax [Hz] (trackwheel.receptance, docs: Model § Receptance and decay "
-                    "rate): its largest magnitude, a table of magnitude and phase, and the "
+                    "--fmax [Hz] (trackwheel.receptance; "
+                    "docs: Model § Receptance and decay rate): its largest magnitude, a table of magnitude and phase, and the "
                     "pinned-pinned frequencies of one support bay by both beam theories.")
     p.add_argument("--at", default="midspan", metavar="midspan|support|X",
                    help="excitation and response point: the mid-span or the support nearest "
