@@ -138,13 +138,14 @@ def test_decay_rate_dips_at_the_pinned_pinned_frequency(beam):
 
 def test_low_frequency_receptance_is_the_beam_on_a_layered_foundation():
     """Below the pad cut-on the discrete pad-sleeper-ballast supports act as their continuous
-    smear k_eff(w) per spacing. Tolerances: below 150 Hz (the bending wavelength > 4.5 m,
+    smear k_eff(w) per spacing. Tolerances: below 150 Hz (the wave's length 2 pi / Re(beta) > 4 m,
     7 bays) within 0.15 dB and 0.01 rad at mid-span and above a sleeper, which bracket the
     continuous beam (mid-span softer, measured +0.08 dB / -0.05 dB: the rail's deflection
     ripples by about 1 % from bay to bay; the bracket holds while the rail deflects
-    quasi-statically, below 3/4 of the track's resonance on the ballast, 118 Hz); 150-300 Hz within 0.6 dB and 0.1 rad (measured
-    0.44 dB near 260 Hz: between the sleeper frequency sqrt((k_p + k_b)/m_s)/2 pi = 219 Hz and
-    the cut-on, k_eff changes fast with frequency and the rail bends over fewer bays)."""
+    quasi-statically, below 3/4 of the track's resonance on the ballast, 118 Hz); 150-300 Hz
+    within 0.6 dB and 0.1 rad (measured 0.44 dB near 260 Hz: between the sleeper frequency
+    sqrt((k_p + k_b)/m_s)/2 pi = 219 Hz and the cut-on, k_eff changes fast with frequency and the
+    rail bends over fewer bays)."""
     f = np.geomspace(20.0, 300.0, 40)
     a_inf = layered_point_receptance(LONG, f)
     low = f < 150.0

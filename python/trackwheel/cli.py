@@ -388,8 +388,9 @@ def _add_receptance(sub) -> None:
         description="Point receptance alpha = y / F [m/N] of the linear track (the rail on its "
                     "supports with their damping, no wheel) at one point, from --fmin to "
                     "--fmax [Hz] (trackwheel.receptance; "
-                    "docs: Model § Receptance and decay rate): its largest magnitude, a table of magnitude and phase, and the "
-                    "pinned-pinned frequencies of one support bay by both beam theories.")
+                    "docs: Model § Receptance and decay rate): its largest magnitude, a table "
+                    "of magnitude and phase, and the pinned-pinned frequencies of one support "
+                    "bay by both beam theories.")
     p.add_argument("--at", default="midspan", metavar="midspan|support|X",
                    help="excitation and response point: the mid-span or the support nearest "
                         "the rail's middle (default midspan), or X [m]")
@@ -1033,8 +1034,9 @@ def _cmd_decay_rate(args: argparse.Namespace, parser: argparse.ArgumentParser) -
 
 
 def _write_csv(path: Path, table: np.ndarray, header: str, command: str) -> bool:
+    """Write ``table`` as CSV (17 digits: the values read back bit-identical); False on error."""
     try:
-        np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.17g")  # round-trips
+        np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.17g")
     except OSError as exc:
         print(f"trackwheel {command}: cannot write --out {path}: {exc}", file=sys.stderr)
         return False
@@ -1043,6 +1045,7 @@ def _write_csv(path: Path, table: np.ndarray, header: str, command: str) -> bool
 
 
 def _save_figure(fig, path: Path, command: str) -> bool:
+    """Save ``fig`` to ``path`` (150 dpi); False, with a one-line error, if it cannot."""
     try:
         fig.savefig(path, dpi=150)
     except (OSError, ValueError) as exc:
