@@ -483,6 +483,19 @@ def test_run_with_a_timoshenko_rail_simulates_that_scene(capsys):
     assert abs(e.amplitude - a.amplitude) * 1e6 > 2e-3
 
 
+def test_sweep_with_a_timoshenko_rail_runs_that_scene(tmp_path, capsys):
+    """`sweep --beam timoshenko --fidelity linear/hertz`: the case is the API's run of the
+    Timoshenko scene, exactly (same inputs, bit-identical outputs)."""
+    csv = tmp_path / "t.csv"
+    assert cli.main(["sweep", "--speeds-kmh", "300", "--beam", "timoshenko", "--fidelity",
+                     "linear/hertz", "--store", str(tmp_path / "s"), "--out", str(csv),
+                     "--workers", "1", "--no-progress", *CHEAP]) == 0
+    row = _csv(csv).iloc[0]
+    a = tw.analyse(tw.simulate(_timoshenko(tw.Scene.kato2005()), tw.kmh(300), n_elements=20,
+                               dt=1e-5, x_end=0.75, fidelity="linear/hertz"))
+    assert row.amplitude == a.amplitude and row.main_frequency == a.main_frequency
+
+
 def test_eigen_with_a_timoshenko_rail(capsys):
     assert cli.main(["eigen", "--beam", "timoshenko", "--shear-coefficient", "0.3",
                      "--n-modes", "4"]) == 0
