@@ -578,6 +578,8 @@ def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
     (["receptance", "--n", "0"], "positive integer"),
     (["receptance", "--length", "60"], "--length is only for --track ballasted"),
     (["receptance", "--track", "ballasted", "--length", "31"], "--length 31"),
+    (["decay-rate", "--track", "ballasted", "--length", f"{0.6 * (cli.MAX_ELEMENTS + 1):g}"],
+     "is too long; allowed: at most"),
     (["receptance", "--shear-coefficient", "0.3"], "only used with --beam timoshenko"),
     (["receptance", "--beam", "timoshenko", "--shear-coefficient", "2"],
      "--shear-coefficient = 2.0 is outside the allowed range (0.0, 1.0]"),

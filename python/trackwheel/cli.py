@@ -196,6 +196,9 @@ def _excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None
 #: with about ten metres of damped rail beyond it at each end
 _DECAY_LENGTH = 60.0
 
+#: sleeper spacing of Scene.ballasted_track [m]
+_BALLASTED_SPACING = Scene.ballasted_track().supports.spacing
+
 #: --track: the scene presets by name
 _TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
 
@@ -536,7 +539,15 @@ def _preset(track: str, stiffness: float | None = None, length: float | None = N
     length [m] replaced if given."""
     if track == "kato2005":
         return _scene(stiffness)
-    scene = _TRACKS[track]() if length is None else _TRACKS[track](length)
+    if length is None:
+        scene = _TRACKS[track]()
+    else:  # the preset's 4 elements per bay, fewer on a long rail (the CLI re-meshes anyway)
+        n_bays = max(round(length / _BALLASTED_SPACING), 1)
+        if n_bays > MAX_ELEMENTS:
+            raise ValueError(f"length = {length:g} m is too long; allowed: at most "
+                             f"{MAX_ELEMENTS * _BALLASTED_SPACING:g} m ({MAX_ELEMENTS} "
+                             f"elements, one per {_BALLASTED_SPACING:g} m sleeper bay)")
+        scene = _TRACKS[track](length, elements_per_bay=min(4, MAX_ELEMENTS // n_bays))
     if stiffness is not None:
         scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
                                                                         stiffness=stiffness))
