@@ -8,7 +8,12 @@
 namespace trackwheel {
 
 System::System(const Model& model, const SimSettings& set)
-    : model_(model), set_(set), nf_(model.rail.n_free()), nw_(model.n_wheels()) {
+    : model_(model),
+      set_(set),
+      nf_(model.rail.n_free()),
+      nw_(model.n_wheels()),
+      nb_(model.n_bodies()),
+      vm_(vehicle_matrices(model.vehicle, model.n_wheels())) {
   Mfac_ = model.rail.mass();
   if (!Mfac_.factorize()) throw std::runtime_error("rail mass matrix is singular");
   const int m = n_border();
@@ -52,8 +57,8 @@ double System::prescribed_lambda(const SimState& st, const Eval& ev, int w) cons
                                        ev.w[w]);
 }
 
-void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
-                    Eigen::VectorXd& fb) const {
+void System::forces(const SimState& st, const Eval& ev, const Eigen::VectorXd& lam,
+                    Eigen::VectorXd& fr, Eigen::VectorXd& fb) const {
   fr = rail().gravity_force() - ev.Qint;
   fb.setZero(n_border());
   for (int w = 0; w < nw_; ++w) {
@@ -65,6 +70,33 @@ void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd&
     // the normal force of an out-of-round wheel has a moment: -dV/dtheta = -N dDelta rho/dpsi
     fb(o + kTheta) = p.torque + lam(w) * we.rk.b(10) - we.cf.N * we.drho.rx;
   }
+  if (nb_ > 0) add_vehicle_forces(st, fb);
+}
+
+void System::add_vehicle_forces(const SimState& st, Eigen::VectorXd& fb) const {
+  u_.resize(nw_ + 2 * nb_);
+  udot_.resize(nw_ + 2 * nb_);
+  for (int w = 0; w < nw_; ++w) {
+    u_(w) = st.wheels[w].y;
+    udot_(w) = st.wheels[w].ydot;
+  }
+  u_.tail(2 * nb_) = st.body;
+  udot_.tail(2 * nb_) = st.bodydot;
+  fu_ = vehicle_forces(vm_, u_, udot_);
+  for (int i = 0; i < fu_.size(); ++i) fb(vehicle_index(i)) += fu_(i);
+}
+
+// The bodies' masses and inertias on the diagonal; the suspensions' dr/du'' = cq K_v + cv C_v
+// (u = u_pred + cq u'', u' = u'_pred + cv u'').
+void System::add_vehicle_block(bool inertia_only, double cq, double cv) {
+  const int nu = nw_ + 2 * nb_, o = kBorderPerWheel * nw_;
+  for (int k = 0; k < 2 * nb_; ++k) Db_(o + k, o + k) += vm_.mass(nw_ + k);
+  if (inertia_only) return;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nu; ++j) {
+      const double v = cq * vm_.K(i, j) + cv * vm_.C(i, j);
+      if (v != 0.0) Db_(vehicle_index(i), vehicle_index(j)) += v;
+    }
 }
 
 void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
@@ -75,7 +107,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     lam_(w) = std::isnan(lam_p(w)) ? 0.0 : lam_p(w);
   }
   Eigen::VectorXd &fr = fr_, &fb = fb_;
-  forces(ev, lam_, fr, fb);
+  forces(st, ev, lam_, fr, fb);
   Bb_.setZero();
   Cb_.setZero();
   Db_.setZero();
@@ -113,6 +145,11 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     qdot.tail<8>() = st.edot.segment<8>(d0);
     r2(o + kLambda) = -we.rk.dg_dq.dot(qdot) - set_.baumgarte * we.rk.g;
   }
+  if (nb_ > 0) {
+    add_vehicle_block(true, 0.0, 0.0);
+    const int o = kBorderPerWheel * nw_;
+    r2.segment(o, 2 * nb_) = fb.segment(o, 2 * nb_);
+  }
   if (!solver_.factorize_border(Mfac_, Bb_, Cb_, Db_))
     throw std::runtime_error("acceleration system is singular");
   solver_.solve(r1, r2, x1_, acc.x);
@@ -123,7 +160,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
 void System::residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
                       Eigen::VectorXd& r1, Eigen::VectorXd& r2) {
   for (int w = 0; w < nw_; ++w) lam_(w) = acc.x(kBorderPerWheel * w + kLambda);
-  forces(ev, lam_, fr_, fb_);
+  forces(st, ev, lam_, fr_, fb_);
   rail().mass().multiply(rail().to_free(acc.edd), Medd_);
   r1 = rail().to_free(fr_) - Medd_;
   r2.resize(n_border());
@@ -135,6 +172,8 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
     r2(o + kTheta) = -(p.inertia * acc.x(o + kTheta) - fb_(o + kTheta));
     r2(o + kLambda) = std::isnan(lam_p) ? -ev.w[w].rk.g / cv : -(lam_(w) - lam_p);
   }
+  const int o = kBorderPerWheel * nw_;
+  for (int k = 0; k < 2 * nb_; ++k) r2(o + k) = -(vm_.mass(nw_ + k) * acc.x(o + k) - fb_(o + k));
 }
 
 void System::add_entry(int i, int j, double v) {
@@ -166,6 +205,7 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Db_(o + kTheta, o + kTheta) = model_.wheels[w].inertia;
   }
   for (int w = 0; w < nw_; ++w) add_wheel_block(st, ev, acc, w, cq, cv);
+  if (nb_ > 0) add_vehicle_block(false, cq, cv);
 }
 
 // Wheel w's contact, rolling and slip terms. Local index 1 -> Y, 2..9 -> rail, 10 -> theta.
@@ -240,6 +280,18 @@ Eigen::MatrixXd System::iteration_matrix_dense() const {
   return A;
 }
 
+double vehicle_energy_of(const Model& model, const SimState& st) {
+  const int nw = model.n_wheels(), nb = model.n_bodies();
+  Eigen::VectorXd u(nw + 2 * nb), udot(nw + 2 * nb);
+  for (int w = 0; w < nw; ++w) {
+    u(w) = st.wheels[w].y;
+    udot(w) = st.wheels[w].ydot;
+  }
+  u.tail(2 * nb) = st.body;
+  udot.tail(2 * nb) = st.bodydot;
+  return vehicle_energy(vehicle_matrices(model.vehicle, nw), u, udot);
+}
+
 double total_energy(const Model& model, const SimState& st, const Eval& ev) {
   const RailModel& rail = model.rail;
   const Eigen::VectorXd v = rail.to_free(st.edot);
@@ -264,6 +316,7 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev) {
     E += model.wheels[w].total_load() * st.wheels[w].y;
     E -= model.wheels[w].torque * st.wheels[w].theta;
   }
+  if (model.n_bodies() > 0) E += vehicle_energy_of(model, st);
   return E;
 }
 
@@ -274,11 +327,14 @@ double vibration_energy(const Model& model, const SimState& st) {
   double E = 0.5 * v.dot(Mv);
   for (int w = 0; w < model.n_wheels(); ++w)
     E += 0.5 * model.wheels[w].mass * st.wheels[w].ydot * st.wheels[w].ydot;
+  for (int b = 0; b < model.n_bodies(); ++b)
+    E += 0.5 * model.vehicle.bodies[b].mass * st.bodydot(2 * b) * st.bodydot(2 * b);
   return E;
 }
 
 bool finite_state(const SimState& st) {
   if (!st.e.allFinite() || !st.edot.allFinite()) return false;
+  if (!st.body.allFinite() || !st.bodydot.allFinite()) return false;
   for (const WheelState& w : st.wheels)
     if (!std::isfinite(w.y) || !std::isfinite(w.ydot) || !std::isfinite(w.theta) ||
         !std::isfinite(w.thetadot))
