@@ -252,7 +252,8 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<>())
       .def_readwrite("mass", &BodyParams::mass, "[kg]")
       .def_readwrite("inertia", &BodyParams::inertia, "pitch inertia [kg m^2]")
-      .def_readwrite("gravity", &BodyParams::gravity, "[m/s^2]");
+      .def_readwrite("gravity", &BodyParams::gravity, "[m/s^2]")
+      .def_readwrite("load", &BodyParams::load, "constant downward force on the centre [N]");
   py::class_<SuspensionParams>(m, "SuspensionParams")
       .def(py::init<>())
       .def_readwrite("stiffness", &SuspensionParams::stiffness, "k [N/m]")

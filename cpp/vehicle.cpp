@@ -34,6 +34,7 @@ void check_vehicle(const VehicleParams& v, int nw) {
     require(std::isfinite(p.mass) && p.mass > 0, n + "mass", "> 0 kg");
     require(std::isfinite(p.inertia) && p.inertia > 0, n + "inertia", "> 0 kg m^2");
     require(std::isfinite(p.gravity) && p.gravity >= 0, n + "gravity", ">= 0 m/s^2");
+    require(std::isfinite(p.load) && p.load >= 0, n + "load", ">= 0 N");
   }
   for (std::size_t i = 0; i < v.suspensions.size(); ++i) {
     const SuspensionParams& s = v.suspensions[i];
@@ -54,7 +55,7 @@ void check_vehicle(const VehicleParams& v, int nw) {
 
 double vehicle_weight(const VehicleParams& v) {
   double W = 0.0;
-  for (const BodyParams& b : v.bodies) W += b.mass * b.gravity;
+  for (const BodyParams& b : v.bodies) W += b.mass * b.gravity + b.load;
   return W;
 }
 
@@ -69,7 +70,7 @@ VehicleMatrices vehicle_matrices(const VehicleParams& v, int nw) {
   for (int b = 0; b < nb; ++b) {
     vm.mass(nw + 2 * b) = v.bodies[b].mass;
     vm.mass(nw + 2 * b + 1) = v.bodies[b].inertia;
-    vm.G(nw + 2 * b) = v.bodies[b].mass * v.bodies[b].gravity;
+    vm.G(nw + 2 * b) = v.bodies[b].mass * v.bodies[b].gravity + v.bodies[b].load;
   }
   for (const SuspensionParams& s : v.suspensions) {
     const Eigen::VectorXd g = extension_gradient(s, nw, nu);

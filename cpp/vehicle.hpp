@@ -23,6 +23,7 @@ struct BodyParams {
   double mass = 0.0;     // [kg]
   double inertia = 0.0;  // pitch moment of inertia about the centre of mass [kg m^2]
   double gravity = 0.0;  // g on the body [m/s^2]
+  double load = 0.0;     // constant downward force on its centre (e.g. a car body's share) [N]
 };
 
 // One suspension: a linear spring and viscous damper in parallel, vertical.
@@ -46,7 +47,7 @@ struct VehicleParams {
 // Throws std::invalid_argument naming the first body or suspension out of range.
 void check_vehicle(const VehicleParams& vehicle, int n_wheels);
 
-// Total weight of the bodies, sum m_b g [N].
+// Total weight and load of the bodies, sum (m_b g + load_b) [N].
 double vehicle_weight(const VehicleParams& vehicle);
 
 // The vehicle's constant matrices over u (n_u = n_wheels + 2 n_bodies).

@@ -254,6 +254,14 @@ class BodyParams:
     def inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def load(self) -> float:
+        """
+        constant downward force on the centre [N]
+        """
+    @load.setter
+    def load(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def mass(self) -> float:
         """
         [kg]
