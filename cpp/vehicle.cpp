@@ -1,5 +1,6 @@
 #include "vehicle.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -91,6 +92,21 @@ double vehicle_energy(const VehicleMatrices& vm, const Eigen::VectorXd& u,
   const auto vb = udot.tail(udot.size() - nw);
   const double kinetic = 0.5 * vb.dot(vm.mass.tail(vb.size()).cwiseProduct(vb));
   return kinetic + 0.5 * u.dot(vm.K * u) + vm.G.dot(u);
+}
+
+Eigen::VectorXd static_bodies(const VehicleMatrices& vm, const Eigen::VectorXd& Y) {
+  const int nw = vm.n_wheels, m = static_cast<int>(vm.G.size()) - nw;
+  const Eigen::MatrixXd Kbb = vm.K.bottomRightCorner(m, m);
+  const Eigen::VectorXd rhs = -vm.G.tail(m) - vm.K.bottomLeftCorner(m, nw) * Y;
+  return Kbb.completeOrthogonalDecomposition().solve(rhs);
+}
+
+Eigen::VectorXd static_wheel_forces(const VehicleMatrices& vm, const Eigen::VectorXd& Y) {
+  const int nw = vm.n_wheels;
+  Eigen::VectorXd u(vm.G.size());
+  u.head(nw) = Y;
+  u.tail(u.size() - nw) = static_bodies(vm, Y);
+  return vehicle_forces(vm, u, Eigen::VectorXd::Zero(u.size())).head(nw);
 }
 
 }  // namespace trackwheel

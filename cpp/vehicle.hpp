@@ -69,4 +69,12 @@ Eigen::VectorXd vehicle_forces(const VehicleMatrices& vm, const Eigen::VectorXd&
 double vehicle_energy(const VehicleMatrices& vm, const Eigen::VectorXd& u,
                       const Eigen::VectorXd& udot);
 
+// The bodies' static coordinates [z, phi per body] above wheel centres at heights Y: the
+// bodies' rows of K_v u = -G_v solved with Y held (minimum-norm, so a body free to pitch, e.g.
+// on one wheel, stays level).
+Eigen::VectorXd static_bodies(const VehicleMatrices& vm, const Eigen::VectorXd& Y);
+// The vehicle's static force on each wheel centre [N] (negative: pressing it down). For a
+// statically determinate vehicle it does not depend on Y.
+Eigen::VectorXd static_wheel_forces(const VehicleMatrices& vm, const Eigen::VectorXd& Y);
+
 }  // namespace trackwheel

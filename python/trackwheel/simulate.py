@@ -125,7 +125,7 @@ def _vehicle_initial_state(scene, model, speed, x_start, start, drop_height):
         sols = _core.static_solve_wheels(model, _kernel.static_wheels_params(scene), contacts, xs)
         e = np.asarray(sols[0]["e"])
         ys = [d["y_wheel"] + drop_height for d in sols]
-        body = static_bodies(veh, scene.gravity, [d["y_wheel"] for d in sols])
+        body = static_bodies(veh, scene.gravity, ys)  # lifted with the wheels by drop_height
     else:
         e = np.asarray(_core.rail_static(model))
         y_rail = model.positions(e, xs)[:, 1]
