@@ -300,3 +300,45 @@ def test_far_apart_wheels_through_the_api_reproduce_single_wheel_runs():
 def test_bad_vehicles_raise_errors_naming_the_parameter(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def test_linear_path_with_constant_loads_is_the_superposition_of_its_wheels():
+    """Moving forces on the linear track (no gravity, so the loads are the wheels' F only):
+    the contact-point displacements of the loads (F_0, F_1) are the sums of those of (F_0, 0)
+    and (0, F_1), to round-off (1e-12 of the response; the system is linear with constant
+    matrices and the same steps)."""
+    rail = tw.Rail(length=20.0, n_elements=80)
+
+    def run(f0, f1):
+        veh = Vehicle(wheels=(tw.Wheel(load=f0), tw.Wheel(load=f1)), positions=(0.0, 3.0))
+        scene = tw.Scene(rail=rail, vehicle=veh, gravity=0.0, rail_gravity=False)
+        return tw.simulate(scene, tw.kmh(300), dt=2e-5, x_start=2.0, duration=0.05,
+                           fidelity="linear/moving_force").y_contact
+
+    both, a, b = run(40e3, 70e3), run(40e3, 0.0), run(0.0, 70e3)
+    assert np.max(np.abs(both - (a + b))) < 1e-12 * np.max(np.abs(both))
+    # the wheels interact: each one's displacement includes the other's
+    assert np.max(np.abs(b[:, 0])) > 1e-3 * np.max(np.abs(both[:, 0]))
+
+
+def test_per_wheel_analysis_plot_and_cli(capsys):
+    """analyse(wheel=i) measures wheel i against its own static load; plots.dynamic draws every
+    wheel; `trackwheel run --vehicle bogie` prints one line per wheel."""
+    from trackwheel import cli, plots
+
+    scene = tw.Scene(rail=tw.Rail(length=6.0, n_elements=24), vehicle=Vehicle.bogie())
+    r = tw.simulate(scene, tw.kmh(200), dt=4e-5, duration=0.01)
+    assert r.normal_force.shape == (r.t.size, 2) and r.body_z.shape == (r.t.size, 1)
+    for i in range(2):
+        a = tw.analyse(r, wheel=i)
+        # the force statistics are relative to this wheel's static load
+        assert a.dynamic_factor == pytest.approx(a.max_contact_force
+                                                 / Vehicle.bogie().static_loads(G)[i], rel=1e-12)
+    with pytest.raises(ValueError, match="give wheel"):
+        tw.analyse(r)
+    fig = plots.dynamic(r)
+    labels = [ln.get_label() for ln in fig.axes[0].get_lines()]
+    assert labels == ["wheel 0", "wheel 1"]
+    assert cli.main(["run", "--speed-kmh", "100", "--vehicle", "bogie", "--x-end", "1.0"]) == 0
+    out = capsys.readouterr().out
+    assert "wheel 0 (x = 0 m)" in out and "wheel 1 (x = 2.5 m)" in out

@@ -90,16 +90,26 @@ class _ResultMethods:
         return 1 if self.x_wheel.ndim == 1 else self.x_wheel.shape[1]
 
     def wheel(self, i: int):
-        """Wheel ``i``'s view: the same Result with every per-wheel array reduced to that
-        wheel's (n_samples,) column (the one-wheel shape analyse, plots and sweep expect)."""
+        """Wheel ``i``'s view as a one-wheel run: every per-wheel array reduced to that wheel's
+        (n_samples,) column, ``scene`` the single-wheel scene of that wheel under its static
+        load of the vehicle's weight distribution (so :func:`trackwheel.analyse` measures its
+        quasi-static line and force statistics against that wheel alone under that load), and
+        ``settings.x_start`` that wheel's start."""
         n = self.n_wheels
-        if not (isinstance(i, int) and 0 <= i < n):
+        if not (isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 0 <= i < n):
             raise ValueError(f"wheel = {i!r} must be an integer in [0, {n - 1}]")
         if n == 1:
             return self
         cols = {name: getattr(self, name)[:, i]
                 for name, _u, _d, per_wheel, _t in OUTPUT_FIELDS if per_wheel}
-        return dataclasses.replace(self, **cols)
+        sc = self.scene
+        veh = sc.active_vehicle
+        w = veh.wheels[i]
+        load = veh.static_loads(sc.gravity)[i] - w.mass * sc.gravity
+        scene = dataclasses.replace(sc, vehicle=None, wheel=dataclasses.replace(w, load=load))
+        settings = dataclasses.replace(self.settings,
+                                       x_start=self.settings.x_start + veh.positions[i])
+        return dataclasses.replace(self, scene=scene, settings=settings, **cols)
 
     def __repr__(self) -> str:
         s = self.settings
