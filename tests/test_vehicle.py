@@ -342,3 +342,40 @@ def test_per_wheel_analysis_plot_and_cli(capsys):
     assert cli.main(["run", "--speed-kmh", "100", "--vehicle", "bogie", "--x-end", "1.0"]) == 0
     out = capsys.readouterr().out
     assert "wheel 0 (x = 0 m)" in out and "wheel 1 (x = 2.5 m)" in out
+
+
+def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_modes():
+    """trackwheel.eigen with the vehicle: on the rigid track (supports and contact 1e12 N/m)
+    the two lowest modes are the car body's bounce and pitch of the closed-form 2-DOF systems
+    (_car_modes), and the bogies' pitch sqrt(2 k_1 a^2 / J_b) appears twice (both bogies),
+    each within 0.5 %; these modes live in the bodies (kinetic-energy share > 0.99), the track
+    modes above 50 Hz in the track and wheels (< 0.01)."""
+    veh = _undamped(Vehicle.half_car())
+    scene = _rigid_scene(veh, 24.0)
+    r = tw.eigen(scene, [1.0], n_modes=8)
+    f = r.frequencies[0]
+    assert f[0] == pytest.approx(_car_modes(veh, pitch=False)[0], rel=5e-3)
+    assert f[1] == pytest.approx(_car_modes(veh, pitch=True)[0], rel=5e-3)
+    fp = rigid_track_frequencies(veh)["bogie0_pitch"]
+    assert np.sum(np.abs(f / fp - 1.0) < 5e-3) == 2
+    assert np.all(r.body_fraction[0][f < 20.0] > 0.99)
+    soft = tw.eigen(tw.Scene(rail=tw.Rail(length=24.0, n_elements=96), vehicle=veh), [1.0],
+                    n_modes=10)
+    track = soft.frequencies[0] > 50.0
+    assert track.any() and np.all(soft.body_fraction[0][track] < 0.01)
+
+
+def test_vehicle_adequacy_finds_the_car_body_irrelevant_for_the_wheel_force():
+    """The half car at 300 km/h on the linear track for 0.1 s: the car body (modes ~1 Hz,
+    secondary suspension 0.61 MN/m) is isolated from the wheel/rail force (50-1500 Hz), so
+    replacing it by constant pivot loads ('bogie') changes the worst wheel's amplitude and
+    peak force by far less than the 0.5 % tolerance (the body barely moves in 0.1 s: its
+    force change over the run, k_2 x its displacement, is ~1e-5 of the load), and the
+    recommended level is 'bogie' or less."""
+    from trackwheel.fidelity import vehicle_adequacy
+
+    scene = tw.Scene(rail=tw.Rail(length=24.0, n_elements=96), vehicle=Vehicle.half_car())
+    df = vehicle_adequacy(scene, [tw.kmh(300)], dt=5e-5, fidelity="linear/sprung")
+    bogie = df[df.vehicle == "bogie"].iloc[0]
+    assert bogie.d_amplitude < 1e-3 and bogie.d_peak_contact_force < 1e-3
+    assert df.attrs["recommended"] in ("bogie", "unsprung masses")
