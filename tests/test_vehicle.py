@@ -379,3 +379,23 @@ def test_vehicle_adequacy_finds_the_car_body_irrelevant_for_the_wheel_force():
     bogie = df[df.vehicle == "bogie"].iloc[0]
     assert bogie.d_amplitude < 1e-3 and bogie.d_peak_contact_force < 1e-3
     assert df.attrs["recommended"] in ("bogie", "unsprung masses")
+
+
+def test_sweep_has_one_row_per_wheel_and_marks_the_worst(tmp_path):
+    """A bogie swept over two speeds: long format, two rows per case with wheel = 0, 1, their
+    outputs those of analyse(r, wheel=i) (the same run, bit for bit), exactly one worst row per
+    case (the larger amplitude); the store reads back the same table."""
+    scene = tw.Scene(rail=tw.Rail(length=8.0, n_elements=32), vehicle=Vehicle.bogie())
+    speeds = [tw.kmh(100), tw.kmh(200)]
+    df = tw.sweep(scene, speeds, max_workers=1, progress=False, dt=5e-5, store=tmp_path)
+    assert list(df.wheel) == [0, 1, 0, 1]
+    assert df.groupby("speed").worst.sum().tolist() == [1, 1]
+    r = tw.simulate(scene, speeds[1], dt=5e-5)
+    for i in range(2):
+        row = df[(df.speed == speeds[1]) & (df.wheel == i)].iloc[0]
+        assert row.amplitude == tw.analyse(r, wheel=i).amplitude
+    worst = df[df.worst]
+    best = df[~df.worst]
+    assert np.all(worst.amplitude.to_numpy() >= best.amplitude.to_numpy())
+    back = tw.load_sweep(tmp_path)
+    assert back[["wheel", "worst", "amplitude"]].equals(df[["wheel", "worst", "amplitude"]])
