@@ -116,7 +116,7 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
       const int o = kBorderPerWheel * w;
       const WheelParams& p = sys_.model().wheels[w];
       dq = std::max({dq, std::abs(x2_(o + kY)), p.radius * std::abs(x2_(o + kTheta))});
-      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, p.total_load());
+      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, sys_.static_load(w));
     }
     const int ob = kBorderPerWheel * sys_.n_wheels();
     for (int k = 0; k < 2 * sys_.n_bodies(); k += 2)  // body pitch: as the 1 m-arm displacement

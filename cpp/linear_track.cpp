@@ -405,8 +405,7 @@ void LinearStepper::step(long n) {
       wh_[w].Ydd += xb_(2 * w);
       wh_[w].N += xb_(2 * w + 1);
       dq = std::max(dq, std::abs(xb_(2 * w)));
-      small_force &=
-          std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, model_.wheels[w].total_load());
+      small_force &= std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, static_load(w));
     }
     if (nb_ > 0) {
       zbdd_ += xb_.tail(2 * nb_);

@@ -22,6 +22,10 @@ System::System(const Model& model, const SimSettings& set)
   Db_.resize(m, m);
   J_.resize(nf_, kHalfBandwidth);
   lam_.resize(nw_);
+  const Eigen::VectorXd fv =
+      nb_ > 0 ? static_wheel_forces(vm_, Eigen::VectorXd::Zero(nw_)) : Eigen::VectorXd();
+  for (int w = 0; w < nw_; ++w)
+    static_load_.push_back(model.wheels[w].total_load() - (nb_ > 0 ? fv(w) : 0.0));
 }
 
 void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
@@ -150,9 +154,9 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     const int o = kBorderPerWheel * nw_;
     r2.segment(o, 2 * nb_) = fb.segment(o, 2 * nb_);
   }
-  if (!solver_.factorize_border(Mfac_, Bb_, Cb_, Db_))
+  if (!factorize_bordered(Mfac_, false))
     throw std::runtime_error("acceleration system is singular");
-  solver_.solve(r1, r2, x1_, acc.x);
+  solve(r1, r2, x1_, acc.x);
   acc.edd.setZero(rail().n_dof());
   rail().add_from_free(x1_, acc.edd);
 }
@@ -271,7 +275,37 @@ void System::add_out_of_round_block(const WheelEval& we, const int* g, int o, do
   add_entry(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
 }
 
-bool System::factorize_iteration_matrix() { return solver_.factorize(J_, Bb_, Cb_, Db_); }
+bool System::factorize_iteration_matrix() { return factorize_bordered(J_, true); }
+
+bool System::factorize_bordered(BandMatrix& A, bool factor_band) {
+  if (nb_ == 0)
+    return factor_band ? solver_.factorize(A, Bb_, Cb_, Db_)
+                       : solver_.factorize_border(A, Bb_, Cb_, Db_);
+  if (factor_band && !A.factorize()) return false;
+  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
+  body_lu_.compute(Db_.bottomRightCorner(mb, mb));
+  const double det = body_lu_.determinant();
+  if (!std::isfinite(det) || det == 0.0) return false;
+  Dwb_ = Db_.topRightCorner(mw, mb);
+  Dbw_ = Db_.bottomLeftCorner(mb, mw);
+  const Eigen::MatrixXd Dred = Db_.topLeftCorner(mw, mw) - Dwb_ * body_lu_.solve(Dbw_);
+  return solver_.factorize_border(A, Bb_.leftCols(mw), Cb_.topRows(mw), Dred);
+}
+
+void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                   Eigen::VectorXd& x2) const {
+  if (nb_ == 0) {
+    solver_.solve(r1, r2, x1, x2);
+    return;
+  }
+  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
+  r2b_ = r2.tail(mb);
+  r2w_ = r2.head(mw) - Dwb_ * body_lu_.solve(r2b_);
+  solver_.solve(r1, r2w_, x1, x2w_);
+  x2.resize(mw + mb);
+  x2.head(mw) = x2w_;
+  x2.tail(mb) = body_lu_.solve(r2b_ - Dbw_ * x2w_);
+}
 
 Eigen::MatrixXd System::iteration_matrix_dense() const {
   const int m = n_border();

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <vector>
 
 #include "banded.hpp"
@@ -57,6 +58,9 @@ class System {
   int n_wheels() const { return nw_; }
   int n_free() const { return nf_; }
   int n_bodies() const { return nb_; }
+  // Wheel w's static load [N]: F + M g, plus the vehicle's static force on it (the scale of
+  // its contact forces, e.g. for Newton's tolerance on lambda).
+  double static_load(int w) const { return static_load_[w]; }
   int n_border() const { return kBorderPerWheel * nw_ + 2 * nb_; }
   // The border index of vehicle coordinate i (vehicle.hpp: wheel heights, then bodies).
   int vehicle_index(int i) const {
@@ -96,9 +100,7 @@ class System {
   Eigen::MatrixXd iteration_matrix_dense() const;
 
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
-             Eigen::VectorXd& x2) const {
-    solver_.solve(r1, r2, x1, x2);
-  }
+             Eigen::VectorXd& x2) const;
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the
@@ -109,6 +111,11 @@ class System {
   // (diagonal) and, with cq and cv, the suspensions' cq K_v + cv C_v added to Db_.
   void add_vehicle_forces(const SimState& st, Eigen::VectorXd& fb) const;
   void add_vehicle_block(bool inertia_only, double cq, double cv);
+  // The bordered factorisation of [A B; C D] (A factorised here if factor_band). The vehicle's
+  // bodies touch no rail coordinate (their B columns and C rows are zero), so they are
+  // condensed out of the border exactly: D_ww - D_wb D_bb^-1 D_bw on the wheels' 3 n_w
+  // unknowns; the solve recovers them by back-substitution. Without bodies: the plain solver.
+  bool factorize_bordered(BandMatrix& A, bool factor_band);
   void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
                        double cv);
   void add_entry(int i, int j, double v);
@@ -119,11 +126,15 @@ class System {
   const SimSettings& set_;
   int nf_, nw_, nb_;
   VehicleMatrices vm_;
+  std::vector<double> static_load_;
   mutable Eigen::VectorXd u_, udot_, fu_;  // vehicle coordinates, rates, forces (buffers)
   BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
   Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
   BorderedSolver solver_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
+  Eigen::MatrixXd Dwb_, Dbw_;
+  mutable Eigen::VectorXd r2w_, x2w_, r2b_;
 };
 
 // Total mechanical energy [J]: kinetic + elastic + support springs + contact potentials

@@ -294,7 +294,8 @@ def test_far_apart_wheels_through_the_api_reproduce_single_wheel_runs():
     (lambda: CarBody(centre=1.0, mass=-5.0), "CarBody.mass"),
     (lambda: dc.replace(Vehicle.half_car(), car=CarBody(centre=30.0)), "between the bogie"),
     (lambda: dc.replace(Vehicle.half_car(), bogies=Vehicle.half_car().bogies[:1]), "two bogies"),
-    (lambda: tw.Scene(wheel=tw.Wheel(mass=20.0), vehicle=Vehicle.bogie()), "Scene.wheel"),
+    (lambda: tw.Scene(vehicle=Vehicle(wheels=(tw.Wheel(), tw.Wheel(radius=0.2)),
+                                      positions=(0.0, 1.0))), "radius or elastic"),
     (lambda: tw.simulate(tw.Scene(vehicle=Vehicle.half_car()), 10.0), "longer than the rail"),
 ])
 def test_bad_vehicles_raise_errors_naming_the_parameter(make, match):

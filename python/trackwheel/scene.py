@@ -203,11 +203,12 @@ class Scene:
 
     ``vehicle=None`` (the default) is the single wheel ``Scene.wheel`` under its constant load,
     the paper's model. With a :class:`~trackwheel.Vehicle` the wheels, their places and their
-    loads come from the vehicle, and ``Scene.wheel`` is derived from it: the vehicle's first
-    wheel carrying the mean static wheel load (it sets the contact stiffness and the default
-    mesh and step); give the wheels in the Vehicle, not in ``wheel`` (a different ``wheel``
-    raises). All wheels of a vehicle share one contact law, so they need the same radius and
-    elastic constants.
+    loads come from the vehicle, and ``Scene.wheel`` is derived from it, whatever was given:
+    the vehicle's first wheel carrying the mean static wheel load (it sets the contact
+    stiffness and the default mesh and step). Give the wheels in the Vehicle; so
+    ``dataclasses.replace(scene, vehicle=other)`` works, and ``vehicle=None`` turns the scene
+    back into the single (derived) wheel. All wheels of a vehicle share one contact law, so they
+    need the same radius and elastic constants.
     """
 
     rail: Rail = field(default_factory=Rail)
@@ -258,9 +259,6 @@ class Scene:
                                  "constants; the wheels share one contact law")
         loads = veh.static_loads(self.gravity)
         derived = replace(w0, load=max(sum(loads) / len(loads) - w0.mass * self.gravity, 0.0))
-        if self.wheel not in (Wheel(), derived):
-            raise ValueError("Scene.wheel must be left at its default with a Scene.vehicle: "
-                             "give the wheels in the Vehicle")
         object.__setattr__(self, "wheel", derived)
 
     @property
