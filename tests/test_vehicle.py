@@ -419,3 +419,20 @@ def test_total_energy_of_a_standing_bogie_is_conserved(integrator, dt, bound):
     drop = veh.static_loads(G)[0] * 2e-5
     assert np.ptp(r.energy) < bound * drop
     assert np.ptp(r.body_z) > 1e-6
+
+
+def test_vehicle_static_holds_the_lever_rule_loads_and_matches_the_run_start():
+    """statics.vehicle_static: the contact forces are the lever-rule loads (Newton tolerance:
+    1e-6 relative), and simulate's static start is the same state (the bodies' z and phi equal
+    to round-off)."""
+    from trackwheel.statics import vehicle_static
+
+    veh = Vehicle.half_car()
+    scene = tw.Scene(rail=tw.Rail(length=24.0, n_elements=96), vehicle=veh)
+    st = vehicle_static(scene, 1.0)
+    np.testing.assert_allclose(st.normal_force, veh.static_loads(G), rtol=1e-6)
+    r = tw.simulate(scene, tw.kmh(100), x_start=1.0, dt=1e-4, duration=1e-3)
+    np.testing.assert_allclose(r.body_z[0], st.bodies[:, 0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.body_phi[0], st.bodies[:, 1], rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match="x_ref"):
+        vehicle_static(scene, 10.0)
