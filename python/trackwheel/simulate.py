@@ -212,7 +212,11 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     x_start, x_end : wheel-centre start and end [m]; default the middle of the first support bay
         and the middle of the last (``trackwheel.defaults.default_start`` / ``default_end``:
         0.25 m and 4.75 m for the paper's scene). With ``speed = 0``
-        give ``duration`` instead of ``x_end``.
+        give ``duration`` instead of ``x_end``. With a ``scene.vehicle`` they place the
+        vehicle's reference point (x = 0 of ``Vehicle.positions``; every wheel must stay on the
+        rail): by default its rear wheel starts in the middle of the first support bay and its
+        leading wheel ends in the middle of the last. Its start ("static") is the whole
+        vehicle's static state (docs: Model § The vehicle).
     duration : simulated time [s] (overrides ``x_end``).
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
         beyond.
