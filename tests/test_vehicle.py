@@ -298,6 +298,8 @@ def test_far_apart_wheels_through_the_api_reproduce_single_wheel_runs():
     (lambda: tw.Scene(vehicle=Vehicle(wheels=(tw.Wheel(), tw.Wheel(radius=0.2)),
                                       positions=(0.0, 1.0))), "radius or elastic"),
     (lambda: tw.simulate(tw.Scene(vehicle=Vehicle.half_car()), 10.0), "longer than the rail"),
+    (lambda: tw.simulate(tw.Scene(vehicle=Vehicle.bogie()), 10.0,
+                         fidelity="linear/moving_force"), "no wheel dynamics"),
 ])
 def test_bad_vehicles_raise_errors_naming_the_parameter(make, match):
     with pytest.raises(ValueError, match=match):

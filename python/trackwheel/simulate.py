@@ -390,6 +390,11 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     if not isinstance(rolling, bool):
         raise TypeError("rolling must be True or False")
     fidelity, n_modes = _check_fidelity(fidelity, integrator, n_modes, ne)
+    if fidelity == "linear/moving_force" and scene.active_vehicle.n_bodies:
+        raise ValueError("fidelity = 'linear/moving_force' has no wheel dynamics, so no "
+                         "suspension; a vehicle with bogies or a car body needs one of "
+                         "'linear/moving_mass', 'linear/sprung', 'linear/hertz', 'ancf/...', "
+                         "'full'")
     linear = fidelity.startswith("linear/")
     energy = v.boolean("energy", energy)
     warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
