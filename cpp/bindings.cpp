@@ -17,8 +17,10 @@
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "eigen_analysis.hpp"
+#include "frequency.hpp"
 #include "generalized_alpha.hpp"
 #include "limits.hpp"
+#include "linear_beam.hpp"
 #include "linear_track.hpp"
 #include "model.hpp"
 #include "output.hpp"
@@ -41,6 +43,8 @@ py::dict static_to_dict(const StaticResult& r) {
   d["normal_force"] = r.normal_force;
   d["horizontal_reaction"] = r.horizontal_reaction;
   d["iterations"] = r.iterations;
+  d["sleeper_z"] = r.z;
+  d["ballast_force"] = r.ballast_force;
   return d;
 }
 
@@ -214,7 +218,10 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)
       .def_readwrite("stiffness", &SupportParams::stiffness)
-      .def_readwrite("damping", &SupportParams::damping);
+      .def_readwrite("damping", &SupportParams::damping)
+      .def_readwrite("sleeper_mass", &SupportParams::sleeper_mass)
+      .def_readwrite("ballast_stiffness", &SupportParams::ballast_stiffness)
+      .def_readwrite("ballast_damping", &SupportParams::ballast_damping);
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
       .def(py::init<>())
@@ -368,6 +375,17 @@ PYBIND11_MODULE(_core, m) {
     py::gil_scoped_release nogil;
     return solve_rail_static(rail);
   });
+  m.def(
+      "track_static",
+      [](const RailModel& rail) {
+        StaticResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = solve_track_static(rail);
+        }
+        return static_to_dict(r);
+      },
+      "Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}");
   m.def("quasi_static", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
                            const std::vector<double>& x) {
     std::vector<StaticResult> rs;
@@ -390,6 +408,11 @@ PYBIND11_MODULE(_core, m) {
     d["normal_force"] = N;
     return d;
   });
+  m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("beam"),
+        py::arg("load"), py::arg("x"), py::arg("n_modes") = 0,
+        py::call_guard<py::gil_scoped_release>(),
+        "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
+        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.");
   m.def(
       "vertical_modes",
       [](const RailModel& rail, double M, double k, const std::vector<double>& x, int n_modes) {
@@ -400,10 +423,59 @@ PYBIND11_MODULE(_core, m) {
         }
         return modal_to_tuple(r);
       },
-      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))");
+      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, "
+      "n_modes))");
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
+
+  // ---------------------------------------------------------------- linear beam, frequency domain
+  py::class_<BeamParams>(m, "BeamParams")
+      .def(py::init<>())
+      .def_readwrite("shear_stiffness", &BeamParams::shear_stiffness,
+                     "kappa G A [N]; 0: Euler-Bernoulli")
+      .def_readwrite("rotary_inertia", &BeamParams::rotary_inertia, "rho I [kg m]");
+  m.def("timoshenko_stiffness", &timoshenko_stiffness, py::arg("EI"), py::arg("kGA"), py::arg("l"),
+        "Exact IIE Timoshenko element stiffness (4x4) over [w1, psi1, w2, psi2]");
+  m.def("timoshenko_mass", &timoshenko_mass, py::arg("rhoA"), py::arg("rhoI"), py::arg("EI"),
+        py::arg("kGA"), py::arg("l"), "Consistent IIE element mass (4x4) with rotary inertia");
+  m.def("timoshenko_energy", &timoshenko_energy, py::arg("EI"), py::arg("kGA"), py::arg("l"),
+        py::arg("q"), "IIE element strain energy [J]");
+  m.def(
+      "timoshenko_shapes",
+      [](double xi, double l, double phi) {
+        const BeamShapes s = timoshenko_shapes(xi, l, phi);
+        Eigen::Matrix<double, 5, 4> out;
+        for (int a = 0; a < 4; ++a) out.col(a) << s.w[a], s.ws[a], s.wss[a], s.psi[a], s.psis[a];
+        return out;
+      },
+      py::arg("xi"), py::arg("l"), py::arg("phi"),
+      "IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]");
+  m.def(
+      "receptance",
+      [](const RailModel& rail, const BeamParams& beam, double x, const std::vector<double>& xr,
+         const std::vector<double>& freqs) {
+        py::gil_scoped_release nogil;
+        return receptance(rail, beam, x, xr, freqs);
+      },
+      py::arg("rail"), py::arg("beam"), py::arg("x"), py::arg("x_response"), py::arg("freqs"),
+      "Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x");
+  m.def(
+      "track_modes",
+      [](const RailModel& rail, const BeamParams& beam, double M, double k,
+         const std::vector<double>& x, int n_modes) {
+        std::vector<Eigen::MatrixXd> shapes;
+        Eigen::MatrixXd f;
+        {
+          py::gil_scoped_release nogil;
+          f = track_modes(rail, beam, M, k, x, n_modes, &shapes);
+        }
+        return py::make_tuple(f, shapes);
+      },
+      py::arg("rail"), py::arg("beam"), py::arg("wheel_mass"), py::arg("contact_stiffness"),
+      py::arg("positions"), py::arg("n_modes"),
+      "Linear-track modes: (frequencies (n_pos, n_modes) [Hz], shapes per position (ny + 1, "
+      "n_modes) over the y coordinates then the wheel)");
 
   // ---------------------------------------------------------------- dynamics
   py::enum_<Integrator>(m, "Integrator")
@@ -445,7 +517,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("wheels", &SimState::wheels,
                      "one WheelState per wheel (a copy: assign the whole list)")
       .def_readwrite("body", &SimState::body, "(2 n_bodies,) [z, phi] per vehicle body")
-      .def_readwrite("bodydot", &SimState::bodydot, "(2 n_bodies,) rates");
+      .def_readwrite("bodydot", &SimState::bodydot, "(2 n_bodies,) rates")
+      .def_readwrite("z", &SimState::z,
+                     "sleeper heights (n_sleepers,) [m]; empty: at rest under the initial rail")
+      .def_readwrite("zdot", &SimState::zdot, "sleeper velocities (n_sleepers,) [m/s]");
 
   // trackwheel.DivergenceError(message, time=, step=, cause=) for the kernel's DivergenceError
   py::register_exception_translator([](std::exception_ptr p) {
@@ -527,7 +602,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("wheel_model", &LinearOptions::wheel_model)
       .def_readwrite("n_modes", &LinearOptions::n_modes)
       .def_readwrite("sudden", &LinearOptions::sudden)
-      .def_readwrite("drop_height", &LinearOptions::drop_height);
+      .def_readwrite("drop_height", &LinearOptions::drop_height)
+      .def_readwrite("beam", &LinearOptions::beam);
   m.def(
       "simulate_linear",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
@@ -546,7 +622,7 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
       py::arg("options"), py::arg("progress") = py::none(), py::arg("vehicle") = VehicleParams(),
-      "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
+      "Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)");
 
   // ---------------------------------------------------------------- test hooks
   m.def(
@@ -564,6 +640,10 @@ PYBIND11_MODULE(_core, m) {
           throw std::invalid_argument("initial needs (z, phi) per vehicle body");
         System sys(model, s);
         SimState st = init;
+        if (!sys.sleepers().empty() && st.z.size() == 0) {  // at rest under the given rail
+          st.z = sys.sleepers().static_z(st.e);
+          st.zdot = Eigen::VectorXd::Zero(st.z.size());
+        }
         Eval ev;
         Accel acc;
         sys.evaluate(0.0, st, true, ev);
@@ -572,35 +652,39 @@ PYBIND11_MODULE(_core, m) {
         SimOutput out;
         const Divergence div(s, [] { return std::string("probe"); });
         GeneralizedAlpha ga(sys, st, ev, acc, out, div);
-        const int nf = sys.n_free(), m = sys.n_border();
-        Eigen::VectorXd start(nf + m);
-        start << rail.to_free(acc.edd), acc.x;
+        const int nf = sys.n_free(), m = sys.n_border(), ns = sys.sleepers().size();
+        Eigen::VectorXd start(nf + m + ns);
+        start << rail.to_free(acc.edd), acc.x, acc.zdd;
         Accel it = acc;
         if (x) {
-          if (x->size() != nf + m)
-            throw std::invalid_argument("x must have n_free + 3 n_wheels + 2 n_bodies = " +
-                                        std::to_string(nf + m) + " entries");
+          if (x->size() != nf + m + ns)
+            throw std::invalid_argument(
+                "x must have n_free + 3 n_wheels + 2 n_bodies + n_sleepers = " +
+                std::to_string(nf + m + ns) + " entries");
           it.edd = Eigen::VectorXd::Zero(rail.n_dof());
           rail.add_from_free(x->head(nf), it.edd);
-          it.x = x->tail(m);
+          it.x = x->segment(nf, m);
+          it.zdd = x->tail(ns);
         }
-        Eigen::VectorXd minus_r;
+        Eigen::VectorXd minus_r, dx;
         Eigen::MatrixXd J;
-        ga.probe(t1, it, minus_r, J);
+        ga.probe(t1, it, minus_r, J, dx);
         py::dict d;
         d["start"] = start;
         d["residual"] = minus_r;
         d["matrix"] = J;
+        d["solution"] = dx;
         return d;
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
       py::arg("initial"), py::arg("t1"), py::arg("x") = py::none(),
       py::arg("vehicle") = VehicleParams(),
       "Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] "
-      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body] "
-      "(None: the start "
-      "accelerations). Returns {'start': the start accelerations in that layout, 'residual': "
-      "-r, 'matrix': the iteration matrix dr/dx (assembled, dense)}");
+      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, "
+      "z'' per sleeper] (None: the start accelerations). Returns {'start': the start "
+      "accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx "
+      "(assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction "
+      "(the sleepers condensed)}");
   m.def(
       "band_solve",
       [](const Eigen::MatrixXd& A, int half_bandwidth, const Eigen::VectorXd& r) {

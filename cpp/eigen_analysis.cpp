@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sleepers.hpp"
+
 namespace trackwheel {
 
 namespace {
@@ -14,6 +16,24 @@ std::vector<int> direction_dofs(const RailModel& rail, int component) {
   for (int i = 0; i < rail.n_dof(); ++i)
     if (rail.full_to_free()[i] >= 0 && (i % 2) == component) idx.push_back(i);
   return idx;
+}
+
+// The sleepers' rows and columns from index z0 on: RailModel's tangent already holds the pads as
+// springs to the ground, k_p s_j s_j^T; the pad's other end is z_j.
+void add_sleepers(const RailModel& rail, const std::vector<int>& local, int z0, Eigen::MatrixXd& K,
+                  Eigen::MatrixXd& M) {
+  const Sleepers sl(rail);
+  for (int j = 0; j < sl.size(); ++j) {
+    const int z = z0 + j;
+    M(z, z) = sl.mass(j);
+    K(z, z) = sl.pad_stiffness(j) + sl.ballast_stiffness(j);
+    for (int a = 0; a < 4; ++a) {
+      const int i = local[sl.index(j, a)];
+      if (i < 0) continue;
+      K(i, z) -= sl.pad_stiffness(j) * sl.weight(j, a);
+      K(z, i) -= sl.pad_stiffness(j) * sl.weight(j, a);
+    }
+  }
 }
 
 void solve_pencil(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int n_modes,
@@ -34,7 +54,8 @@ ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double cont
   const std::vector<int> ydofs = direction_dofs(rail, 1);
   const int ny = static_cast<int>(ydofs.size());
   const bool with_wheel = wheel_mass > 0.0;
-  const int n = ny + (with_wheel ? 1 : 0);
+  const int ns = Sleepers(rail).size(), z0 = ny + (with_wheel ? 1 : 0);
+  const int n = z0 + ns;
   if (n_modes < 1 || n_modes > n)
     throw std::invalid_argument("n_modes must be in [1, " + std::to_string(n) + "]");
   const Eigen::MatrixXd Kfull = rail.tangent_dense(rail.reference());
@@ -47,6 +68,7 @@ ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double cont
     }
   std::vector<int> local(rail.n_dof(), -1);
   for (int a = 0; a < ny; ++a) local[ydofs[a]] = a;
+  add_sleepers(rail, local, z0, K0, M0);
 
   ModalResult out;
   const int npos = with_wheel ? static_cast<int>(positions.size()) : 1;
@@ -69,9 +91,10 @@ ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double cont
     Eigen::MatrixXd V;
     solve_pencil(K, M, n_modes, f, V);
     out.frequencies.row(p) = f.transpose();
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(rail.n_dof() + 1, n_modes);
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(rail.n_dof() + 1 + ns, n_modes);
     for (int a = 0; a < ny; ++a) S.row(ydofs[a]) = V.row(a);
     if (with_wheel) S.row(rail.n_dof()) = V.row(ny);
+    for (int j = 0; j < ns; ++j) S.row(rail.n_dof() + 1 + j) = V.row(z0 + j);
     out.shapes.push_back(S);
   }
   return out;

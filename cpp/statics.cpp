@@ -4,12 +4,15 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sleepers.hpp"
+
 namespace trackwheel {
 
 namespace {
 
 // Newton over the free rail coordinates and the heights Y_A of the given wheels (none: the rail
-// alone), each wheel w held at X_A = xs[w] under its load P_w = F_w + M_w g.
+// alone), each wheel w held at X_A = xs[w] under its load P_w = F_w + M_w g; sleepers (layered
+// supports) are condensed into the rail's band (sleepers.hpp, at rest: (cm, cv, cq) = (0, 0, 1)).
 std::vector<StaticResult> newton_static(const RailModel& rail,
                                         const std::vector<const WheelParams*>& wheels,
                                         const std::vector<ContactParams>& contacts,
@@ -26,11 +29,21 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
   std::vector<double> s_guess = xs;
   std::vector<StaticResult> res(std::max(m, 1));
   const double scale_e = rail.params().length;
+  Sleepers sl(rail);
+  sl.set_coefficients(0.0, 0.0, 1.0);
+  std::vector<int> identity(rail.n_dof());
+  for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+  Eigen::VectorXd z = sl.static_z(e), rs, dz;
   for (int it = 0; it < 60; ++it) {
     rail.internal_force(e, nullptr, Q);
     Eigen::VectorXd R = Q - Qg;  // full residual of the rail
     K.set_zero();
     rail.add_tangent(e, 1.0, K);
+    if (!sl.empty()) {
+      sl.add_rail_force(z, nullptr, identity, R);
+      sl.condense_matrix(f2f, K);
+      sl.forces(e, nullptr, identity, z, nullptr, rs);
+    }
     B.setZero();
     C.setZero();
     D.setZero();
@@ -63,6 +76,7 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
       res[w].horizontal_reaction = -cf.F(0);
     }
     for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
+    if (!sl.empty()) sl.condense_rhs(rs, f2f, r1);
     if (!r1.allFinite() || !r2.allFinite())
       throw std::runtime_error("static solve: non-finite residual");
     if (!solver.factorize(K, B, C, D))
@@ -70,13 +84,23 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
     solver.solve(r1, r2, dx1, dx2);
     rail.add_from_free(dx1, e);
     double step = dx1.lpNorm<Eigen::Infinity>();
+    if (!sl.empty()) {
+      sl.back_substitute(rs, dx1, f2f, dz);
+      z += dz;
+      step = std::max(step, dz.lpNorm<Eigen::Infinity>());
+    }
     for (int w = 0; w < m; ++w) {
       ys[w] += dx2(w);
       step = std::max(step, std::abs(dx2(w)));
     }
     for (StaticResult& r : res) r.iterations = it + 1;
     if (step <= 1e-13 * scale_e) {
-      for (int w = 0; w < std::max(m, 1); ++w) res[w].e = e;
+      const Eigen::VectorXd ballast = sl.ballast_force(z);
+      for (int w = 0; w < std::max(m, 1); ++w) {
+        res[w].e = e;
+        res[w].z = z;
+        res[w].ballast_force = ballast;
+      }
       for (int w = 0; w < m; ++w) {
         const ContactParams& cw = contacts[w];
         res[w].x_wheel = xs[w];
@@ -148,8 +172,10 @@ std::vector<StaticResult> solve_static_wheels(const RailModel& rail,
   return newton_static(rail, ptrs, contacts, x_wheels, e, ys);
 }
 
-Eigen::VectorXd solve_rail_static(const RailModel& rail) {
-  return newton_static(rail, {}, {}, {}, rail.reference(), {})[0].e;
+Eigen::VectorXd solve_rail_static(const RailModel& rail) { return solve_track_static(rail).e; }
+
+StaticResult solve_track_static(const RailModel& rail) {
+  return newton_static(rail, {}, {}, {}, rail.reference(), {})[0];
 }
 
 std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,

@@ -24,6 +24,8 @@ struct StaticResult {
   double normal_force = 0.0;         // N [N]
   double horizontal_reaction = 0.0;  // force holding X_A [N]
   int iterations = 0;
+  Eigen::VectorXd z;              // sleeper heights z_j [m] (layered supports; else empty)
+  Eigen::VectorXd ballast_force;  // -k_b z_j, the ballast's compression under sleeper j [N]
 };
 
 // e_guess may be empty (starts from the straight rail).
@@ -40,6 +42,8 @@ std::vector<StaticResult> solve_static_wheels(const RailModel& rail,
                                               const std::vector<double>& x_wheels);
 // Static equilibrium of the rail alone under gravity (no wheel).
 Eigen::VectorXd solve_rail_static(const RailModel& rail);
+// The same with the sleepers' heights and ballast forces.
+StaticResult solve_track_static(const RailModel& rail);
 
 // y_qs(X) at each position, warm-starting each solve from the previous one.
 std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,

@@ -13,7 +13,10 @@ System::System(const Model& model, const SimSettings& set)
       nf_(model.rail.n_free()),
       nw_(model.n_wheels()),
       nb_(model.n_bodies()),
-      vm_(vehicle_matrices(model.vehicle, model.n_wheels())) {
+      vm_(vehicle_matrices(model.vehicle, model.n_wheels())),
+      sl_(model.rail),
+      identity_(model.rail.n_dof()) {
+  for (int i = 0; i < model.rail.n_dof(); ++i) identity_[i] = i;
   Mfac_ = model.rail.mass();
   if (!Mfac_.factorize()) throw std::runtime_error("rail mass matrix is singular");
   const int m = n_border();
@@ -37,6 +40,7 @@ void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
   }
   contact_terms(st, jac, ev);
   rail().internal_force(st.e, &st.edot, ev.Qint);
+  if (!sl_.empty()) sl_.add_rail_force(st.z, &st.zdot, identity_, ev.Qint);
 }
 
 void System::contact_terms(const SimState& st, bool jac, Eval& ev) const {
@@ -156,9 +160,12 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
   }
   if (!factorize_bordered(Mfac_, false))
     throw std::runtime_error("acceleration system is singular");
-  solve(r1, r2, x1_, acc.x);
+  solve_bordered(r1, r2, x1_, acc.x);
   acc.edd.setZero(rail().n_dof());
   rail().add_from_free(x1_, acc.edd);
+  // the sleepers carry no mass coupling: z'' = F / m_s
+  sl_.forces(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd);
+  for (int j = 0; j < sl_.size(); ++j) acc.zdd(j) /= sl_.mass(j);
 }
 
 void System::residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
@@ -178,6 +185,23 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
   }
   const int o = kBorderPerWheel * nw_;
   for (int k = 0; k < 2 * nb_; ++k) r2(o + k) = -(vm_.mass(nw_ + k) * acc.x(o + k) - fb_(o + k));
+  sl_.forces(st.e, &st.edot, identity_, st.z, &st.zdot, rs_);
+  for (int j = 0; j < sl_.size(); ++j) rs_(j) -= sl_.mass(j) * acc.zdd(j);
+}
+
+void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                   Eigen::VectorXd& x2, Eigen::VectorXd& dz) {
+  // The sleepers touch only the rail band and the bodies only the border, so the two
+  // condensations are independent: sleepers out of the right-hand side here, bodies inside.
+  if (sl_.empty()) {
+    solve_bordered(r1, r2, x1, x2);
+    dz.resize(0);
+    return;
+  }
+  r1c_ = r1;
+  sl_.condense_rhs(rs_, rail().full_to_free(), r1c_);
+  solve_bordered(r1c_, r2, x1, x2);
+  sl_.back_substitute(rs_, x1, rail().full_to_free(), dz);
 }
 
 void System::add_entry(int i, int j, double v) {
@@ -198,6 +222,8 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Jrail_.resize(nf_, kHalfBandwidth);
     Jrail_.set_linear_combination(1.0, rail().mass(), cv, rail().support_damping());
     rail().add_tangent(st.e, cq, Jrail_);
+    sl_.set_coefficients(1.0, cv, cq);
+    sl_.condense_matrix(rail().full_to_free(), Jrail_);
   }
   J_ = Jrail_;
   Bb_.setZero();
@@ -292,8 +318,8 @@ bool System::factorize_bordered(BandMatrix& A, bool factor_band) {
   return solver_.factorize_border(A, Bb_.leftCols(mw), Cb_.topRows(mw), Dred);
 }
 
-void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
-                   Eigen::VectorXd& x2) const {
+void System::solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
+                            Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
   if (nb_ == 0) {
     solver_.solve(r1, r2, x1, x2);
     return;
@@ -308,9 +334,24 @@ void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::
 }
 
 Eigen::MatrixXd System::iteration_matrix_dense() const {
-  const int m = n_border();
-  Eigen::MatrixXd A(nf_ + m, nf_ + m);
-  A << J_.dense(), Bb_, Cb_, Db_;
+  const int m = n_border(), ns = sl_.size();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nf_ + m + ns, nf_ + m + ns);
+  Eigen::MatrixXd Jr = J_.dense();
+  if (ns == 0) {
+    A << Jr, Bb_, Cb_, Db_;
+    return A;
+  }
+  sl_.uncondense_dense(rail().full_to_free(), Jr);
+  Eigen::MatrixXd Bs;
+  Eigen::VectorXd Ds;
+  sl_.coupling_blocks(rail().full_to_free(), nf_, Bs, Ds);
+  A.topLeftCorner(nf_, nf_) = Jr;
+  A.block(0, nf_, nf_, m) = Bb_;
+  A.block(nf_, 0, m, nf_) = Cb_;
+  A.block(nf_, nf_, m, m) = Db_;
+  A.block(0, nf_ + m, nf_, ns) = Bs;
+  A.block(nf_ + m, 0, ns, nf_) = Bs.transpose();
+  A.bottomRightCorner(ns, ns) = Ds.asDiagonal();
   return A;
 }
 
@@ -342,6 +383,12 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev) {
     E += 0.5 * p.inertia * s.thetadot * s.thetadot;
   }
   E += U;
+  const Sleepers sl(rail);
+  if (!sl.empty()) {
+    std::vector<int> identity(rail.n_dof());
+    for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+    E += sl.energy(st.e, identity, st.z, st.zdot);
+  }
   for (int w = 0; w < model.n_wheels(); ++w)
     E += contact_potential(model.contact.law, model.contact.stiffness,
                            std::max(ev.w[w].cf.delta, 0.0));
@@ -363,11 +410,13 @@ double vibration_energy(const Model& model, const SimState& st) {
     E += 0.5 * model.wheels[w].mass * st.wheels[w].ydot * st.wheels[w].ydot;
   for (int b = 0; b < model.n_bodies(); ++b)
     E += 0.5 * model.vehicle.bodies[b].mass * st.bodydot(2 * b) * st.bodydot(2 * b);
+  if (st.zdot.size() > 0) E += Sleepers(model.rail).kinetic_energy(st.zdot);
   return E;
 }
 
 bool finite_state(const SimState& st) {
-  if (!st.e.allFinite() || !st.edot.allFinite()) return false;
+  if (!st.e.allFinite() || !st.edot.allFinite() || !st.z.allFinite() || !st.zdot.allFinite())
+    return false;
   if (!st.body.allFinite() || !st.bodydot.allFinite()) return false;
   for (const WheelState& w : st.wheels)
     if (!std::isfinite(w.y) || !std::isfinite(w.ydot) || !std::isfinite(w.theta) ||

@@ -4,7 +4,8 @@
 //
 // Unknowns: the free rail coordinates (band, half bandwidth 7) and, per wheel w, a 3-wide
 // border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}, then per vehicle
-// body b [z_b'', phi_b''] at 3 n_w + 2 b + {0, 1} (vehicle.hpp). Equations:
+// body b [z_b'', phi_b''] at 3 n_w + 2 b + {0, 1} (vehicle.hpp); with layered supports the
+// sleepers' z'' too, condensed exactly into the band (sleepers.hpp). Equations:
 //   rail    M e''   = Q_g - Q_kl - Q_kt - Q_s + sum_w (Q_contact,w + lambda_w b_rail,w)
 //   wheel w M Y_A'' = -(F + M g) + N n_y + lambda t_y,   J th'' = T - rho lambda
 //   lambda_w: rolling constraint g_w = 0 (stick), sigma mu N (slide) or 0 (no contact),
@@ -20,6 +21,7 @@
 #include "contact.hpp"
 #include "model.hpp"
 #include "rolling.hpp"
+#include "sleepers.hpp"
 #include "state.hpp"
 
 namespace trackwheel {
@@ -46,6 +48,7 @@ struct Eval {
 struct Accel {
   Eigen::VectorXd edd;
   Eigen::VectorXd x;
+  Eigen::VectorXd zdd;  // sleepers (layered supports; else empty)
 };
 
 class System {
@@ -85,7 +88,7 @@ class System {
   void accelerations(const SimState& st, const Eval& ev, Accel& acc);
 
   // Generalized-alpha residual (right-hand side -r of J dx = -r) at an iterate; cv = gamma' h
-  // scales the velocity-level constraint rows.
+  // scales the velocity-level constraint rows. The sleepers' part is kept for solve().
   void residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
                 Eigen::VectorXd& r1, Eigen::VectorXd& r2);
 
@@ -96,11 +99,16 @@ class System {
   void assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
                                  double cv, bool refresh_rail);
   bool factorize_iteration_matrix();
-  // The assembled (unfactorised) matrix as a dense (n_free + n_border) square (tests).
+  // The assembled (unfactorised) matrix as a dense (n_free + n_border + n_sleepers) square,
+  // the sleepers' block uncondensed (tests).
   Eigen::MatrixXd iteration_matrix_dense() const;
+  // The sleepers' negated residual of the last residual() call (tests).
+  const Eigen::VectorXd& sleeper_residual() const { return rs_; }
 
+  // Newton correction from the last residual(): rail, border and (layered) sleepers dz.
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
-             Eigen::VectorXd& x2) const;
+             Eigen::VectorXd& x2, Eigen::VectorXd& dz);
+  const Sleepers& sleepers() const { return sl_; }
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the
@@ -116,6 +124,9 @@ class System {
   // condensed out of the border exactly: D_ww - D_wb D_bb^-1 D_bw on the wheels' 3 n_w
   // unknowns; the solve recovers them by back-substitution. Without bodies: the plain solver.
   bool factorize_bordered(BandMatrix& A, bool factor_band);
+  // Solve with the factorisation of factorize_bordered (bodies back-substituted).
+  void solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                      Eigen::VectorXd& x2) const;
   void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
                        double cv);
   void add_entry(int i, int j, double v);
@@ -135,6 +146,9 @@ class System {
   Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
   Eigen::MatrixXd Dwb_, Dbw_;
   mutable Eigen::VectorXd r2w_, x2w_, r2b_;
+  Sleepers sl_;
+  std::vector<int> identity_;  // full index -> itself
+  Eigen::VectorXd rs_, r1c_;
 };
 
 // Total mechanical energy [J]: kinetic + elastic + support springs + contact potentials

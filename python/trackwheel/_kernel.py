@@ -43,7 +43,30 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     s.position = list(pos)
     s.stiffness = [scene.supports.stiffness] * len(pos)
     s.damping = [scene.supports.damping] * len(pos)
+    if scene.supports.layered:
+        s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
+        s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
+        s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
     return _core.RailModel(p, s, profile(scene))
+
+
+def beam_params(scene: Scene) -> _core.BeamParams:
+    """The linear track's beam theory: Euler-Bernoulli (shear stiffness 0) or Timoshenko."""
+    b = _core.BeamParams()
+    if scene.rail.beam == "timoshenko":
+        b.shear_stiffness = scene.rail.shear_stiffness
+        b.rotary_inertia = scene.rail.rotary_inertia
+    return b
+
+
+def require_euler(scene: Scene, what: str) -> None:
+    """Raise ValueError if the scene asks for a Timoshenko rail where the nonlinear ANCF rail
+    (Euler-Bernoulli) runs."""
+    if scene.rail.beam != "euler":
+        raise ValueError(
+            f"Rail.beam='{scene.rail.beam}' is supported by the linear levels, receptance and "
+            f"eigen of the linear track; the full ANCF model ({what}) is Euler-Bernoulli: use "
+            "Rail.beam='euler' or a 'linear/...' fidelity level")
 
 
 def profile(scene: Scene) -> _core.Profile:

@@ -181,6 +181,18 @@ def _excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None
                    help="average the profile over the Hertz contact patch")
 
 
+#: --track: the scene presets by name
+_TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
+
+
+def _track_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--track", choices=tuple(_TRACKS), default="kato2005",
+                   help="the scene: kato2005 (the paper's 5 m rail on single springs, default) "
+                        "or ballasted (Scene.ballasted_track(): 30 m of UIC60 on rail pads, "
+                        "sleepers and ballast, a high-speed wheel; "
+                        "docs: Model § Layered supports)")
+
+
 def _simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
     """Options passed to trackwheel.simulate (left out: simulate's defaults); ``auto`` offers
     ``--fidelity auto`` (sweep only: the cheapest level adequate on the sweep's hardest case)."""
@@ -248,11 +260,13 @@ def _add_run(sub) -> None:
     p.add_argument("--speed-kmh", type=_finite_float, required=True, metavar="V",
                    help=f"forward speed [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, metavar="K",
-                   help="support stiffness k_s [N/m] (default 140e6)")
+                   help="support stiffness k_s [N/m] (default 140e6; with --track ballasted "
+                        "the rail pad's, default 180e6)")
+    _track_option(p)
     p.add_argument("--vehicle", choices=VEHICLES, default="single",
                    help="single: the paper's wheel under its constant load; bogie: "
-                        "Vehicle.bogie() on the paper's rail; half-car: Vehicle.half_car() on "
-                        "the paper's track lengthened to 25 m (docs: Model § The vehicle)")
+                        "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
+                        "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
     _excitation_options(p)
     _simulate_options(p)
     p.add_argument("--plot", type=Path, metavar="PNG",
@@ -273,7 +287,9 @@ def _add_sweep(sub) -> None:
     p.add_argument("--speeds-kmh", type=_finite_float, nargs="+", required=True, metavar="V",
                    help=f"forward speeds [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, nargs="+", metavar="K",
-                   help="support stiffnesses k_s [N/m] (default 140e6)")
+                   help="support stiffnesses k_s [N/m] (default 140e6; with --track ballasted "
+                        "the rail pad's, default 180e6)")
+    _track_option(p)
     p.add_argument("--store", type=Path, required=True, metavar="DIR",
                    help="folder keeping one record per finished case (created if missing)")
     p.add_argument("--out", type=Path, metavar="CSV", help="also write the table to this file")
@@ -295,6 +311,7 @@ def _add_eigen(sub) -> None:
                    help=f"wheel position X [m], 0 <= X <= L (default {X_REPORT})")
     p.add_argument("--n-modes", type=_positive_int, default=6, metavar="N",
                    help="number of vertical modes (default 6)")
+    _track_option(p)
     p.set_defaults(run=_cmd_eigen, parser=p)
 
 
@@ -431,6 +448,17 @@ def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
     print(f"  wall time: {r.wall_time:.3f} s ({r.steps} steps)")
 
 
+def _preset(track: str, stiffness: float | None = None) -> Scene:
+    """The --track preset, with the support (pad) stiffness replaced if given [N/m]."""
+    if track == "kato2005":
+        return _scene(stiffness)
+    scene = _TRACKS[track]()
+    if stiffness is not None:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
+    return scene
+
+
 def _scene(stiffness: float | None = None) -> Scene:
     """Scene.kato2005(), with the support stiffness replaced if given [N/m]."""
     scene = Scene.kato2005()
@@ -564,11 +592,13 @@ def _print_forces(scene: Scene, a) -> None:
               f"{f.defect_time * 1e3:.3f} ms)")
 
 
-def _print_run(scene: Scene, speed_kmh: float, r, a) -> None:
+def _print_run(scene: Scene, speed_kmh: float, r, a, track: str = "kato2005") -> None:
     st = r.settings
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
     i_max = int(np.argmax(np.abs(a.dynamic)))
-    print(f"Scene.kato2005(), k_s = {scene.supports.stiffness / 1e6:g} MN/m, "
+    name = "Scene.kato2005()" if track == "kato2005" else "Scene.ballasted_track()"
+    k_name = "k_p" if scene.supports.layered else "k_s"
+    print(f"{name}, {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings       : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} "
           f"elements, X = {x0:.4g} -> {x1:.4g} m, fidelity {st.fidelity}")
@@ -621,7 +651,7 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.vehicle != "single" and args.wheel_flat is not None:
         parser.error("--wheel-flat is only available with --vehicle single")
     try:
-        scene = _vehicle_scene(_scene(args.support_stiffness), args.vehicle)
+        scene = _vehicle_scene(_preset(args.track, args.support_stiffness), args.vehicle)
         scene, notes = _excited_scene(scene, args)
     except _OptionError as exc:
         parser.error(str(exc))
@@ -653,7 +683,7 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     except RuntimeError as exc:  # a static solve of the quasi-static line failed
         print(f"trackwheel run: the analysis failed: {exc}", file=sys.stderr)
         return 1
-    _print_run(scene, args.speed_kmh, r, a)
+    _print_run(scene, args.speed_kmh, r, a, args.track)
     if args.plot is not None:
         from . import plots
 
@@ -726,7 +756,7 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         if args.seed is not None:
             parser.error("give --seed (one realisation) or --seeds (several), not both")
     try:
-        scene, notes = _excited_scene(Scene.kato2005(), args)
+        scene, notes = _excited_scene(_preset(args.track), args)
     except _OptionError as exc:
         parser.error(str(exc))
     _print_notes(notes, "sweep")
@@ -753,7 +783,7 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
 
 
 def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    scene = Scene.kato2005()
+    scene = _preset(args.track)
     length = scene.rail.length
     if not 0.0 <= args.position <= length:
         parser.error(f"--position {args.position:g} m is outside the rail; "
@@ -762,7 +792,8 @@ def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         res = _eigen(scene, [args.position], n_modes=args.n_modes)
     except ValueError as exc:  # e.g. more modes than the mesh has
         parser.error(str(exc).replace("n_modes", "--n-modes"))
-    print(f"Scene.kato2005(), wheel at X = {args.position:g} m ({res.n_elements} elements)")
+    name = "Scene.kato2005()" if args.track == "kato2005" else "Scene.ballasted_track()"
+    print(f"{name}, wheel at X = {args.position:g} m ({res.n_elements} elements)")
     print("vertical modes:")
     for k, f in enumerate(res.frequencies[0], 1):
         print(f"  {k:>3}  {f:10.2f} Hz")

@@ -821,3 +821,56 @@ def force_bands(stats, *, ax: Axes | None = None) -> Figure:
     ax.set_ylabel("band RMS of N - mean(N) [N]")
     ax.grid(True, which="both", alpha=0.3)
     return fig
+
+
+def _receptance_points(scene) -> dict[str, float]:
+    """Mid-span and above-support excitation points near the rail's middle [m]."""
+    pos = np.asarray(scene.support_positions)
+    if pos.size == 0:
+        return {"mid-span": 0.5 * scene.rail.length}
+    j = int(np.argmin(np.abs(pos - 0.5 * scene.rail.length)))
+    nxt = pos[j + 1] if j + 1 < pos.size else scene.rail.length
+    return {"mid-span": 0.5 * (pos[j] + nxt), "above a support": float(pos[j])}
+
+
+def receptance(scene, freqs, *, n_elements: int | None = None) -> Figure:
+    """Point receptance of the track (:func:`trackwheel.receptance`) at mid-span and above the
+    support nearest the rail's middle: magnitude [m/N] (log-log, gid "magnitude: <point>") and
+    phase [deg] against frequency [Hz]."""
+    from .frequency import receptance as _receptance
+
+    f = np.asarray(freqs, dtype=float)
+    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
+    ax_m, ax_p = fig.subplots(2, 1, sharex=True, height_ratios=(2, 1))
+    for label, x in _receptance_points(scene).items():
+        a = _receptance(scene, x, f, n_elements=n_elements)
+        ax_m.loglog(f, np.abs(a), label=f"{label} (X = {x:.3g} m)", gid=f"magnitude: {label}")
+        ax_p.semilogx(f, np.degrees(np.angle(a)), gid=f"phase: {label}")
+    ax_m.set_ylabel("|receptance| [m/N]")
+    ax_p.set_ylabel("phase [deg]")
+    ax_p.set_xlabel("frequency [Hz]")
+    for ax in (ax_m, ax_p):
+        ax.grid(True, which="both", alpha=0.3)
+    _legend_outside(ax_m)
+    return fig
+
+
+def decay_rate(scene, freqs, *, n_elements: int | None = None, ax: Axes | None = None
+               ) -> Figure:
+    """Vertical track decay rate [dB/m] (EN 15461, :func:`trackwheel.decay_rate`, gid
+    "decay rate") against frequency [Hz], with the ISO 3095:2013 lower limit per
+    one-third-octave band (steps, gid "ISO 3095 limit")."""
+    from .frequency import ISO3095_VERTICAL_LIMIT, iso3095_band_edges
+    from .frequency import decay_rate as _decay_rate
+
+    f = np.asarray(freqs, dtype=float)
+    fig, ax = _figure_and_axes(ax, (6.0, 3.5))
+    ax.semilogx(f, _decay_rate(scene, f, n_elements=n_elements), marker="o", ms=3,
+                label="track (EN 15461)", gid="decay rate")
+    ax.stairs(ISO3095_VERTICAL_LIMIT, iso3095_band_edges(), color="k", ls="--",
+              label="ISO 3095 lower limit (vertical)", gid="ISO 3095 limit")
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("decay rate [dB/m]")
+    ax.grid(True, which="both", alpha=0.3)
+    _legend_outside(ax)
+    return fig

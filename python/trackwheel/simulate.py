@@ -46,7 +46,7 @@ __all__ = [
 #: Model fidelity levels, most to least detailed (issue 7). "full" is the paper's model: the
 #: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
 #: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
-#: levels use the linear Euler-Bernoulli rail with constant matrices (factorised once, or modal
+#: levels use the linear rail (Euler-Bernoulli, or Timoshenko with ``Rail(beam="timoshenko")``) with constant matrices (factorised once, or modal
 #: with ``n_modes``) and a vertical contact at X_A: a moving force P, a moving mass (rigid
 #: contact), a sprung wheel (linear bilateral contact spring k) or a Hertzian wheel (unilateral).
 FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
@@ -396,6 +396,8 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
                          "'linear/moving_mass', 'linear/sprung', 'linear/hertz', 'ancf/...', "
                          "'full'")
     linear = fidelity.startswith("linear/")
+    if not linear:
+        _kernel.require_euler(scene, f"fidelity={fidelity!r}")
     energy = v.boolean("energy", energy)
     warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
     scene = _scene_for(scene, fidelity)
@@ -466,6 +468,7 @@ def _run(plan: RunPlan, s, show: bool | None) -> tuple[dict, float]:
             opt.n_modes = plan.settings.n_modes or 0
             opt.sudden = plan.settings.start == "sudden"
             opt.drop_height = plan.settings.drop_height
+            opt.beam = _kernel.beam_params(plan.scene)
             out = _core.simulate_linear(plan.model, wheels, contact, s, opt, callback, vehicle)
         else:
             out = _core.simulate(plan.model, wheels, contact, s, plan.init, callback, vehicle)
