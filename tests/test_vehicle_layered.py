@@ -196,3 +196,17 @@ def test_timoshenko_thin_beam_limit_with_a_bogie_on_layered_supports(monkeypatch
         ref, got = getattr(euler, name), getattr(limit, name)
         assert np.all(np.max(np.abs(got - ref), axis=0) < 2e-6 * np.ptp(ref, axis=0)), name
     assert np.all(np.mean(shear.y_contact, axis=0) < np.mean(euler.y_contact, axis=0))
+
+
+def test_cli_runs_a_bogie_on_the_ballasted_track(capsys):
+    """`trackwheel run --vehicle bogie --track ballasted`: one line per wheel, the pad named
+    k_p, and each wheel's static load the lever rule's (half the bogie's weight)."""
+    from trackwheel import cli
+
+    assert cli.main(["run", "--speed-kmh", "100", "--vehicle", "bogie", "--track", "ballasted",
+                     "--x-start", "12.0", "--x-end", "13.0"]) == 0
+    out = capsys.readouterr().out
+    assert "k_p = 180 MN/m" in out
+    P = Vehicle.bogie().static_loads(tw.Scene.ballasted_track().gravity)
+    for i, x in enumerate(Vehicle.bogie().positions):
+        assert f"wheel {i} (x = {x:g} m)" in out and f"(static {P[i] / 1e3:.2f} kN)" in out

@@ -433,8 +433,9 @@ def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
     """Headline outputs of a vehicle run, one line per wheel (analyse(r, wheel=i))."""
     st = r.settings
     veh = scene.active_vehicle
+    k_name = "k_p" if scene.supports.layered else "k_s"
     print(f"{veh.n_wheels} wheels, {len(veh.bogies)} bogie(s), car body: "
-          f"{'yes' if veh.car else 'no'}; k_s = {scene.supports.stiffness / 1e6:g} MN/m, "
+          f"{'yes' if veh.car else 'no'}; {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} elements, "
           f"fidelity {st.fidelity}, excitation: {_describe(scene)}")
