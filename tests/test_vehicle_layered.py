@@ -5,8 +5,8 @@ two condensations are independent (docs: Model § The vehicle, § Layered suppor
 multi-wheel statics with sleepers (lever-rule loads, ballast balance, the run's start), the
 iteration matrix with both against central differences and the condensed solve against the
 dense one, the linear path against the full one, generalized-alpha against RK4, the vehicle
-eigen solver against the C++ one
-with sleepers, and the Timoshenko linear rail's thin-beam limit with a vehicle.
+eigen solver against the C++ one with sleepers, and the Timoshenko linear rail's thin-beam
+limit with a vehicle.
 """
 
 from __future__ import annotations
