@@ -87,6 +87,21 @@ py::dict output_to_dict(SimOutput&& o) {
     if (table[f].per_wheel) arr = arr.attr("reshape")(n / nw, nw);
     d[table[f].name] = arr;
   }
+  {  // the vehicle's bodies: z [m] and phi [rad], (n_samples, n_bodies) each
+    const py::ssize_t nb = o.rec.n_bodies();
+    const std::vector<double>& b = o.rec.bodies();
+    const py::ssize_t ns = nb > 0 ? static_cast<py::ssize_t>(b.size()) / (2 * nb) : 0;
+    py::array_t<double> z({ns, nb}), phi({ns, nb});
+    auto zm = z.mutable_unchecked<2>();
+    auto pm = phi.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < ns; ++i)
+      for (py::ssize_t k = 0; k < nb; ++k) {
+        zm(i, k) = b[2 * (i * nb + k)];
+        pm(i, k) = b[2 * (i * nb + k) + 1];
+      }
+    d["body_z"] = z;
+    d["body_phi"] = phi;
+  }
   d["steps"] = o.steps;
   d["newton_iterations"] = o.newton_iterations;
   d["factorizations"] = o.factorizations;
@@ -105,8 +120,8 @@ py::tuple output_table() {
 }
 
 Model make_model(const RailModel& rail, const std::vector<WheelParams>& wheels,
-                 const ContactParams& contact) {
-  return Model{rail, wheels, contact};
+                 const ContactParams& contact, const VehicleParams& vehicle = VehicleParams()) {
+  return Model{rail, wheels, contact, vehicle};
 }
 
 // A dense square as a band matrix of half bandwidth b (entries outside the band ignored).
@@ -240,6 +255,25 @@ PYBIND11_MODULE(_core, m) {
   py::enum_<ContactLaw>(m, "ContactLaw")
       .value("linear", ContactLaw::Linear)
       .value("hertz", ContactLaw::Hertz);
+  py::class_<BodyParams>(m, "BodyParams")
+      .def(py::init<>())
+      .def_readwrite("mass", &BodyParams::mass, "[kg]")
+      .def_readwrite("inertia", &BodyParams::inertia, "pitch inertia [kg m^2]")
+      .def_readwrite("gravity", &BodyParams::gravity, "[m/s^2]")
+      .def_readwrite("load", &BodyParams::load, "constant downward force on the centre [N]");
+  py::class_<SuspensionParams>(m, "SuspensionParams")
+      .def(py::init<>())
+      .def_readwrite("stiffness", &SuspensionParams::stiffness, "k [N/m]")
+      .def_readwrite("damping", &SuspensionParams::damping, "c [N s/m]")
+      .def_readwrite("lower_wheel", &SuspensionParams::lower_wheel, "wheel index or -1")
+      .def_readwrite("lower_body", &SuspensionParams::lower_body, "body index or -1")
+      .def_readwrite("lower_arm", &SuspensionParams::lower_arm, "[m]")
+      .def_readwrite("upper_body", &SuspensionParams::upper_body, "body index")
+      .def_readwrite("upper_arm", &SuspensionParams::upper_arm, "[m]");
+  py::class_<VehicleParams>(m, "VehicleParams")
+      .def(py::init<>())
+      .def_readwrite("bodies", &VehicleParams::bodies, "a copy: assign the whole list")
+      .def_readwrite("suspensions", &VehicleParams::suspensions, "a copy: assign the whole list");
   py::class_<ContactParams>(m, "ContactParams")
       .def(py::init<>())
       .def_readwrite("law", &ContactParams::law)
@@ -321,6 +355,22 @@ PYBIND11_MODULE(_core, m) {
           }
           return static_to_dict(r);
         });
+  m.def(
+      "static_solve_wheels",
+      [](const RailModel& rail, const std::vector<WheelParams>& w,
+         const std::vector<ContactParams>& c, const std::vector<double>& x) {
+        std::vector<StaticResult> rs;
+        {
+          py::gil_scoped_release nogil;
+          rs = solve_static_wheels(rail, w, c, x);
+        }
+        py::list out;
+        for (const StaticResult& r : rs) out.append(static_to_dict(r));
+        return out;
+      },
+      py::arg("rail"), py::arg("wheels"), py::arg("contacts"), py::arg("x_wheels"),
+      "Static equilibrium of several wheels on the rail, wheel w at x_wheels[w] under its load "
+      "F + M g: one static_solve dict per wheel (the same rail e in each)");
   m.def("rail_static", [](const RailModel& rail) {
     py::gil_scoped_release nogil;
     return solve_rail_static(rail);
@@ -466,6 +516,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("edot", &SimState::edot, "rail velocities (n_dof,)")
       .def_readwrite("wheels", &SimState::wheels,
                      "one WheelState per wheel (a copy: assign the whole list)")
+      .def_readwrite("body", &SimState::body, "(2 n_bodies,) [z, phi] per vehicle body")
+      .def_readwrite("bodydot", &SimState::bodydot, "(2 n_bodies,) rates")
       .def_readwrite("z", &SimState::z,
                      "sleeper heights (n_sleepers,) [m]; empty: at rest under the initial rail")
       .def_readwrite("zdot", &SimState::zdot, "sleeper velocities (n_sleepers,) [m/s]");
@@ -489,9 +541,10 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "simulate",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
-         const SimSettings& s, const SimState& init, py::object progress) {
+         const SimSettings& s, const SimState& init, py::object progress,
+         const VehicleParams& vehicle) {
         const ProgressFn fn = python_progress(progress);
-        const Model model = make_model(rail, wheels, c);
+        const Model model = make_model(rail, wheels, c, vehicle);
         SimOutput o;
         {
           py::gil_scoped_release nogil;
@@ -500,12 +553,12 @@ PYBIND11_MODULE(_core, m) {
         return output_to_dict(std::move(o));
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
-      py::arg("initial"), py::arg("progress") = py::none(),
+      py::arg("initial"), py::arg("progress") = py::none(), py::arg("vehicle") = VehicleParams(),
       "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
       "settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns "
       "{field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and "
-      "the counters steps, newton_iterations, factorizations, state_changes, stability_limit, "
-      "final_state");
+      "the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, "
+      "newton_iterations, factorizations, state_changes, stability_limit, final_state");
   m.def(
       "highest_frequency",
       [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
@@ -554,9 +607,10 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "simulate_linear",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
-         const SimSettings& s, const LinearOptions& opt, py::object progress) {
+         const SimSettings& s, const LinearOptions& opt, py::object progress,
+         const VehicleParams& vehicle) {
         const ProgressFn fn = python_progress(progress);
-        const Model model = make_model(rail, wheels, c);
+        const Model model = make_model(rail, wheels, c, vehicle);
         SimOutput o;
         {
           py::gil_scoped_release nogil;
@@ -567,20 +621,23 @@ PYBIND11_MODULE(_core, m) {
         return d;
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
-      py::arg("options"), py::arg("progress") = py::none(),
+      py::arg("options"), py::arg("progress") = py::none(), py::arg("vehicle") = VehicleParams(),
       "Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)");
 
   // ---------------------------------------------------------------- test hooks
   m.def(
       "ga_probe",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
-         const SimSettings& s, const SimState& init, double t1, std::optional<Eigen::VectorXd> x) {
-        const Model model = make_model(rail, wheels, c);
+         const SimSettings& s, const SimState& init, double t1, std::optional<Eigen::VectorXd> x,
+         const VehicleParams& vehicle) {
+        const Model model = make_model(rail, wheels, c, vehicle);
         check_settings(s);
         check_model(model);
         check_coordinates(rail, init.e, "initial.e");
         if (static_cast<int>(init.wheels.size()) != model.n_wheels())
           throw std::invalid_argument("initial needs one WheelState per wheel");
+        if (init.body.size() != 2 * model.n_bodies() || init.bodydot.size() != init.body.size())
+          throw std::invalid_argument("initial needs (z, phi) per vehicle body");
         System sys(model, s);
         SimState st = init;
         if (!sys.sleepers().empty() && st.z.size() == 0) {  // at rest under the given rail
@@ -601,8 +658,9 @@ PYBIND11_MODULE(_core, m) {
         Accel it = acc;
         if (x) {
           if (x->size() != nf + m + ns)
-            throw std::invalid_argument("x must have n_free + 3 n_wheels + n_sleepers = " +
-                                        std::to_string(nf + m + ns) + " entries");
+            throw std::invalid_argument(
+                "x must have n_free + 3 n_wheels + 2 n_bodies + n_sleepers = " +
+                std::to_string(nf + m + ns) + " entries");
           it.edd = Eigen::VectorXd::Zero(rail.n_dof());
           rail.add_from_free(x->head(nf), it.edd);
           it.x = x->segment(nf, m);
@@ -620,11 +678,13 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
       py::arg("initial"), py::arg("t1"), py::arg("x") = py::none(),
+      py::arg("vehicle") = VehicleParams(),
       "Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] "
-      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, z'' per sleeper] (None: "
-      "the start accelerations). Returns {'start': the start accelerations in that layout, "
-      "'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers "
-      "uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}");
+      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, "
+      "z'' per sleeper] (None: the start accelerations). Returns {'start': the start "
+      "accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx "
+      "(assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction "
+      "(the sleepers condensed)}");
   m.def(
       "band_solve",
       [](const Eigen::MatrixXd& A, int half_bandwidth, const Eigen::VectorXd& r) {

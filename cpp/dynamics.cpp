@@ -25,6 +25,10 @@ void check_initial(const Model& model, const SimState& st) {
     throw std::invalid_argument("initial state has " + std::to_string(st.wheels.size()) +
                                 " wheel states; the model has " + std::to_string(model.n_wheels()) +
                                 " wheels");
+  const long nb2 = 2L * model.n_bodies();
+  if (st.body.size() != nb2 || st.bodydot.size() != nb2)
+    throw std::invalid_argument("initial body state must have 2 n_bodies = " + std::to_string(nb2) +
+                                " entries (z, phi per body)");
 }
 
 // Sleepers not given start at rest in equilibrium under the initial rail.
@@ -74,6 +78,7 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
   SimOutput out;
   out.rec.start(model.n_wheels(), set.record_energy,
                 static_cast<std::size_t>(n_steps_of(set) / set.output_every + 2));
+  out.rec.start_bodies(model.n_bodies());
   SimState st = initial;
   start_sleepers(model.rail, st);
   Eval ev;
@@ -90,6 +95,8 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
     wd.y0.push_back(st.wheels[w].y);
     wd.reach.push_back(10.0 * p.radius);
   }
+  // the bodies' weight reaches the track through the wheels: the same cap per newton of load
+  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
   // a sleeper between pad and ballast can be stiffer than anything in the rail
   const double omega_max =
       std::max(highest_frequency(model, st.e, xs, ys), Sleepers(model.rail).highest_frequency());

@@ -59,6 +59,14 @@ void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Acce
     w1.theta = w0.theta + h * w0.thetadot + h * h * ((0.5 - bet) * ath0 + bet * ath);
     w1.thetadot = w0.thetadot + h * ((1.0 - gam) * ath0 + gam * ath);
   }
+  const int ob = kBorderPerWheel * sys_.n_wheels();
+  for (int k = 0; k < 2 * sys_.n_bodies(); ++k) {  // the vehicle's bodies: z, phi
+    const double a0 = a_b_(ob + k);
+    const double a = c_.algorithmic(x.x(ob + k), acc0.x(ob + k), a0);
+    ab_(ob + k) = a;
+    s1.body(k) = s0.body(k) + h * s0.bodydot(k) + h * h * ((0.5 - bet) * a0 + bet * a);
+    s1.bodydot(k) = s0.bodydot(k) + h * ((1.0 - gam) * a0 + gam * a);
+  }
 }
 
 bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
@@ -118,8 +126,11 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
       const int o = kBorderPerWheel * w;
       const WheelParams& p = sys_.model().wheels[w];
       dq = std::max({dq, std::abs(x2_(o + kY)), p.radius * std::abs(x2_(o + kTheta))});
-      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, p.total_load());
+      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, sys_.static_load(w));
     }
+    const int ob = kBorderPerWheel * sys_.n_wheels();
+    for (int k = 0; k < 2 * sys_.n_bodies(); k += 2)  // body pitch: as the 1 m-arm displacement
+      dq = std::max({dq, std::abs(x2_(ob + k)), std::abs(x2_(ob + k + 1))});
     dq *= cq_;
     if (dq <= set.newton_tol && small_lambda) {
       predict(s0, acc0, x, s1);

@@ -64,6 +64,13 @@ class LinearStepper : public Stepper {
   void couple(double t1);
   void border(int w, double t, double cq, double cv, Eigen::Matrix2d& D, Eigen::Vector2d& r2);
   void solve_border(long n, double t, double cq, double cv, int m);
+  // The vehicle (vehicle.hpp): the static wheel loads of its weight distribution, the bodies'
+  // rows and the suspensions' terms of the wheels' force rows in the border system S_ [dx] =
+  // rhs_, the bodies' predictor and update.
+  double static_load(int w) const;
+  void add_vehicle_rows(double cq, double cv);
+  void predict_bodies(double h);
+  void update_bodies(double cq, double cv);
   void predict_sleepers(double h);
   void add_sleeper_residual();
   void correct_sleepers();
@@ -82,6 +89,11 @@ class LinearStepper : public Stepper {
   Eigen::VectorXd q_, qd_, qdd_, a_;
   Eigen::VectorXd z_, zd_, zdd_, az_, zh_, zdh_, azh_, zdd1_, rs_, dz_;  // sleepers
   std::vector<LinearWheel> wh_;
+  const int nb_;  // vehicle bodies
+  const VehicleMatrices vm_;
+  Eigen::VectorXd Pst_;                              // static wheel loads [N]
+  Eigen::VectorXd zb_, zbd_, zbdd_, zba_;            // bodies: [z, phi], rates, accel., algorithmic
+  Eigen::VectorXd zbh_, zbdh_, zbah_, u_, ud_, fu_;  // predictors and suspension buffers
   // per-step buffers (no allocation in the time loop)
   Eigen::VectorXd ah_, qh_, qdh_, g_, Cq_, Kq_, r1_, x1_, tmp_, qdd1_, rhs_, xb_;
   std::vector<double> aYh_, Yh_, Ydh_;
@@ -101,7 +113,9 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
       nw_(model.n_wheels()),
       sl_(model.rail),
       damped_(!tr_.C.is_zero()),
-      wh_(nw_) {
+      wh_(nw_),
+      nb_(model.n_bodies()),
+      vm_(vehicle_matrices(model.vehicle, model.n_wheels())) {
   if (tr_.modal && !sl_.empty())
     throw std::invalid_argument(
         "n_modes (modal superposition) does not take layered supports (sleeper_mass given); "
@@ -154,10 +168,14 @@ void LinearStepper::initial_state() {
   sl_.set_coefficients(0.0, 0.0, 1.0);
   sl_.condense_matrix(map, Kf);
   if (!Kf.factorize()) throw std::runtime_error("rail stiffness is singular");
+  Pst_.resize(nw_);
+  const Eigen::VectorXd fv =
+      nb_ > 0 ? static_wheel_forces(vm_, Eigen::VectorXd::Zero(nw_)) : Eigen::VectorXd();
+  for (int w = 0; w < nw_; ++w) Pst_(w) = model_.wheels[w].total_load() - (nb_ > 0 ? fv(w) : 0.0);
   q_ = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
     tr_.coupling(X(w, 0.0), wh_[w].s, wh_[w].ss, wh_[w].sss);
-    if (!opt_.sudden) q_ -= model_.wheels[w].total_load() * wh_[w].s;
+    if (!opt_.sudden) q_ -= static_load(w) * wh_[w].s;
   }
   z_ = Eigen::VectorXd::Zero(ns);
   sl_.forces(Eigen::VectorXd::Zero(nq), nullptr, map, z_, nullptr, rs_);
@@ -170,7 +188,7 @@ void LinearStepper::initial_state() {
   for (int w = 0; w < nw_; ++w) {
     LinearWheel& lw = wh_[w];
     const WheelParams& p = model_.wheels[w];
-    const double P = p.total_load(), k = model_.contact.stiffness;
+    const double P = static_load(w), k = model_.contact.stiffness;
     const double compression = rigid() || opt_.sudden ? 0.0 : static_compression(law(), k, P);
     double rate;
     const double e = opt_.wheel_model == WheelModel::MovingForce ? 0.0 : excitation(w, 0.0, rate);
@@ -198,12 +216,19 @@ void LinearStepper::initial_state() {
   a_ = qdd_;
   for (int w = 0; w < nw_; ++w) {
     LinearWheel& lw = wh_[w];
-    lw.Ydd =
-        rigid() ? lw.s.dot(qdd_) : (lw.N - model_.wheels[w].total_load()) / model_.wheels[w].mass;
+    lw.Ydd = rigid() ? lw.s.dot(qdd_) : (lw.N - static_load(w)) / model_.wheels[w].mass;
     lw.aY = lw.Ydd;
     lw.W.resize(nq, 4);
   }
+  if (nb_ > 0) {  // the bodies where their springs carry the static loads, at rest
+    Eigen::VectorXd Y(nw_);
+    for (int w = 0; w < nw_; ++w) Y(w) = wh_[w].Y;
+    zb_ = static_bodies(vm_, Y);
+    zbd_ = zbdd_ = zba_ = Eigen::VectorXd::Zero(2 * nb_);
+  }
 }
+
+double LinearStepper::static_load(int w) const { return Pst_(w); }
 
 // Couplings at t1 and Z = A^-1 s(X) = sum_a N_a A^-1 s_a, the columns cached per element.
 void LinearStepper::couple(double t1) {
@@ -276,7 +301,7 @@ void LinearStepper::border(int w, double t, double cq, double cv, Eigen::Matrix2
 void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) {
   Eigen::Matrix2d D;
   Eigen::Vector2d r2;
-  if (nw_ == 1) {
+  if (nw_ == 1 && nb_ == 0) {
     border(0, t, cq, cv, D, r2);
     D(1, 1) -= u_dot(wh_[0], wh_[0].Z);
     const Eigen::Vector2d rhs(r2(0), r2(1) - u_dot(wh_[0], x1_));
@@ -286,7 +311,7 @@ void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) 
     return;
   }
   S_.setZero(m, m);
-  rhs_.resize(m);
+  rhs_.setZero(m);
   for (int w = 0; w < nw_; ++w) {
     border(w, t, cq, cv, D, r2);
     S_.block<2, 2>(2 * w, 2 * w) = D;
@@ -294,10 +319,45 @@ void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) 
     rhs_(2 * w) = r2(0);
     rhs_(2 * w + 1) = r2(1) - u_dot(wh_[w], x1_);
   }
+  if (nb_ > 0) add_vehicle_rows(cq, cv);
   lu_.compute(S_);
   const double det = lu_.determinant();
   if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
   xb_ = lu_.solve(rhs_);
+}
+
+// Border rows of the vehicle: wheel w's force row (2 w) gains the suspension force f_u,w, the
+// bodies' rows (2 n_w + k) are M_v z'' - f_u = 0; both depend on u'' through cq K_v + cv C_v.
+void LinearStepper::add_vehicle_rows(double cq, double cv) {
+  const int nu = nw_ + 2 * nb_;
+  u_.resize(nu);
+  ud_.resize(nu);
+  for (int w = 0; w < nw_; ++w) {
+    u_(w) = wh_[w].Y;
+    ud_(w) = wh_[w].Yd;
+  }
+  u_.tail(2 * nb_) = zb_;
+  ud_.tail(2 * nb_) = zbd_;
+  fu_ = vehicle_forces(vm_, u_, ud_);
+  auto row = [&](int i) { return i < nw_ ? 2 * i : 2 * nw_ + i - nw_; };
+  for (int i = 0; i < nu; ++i) {
+    const double inertia = i < nw_ ? 0.0 : vm_.mass(i) * zbdd_(i - nw_);
+    rhs_(row(i)) += fu_(i) - inertia;
+    if (i >= nw_) S_(row(i), row(i)) += vm_.mass(i);
+    for (int j = 0; j < nu; ++j) S_(row(i), row(j)) += cq * vm_.K(i, j) + cv * vm_.C(i, j);
+  }
+}
+
+void LinearStepper::predict_bodies(double h) {
+  const double am = c_.am, af = c_.af, gam = c_.gam, bet = c_.bet;
+  zbah_ = (af * zbdd_ - am * zba_) / (1.0 - am);
+  zbh_ = zb_ + h * zbd_ + h * h * ((0.5 - bet) * zba_ + bet * zbah_);
+  zbdh_ = zbd_ + h * ((1.0 - gam) * zba_ + gam * zbah_);
+}
+
+void LinearStepper::update_bodies(double cq, double cv) {
+  zb_ = zbh_ + cq * zbdd_;
+  zbd_ = zbdh_ + cv * zbdd_;
 }
 
 void LinearStepper::step(long n) {
@@ -328,7 +388,11 @@ void LinearStepper::step(long n) {
   // Newton from qdd_{n+1} = 0: exact in one iteration for the linear wheel models
   qdd1_.setZero(tr_.nq);
   for (LinearWheel& lw : wh_) lw.Ydd = 0.0;
-  const int m = 2 * nw_;
+  const int m = 2 * nw_ + 2 * nb_;
+  if (nb_ > 0) {
+    predict_bodies(h);
+    zbdd_.setZero();
+  }
   for (int it = 0; it < std::max(set_.max_newton, 1); ++it) {
     q_ = qh_ + cq * qdd1_;
     qd_ = qdh_ + cv * qdd1_;
@@ -336,6 +400,7 @@ void LinearStepper::step(long n) {
       wh_[w].Y = Yh_[w] + cq * wh_[w].Ydd;
       wh_[w].Yd = Ydh_[w] + cv * wh_[w].Ydd;
     }
+    if (nb_ > 0) update_bodies(cq, cv);
     if (!sl_.empty()) {
       z_ = zh_ + cq * zdd1_;
       zd_ = zdh_ + cv * zdd1_;
@@ -378,11 +443,18 @@ void LinearStepper::step(long n) {
       wh_[w].Ydd += xb_(2 * w);
       wh_[w].N += xb_(2 * w + 1);
       dq = std::max(dq, std::abs(xb_(2 * w)));
-      small_force &=
-          std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, model_.wheels[w].total_load());
+      small_force &= std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, static_load(w));
+    }
+    if (nb_ > 0) {
+      zbdd_ += xb_.tail(2 * nb_);
+      dq = std::max(dq, xb_.tail(2 * nb_).lpNorm<Eigen::Infinity>());
     }
     dq *= cq;
     if (opt_.wheel_model != WheelModel::Hertz || (dq <= set_.newton_tol && small_force)) {
+      if (nb_ > 0) {
+        update_bodies(cq, cv);
+        zba_ = zbah_ + ((1.0 - af) / (1.0 - am)) * zbdd_;
+      }
       q_ = qh_ + cq * qdd1_;  // the state at the final accelerations
       qd_ = qdh_ + cv * qdd1_;
       a_ = ah_ + ((1.0 - af) / (1.0 - am)) * qdd1_;
@@ -438,6 +510,7 @@ void LinearStepper::correct_sleepers() {
 
 bool LinearStepper::finite() const {
   if (!q_.allFinite() || !z_.allFinite()) return false;
+  if (nb_ > 0 && !zb_.allFinite()) return false;
   for (const LinearWheel& lw : wh_)
     if (!std::isfinite(lw.Y)) return false;
   return true;
@@ -448,6 +521,8 @@ double LinearStepper::vibration_energy() const {
   tr_.M.multiply(qd_, Mqd);
   double E = 0.5 * qd_.dot(Mqd);
   for (int w = 0; w < nw_; ++w) E += 0.5 * model_.wheels[w].mass * wh_[w].Yd * wh_[w].Yd;
+  for (int b = 0; b < nb_; ++b)
+    E += 0.5 * model_.vehicle.bodies[b].mass * zbd_(2 * b) * zbd_(2 * b);
   if (!sl_.empty()) E += sl_.kinetic_energy(zd_);
   return E;
 }
@@ -485,6 +560,7 @@ void LinearStepper::record_sample(double t) {
     rec.push(Field::penetration, delta[w]);
     rec.push(Field::slip_state, lw.N > 0.0 ? 1 : 0);
   }
+  for (int b = 0; b < nb_; ++b) rec.push_body(zb_(2 * b), zb_(2 * b + 1));
   if (!rec.wants(Field::energy)) return;
   Eigen::VectorXd Mqd, Kq;
   tr_.M.multiply(qd_, Mqd);
@@ -497,6 +573,16 @@ void LinearStepper::record_sample(double t) {
     E += p.total_load() * wh_[w].Y;
     if (!rigid()) E += contact_potential(law(), model_.contact.stiffness, delta[w]);
   }
+  if (nb_ > 0) {
+    Eigen::VectorXd u(nw_ + 2 * nb_), ud(nw_ + 2 * nb_);
+    for (int w = 0; w < nw_; ++w) {
+      u(w) = wh_[w].Y;
+      ud(w) = wh_[w].Yd;
+    }
+    u.tail(2 * nb_) = zb_;
+    ud.tail(2 * nb_) = zbd_;
+    E += vehicle_energy(vm_, u, ud);
+  }
   rec.push(Field::energy, E);
 }
 
@@ -506,9 +592,14 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
                           const ProgressFn& progress) {
   check_settings(set);
   check_model(model);
+  if (model.n_bodies() > 0 && opt.wheel_model == WheelModel::MovingForce)
+    throw std::invalid_argument(
+        "a vehicle with bodies needs wheel dynamics: wheel_model moving_mass, sprung or hertz, "
+        "not moving_force");
   SimOutput out;
   out.rec.start(model.n_wheels(), set.record_energy,
                 static_cast<std::size_t>(n_steps_of(set) / set.output_every + 2));
+  out.rec.start_bodies(model.n_bodies());
   const Divergence div(set, [&set] {
     return "the time step " + format3(set.dt) + " s is too large for the contact";
   });
@@ -520,6 +611,7 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
     wd.y0.push_back(stepper.wheel_height(w));
     wd.reach.push_back(10.0 * p.radius);
   }
+  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
   stepper.record_sample(0.0);
   run_time_loop(stepper, set, wd, div, out, progress);
   return out;

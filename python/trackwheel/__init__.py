@@ -21,6 +21,7 @@ from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
 from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
+from .vehicle import Bogie, CarBody, Vehicle
 from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
@@ -67,6 +68,9 @@ __all__ = [
     "WheelFlat",
     "ForceStatistics",
     "force_statistics",
+    "Vehicle",
+    "Bogie",
+    "CarBody",
     "receptance",
     "decay_rate",
 ]

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'WheelModel', 'WheelParams', 'WheelState', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -251,6 +251,119 @@ class ContactLaw:
         ...
     @property
     def value(self) -> int:
+        ...
+class BodyParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def gravity(self) -> float:
+        """
+        [m/s^2]
+        """
+    @gravity.setter
+    def gravity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def inertia(self) -> float:
+        """
+        pitch inertia [kg m^2]
+        """
+    @inertia.setter
+    def inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load(self) -> float:
+        """
+        constant downward force on the centre [N]
+        """
+    @load.setter
+    def load(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mass(self) -> float:
+        """
+        [kg]
+        """
+    @mass.setter
+    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SuspensionParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def damping(self) -> float:
+        """
+        c [N s/m]
+        """
+    @damping.setter
+    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_arm(self) -> float:
+        """
+        [m]
+        """
+    @lower_arm.setter
+    def lower_arm(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_body(self) -> int:
+        """
+        body index or -1
+        """
+    @lower_body.setter
+    def lower_body(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_wheel(self) -> int:
+        """
+        wheel index or -1
+        """
+    @lower_wheel.setter
+    def lower_wheel(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stiffness(self) -> float:
+        """
+        k [N/m]
+        """
+    @stiffness.setter
+    def stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def upper_arm(self) -> float:
+        """
+        [m]
+        """
+    @upper_arm.setter
+    def upper_arm(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def upper_body(self) -> int:
+        """
+        body index
+        """
+    @upper_body.setter
+    def upper_body(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class VehicleParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def bodies(self) -> list[BodyParams]:
+        """
+        a copy: assign the whole list
+        """
+    @bodies.setter
+    def bodies(self, arg0: collections.abc.Sequence[BodyParams]) -> None:
+        ...
+    @property
+    def suspensions(self) -> list[SuspensionParams]:
+        """
+        a copy: assign the whole list
+        """
+    @suspensions.setter
+    def suspensions(self, arg0: collections.abc.Sequence[SuspensionParams]) -> None:
         ...
 class ContactParams:
     law: ContactLaw
@@ -558,6 +671,22 @@ class SimState:
     def __init__(self) -> None:
         ...
     @property
+    def body(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (2 n_bodies,) [z, phi] per vehicle body
+        """
+    @body.setter
+    def body(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def bodydot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (2 n_bodies,) rates
+        """
+    @bodydot.setter
+    def bodydot(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
     def e(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         rail coordinates (n_dof,)
@@ -694,9 +823,9 @@ def contact_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike,
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
-def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None) -> dict:
+def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, z'' per sleeper] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}
+    Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, z'' per sleeper] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}
     """
 def gauss_points(arg0: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
     ...
@@ -722,16 +851,20 @@ def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike,
     """
     Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
     """
-def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None) -> dict:
+def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
+    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
     """
-def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None) -> dict:
+def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
     Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)
     """
 def static_solve(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     ...
+def static_solve_wheels(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contacts: collections.abc.Sequence[ContactParams], x_wheels: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list:
+    """
+    Static equilibrium of several wheels on the rail, wheel w at x_wheels[w] under its load F + M g: one static_solve dict per wheel (the same rail e in each)
+    """
 def time_band_factor_solve(rail: RailModel, cq: typing.SupportsFloat | typing.SupportsIndex, cv: typing.SupportsFloat | typing.SupportsIndex, repeats: typing.SupportsInt | typing.SupportsIndex, bordered: bool = False) -> float:
     """
     Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)

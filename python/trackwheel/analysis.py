@@ -250,7 +250,8 @@ class Analysis:
 
 
 def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
-            p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD) -> Analysis:
+            p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD,
+            wheel: int | None = None) -> Analysis:
     """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model §
     Outputs).
 
@@ -274,11 +275,21 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     of N in [t_d, t_d + T_1/2], and P2, the maximum in (t_d + T_1/2, t_d + (T_1 + T_2)/2], with
     t_d the time the wheel centre reaches X_d and T_1 = ``p1_period``, T_2 = ``p2_period`` [s].
 
-    Raises ValueError if the run kept fewer than 4 samples, or if ``defect_at`` is not passed
-    in the run.
+    A vehicle with several wheels is measured one wheel at a time: ``wheel`` = i analyses
+    ``result.wheel(i)``, wheel i alone under its static load of the weight distribution
+    (its quasi-static line is that wheel's alone; the neighbours' static deflection is part
+    of its dynamic part d).
+
+    Raises ValueError if the run kept fewer than 4 samples, if ``defect_at`` is not passed
+    in the run, or if the run has several wheels and ``wheel`` is not given.
     """
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
+    if wheel is not None:
+        result = result.wheel(wheel)
+    elif result.n_wheels > 1:
+        raise ValueError(f"result has {result.n_wheels} wheels: give wheel = 0 .. "
+                         f"{result.n_wheels - 1} (one Analysis per wheel)")
     n = result.t.size
     if n < 4:
         raise ValueError(f"result has {n} samples; the analysis needs at least 4 "

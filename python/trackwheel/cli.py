@@ -63,6 +63,7 @@ from .irregularity import Irregularity, WheelFlat
 from .reproduce import REPRODUCE_STEPS, STORE_NAME, X_REPORT, reproduce
 from .scene import MAX_ELEMENTS, Scene, kmh
 from .simulate import FIDELITY_LEVELS, simulate
+from .vehicle import Vehicle
 from .sweep import sweep
 
 #: the paper's scene, whose derived defaults the help texts quote
@@ -330,6 +331,10 @@ def _add_run(sub) -> None:
                    help="support stiffness k_s [N/m] (default 140e6; with --track ballasted "
                         "the rail pad's, default 180e6)")
     _track_option(p)
+    p.add_argument("--vehicle", choices=VEHICLES, default="single",
+                   help="single: the paper's wheel under its constant load; bogie: "
+                        "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
+                        "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
     _excitation_options(p)
     _simulate_options(p)
     p.add_argument("--plot", type=Path, metavar="PNG",
@@ -534,6 +539,44 @@ def _cmd_reproduce(args: argparse.Namespace, parser: argparse.ArgumentParser) ->
     return 0
 
 
+#: --vehicle choices of ``trackwheel run``
+VEHICLES = ("single", "bogie", "half-car")
+#: rail length for --vehicle half-car [m]: the half car's 20 m of wheels plus the paper's 5 m
+HALF_CAR_RAIL = 25.0
+
+
+def _vehicle_scene(scene: Scene, vehicle: str) -> Scene:
+    """``scene`` carrying the --vehicle choice (the rail lengthened for a half car, the
+    paper's element length kept)."""
+    if vehicle == "single":
+        return scene
+    if vehicle == "bogie":
+        return dataclasses.replace(scene, vehicle=Vehicle.bogie())
+    ne = round(scene.rail.n_elements * HALF_CAR_RAIL / scene.rail.length)
+    rail = dataclasses.replace(scene.rail, length=HALF_CAR_RAIL, n_elements=ne)
+    return dataclasses.replace(scene, rail=rail, vehicle=Vehicle.half_car())
+
+
+def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
+    """Headline outputs of a vehicle run, one line per wheel (analyse(r, wheel=i))."""
+    st = r.settings
+    veh = scene.active_vehicle
+    k_name = "k_p" if scene.supports.layered else "k_s"
+    print(f"{veh.n_wheels} wheels, {len(veh.bogies)} bogie(s), car body: "
+          f"{'yes' if veh.car else 'no'}; {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
+          f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
+    print(f"  settings : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} elements, "
+          f"fidelity {st.fidelity}, excitation: {_describe(scene)}")
+    loads = veh.static_loads(scene.gravity)
+    for i in range(veh.n_wheels):
+        a = analyse(r, wheel=i, defect_at=x_d)
+        print(f"  wheel {i} (x = {veh.positions[i]:g} m): max|d| = {a.amplitude * 1e6:.3f} µm, "
+              f"N = {a.min_contact_force / 1e3:.2f} .. {a.max_contact_force / 1e3:.2f} kN "
+              f"(static {loads[i] / 1e3:.2f} kN), dynamic factor {a.dynamic_factor:.4f}, "
+              f"lost contact: {'yes' if a.lost_contact else 'no'}")
+    print(f"  wall time: {r.wall_time:.3f} s ({r.steps} steps)")
+
+
 def _preset(track: str, stiffness: float | None = None, length: float | None = None) -> Scene:
     """The --track preset, with the support (pad) stiffness [N/m] and the ballasted track's
     length [m] replaced if given."""
@@ -721,13 +764,33 @@ def _print_notes(notes: list[str], command: str) -> None:
             print(f"note: {note}")
 
 
+def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
+    try:
+        _print_vehicle_run(scene, args.speed_kmh, r, x_d)
+    except (RuntimeError, ValueError) as exc:  # a quasi-static solve, or the joint not reached
+        print(f"trackwheel run: the analysis failed: {exc}", file=sys.stderr)
+        return 1
+    if args.plot is not None:
+        from . import plots
+
+        try:
+            plots.dynamic(r).savefig(args.plot, dpi=150)
+        except (OSError, ValueError) as exc:
+            print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
+            return 1
+    return 0
+
+
 def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     _speeds_kmh([args.speed_kmh], "--speed-kmh", parser)
     if args.plot is not None:
         _output_file(args.plot, "--plot", parser, formats=_figure_formats())
     _check_beam_fidelity(args, parser)
+    if args.vehicle != "single" and args.wheel_flat is not None:
+        parser.error("--wheel-flat is only available with --vehicle single")
     try:
-        scene, notes = _excited_scene(_track_scene(args, args.support_stiffness), args)
+        scene = _vehicle_scene(_track_scene(args, args.support_stiffness), args.vehicle)
+        scene, notes = _excited_scene(scene, args)
     except _OptionError as exc:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
@@ -751,6 +814,8 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     x_d = defect_position(scene)
     if x_d is not None and not r.x_wheel[0] <= x_d <= r.x_wheel[-1]:
         x_d = None  # the run does not reach the joint's middle
+    if scene.vehicle is not None:
+        return _finish_vehicle_run(scene, args, r, x_d)
     try:
         a = analyse(r, defect_at=x_d)
     except RuntimeError as exc:  # a static solve of the quasi-static line failed

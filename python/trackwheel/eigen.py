@@ -29,11 +29,16 @@ class EigenResult:
     scene: Scene
     positions: np.ndarray  #: wheel positions X, (n_pos,) [m]
     frequencies: np.ndarray  #: (n_pos, n_modes) [Hz], ascending in each row
-    #: (n_pos, n_dof + 1 + n_sleepers, n_modes): rail ANCF coords, wheel Y, then the sleepers'
-    #: z_j (layered supports) [-]
+    #: (n_pos, n_dof + n_vehicle + n_sleepers, n_modes): rail ANCF coords, then the wheel Y
+    #: (one wheel) or the vehicle's coordinates u = [Y_A per wheel, (z, phi) per body], then
+    #: the sleepers' z_j (layered supports) [-]
     shapes: np.ndarray
     axial_frequencies: np.ndarray  #: lowest axial (x) modes, (min(n_axial, axial dofs),) [Hz]
     n_elements: int  #: mesh used
+    n_vehicle: int = 1  #: vehicle coordinates after the rail's n_dof in each shape [-]
+    #: share of each mode's kinetic energy in the vehicle's bodies, (n_pos, n_modes) [-]: near 1
+    #: for the suspension (rigid-body) modes, near 0 for the track modes; None for one wheel
+    body_fraction: np.ndarray | None = None
 
     def __repr__(self) -> str:
         n_pos, n_modes = self.frequencies.shape
@@ -72,6 +77,12 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     """Lowest ``n_modes`` vertical natural frequencies [Hz] with the wheel at each of
     ``positions`` [m] (0 <= X <= L).
 
+    With a ``scene.vehicle`` the positions place the vehicle's reference point (x = 0; every
+    wheel must be on the rail) and the modes are those of the rail, the wheels on their
+    linearised contact springs and the bodies on their suspensions together (undamped): the
+    lowest are the suspension's rigid-body modes (car body ~1 Hz, bogies 5-10 Hz),
+    ``body_fraction`` tells them from the track modes.
+
     >>> r = eigen(Scene.kato2005(), [2.5])
     >>> r.frequencies.shape
     (1, 6)
@@ -82,6 +93,8 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     ne = scene.rail.n_elements if n_elements is None else v.integer(
         "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
     model = _kernel.rail_model(scene, ne)
+    if scene.vehicle is not None:
+        return _vehicle_eigen(scene, x, n_modes, ne, n_axial)
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
     n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1 + n_sleepers)
@@ -97,6 +110,116 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
              else np.empty(0))
     return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
                        shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne)
+
+
+def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: int
+                   ) -> EigenResult:
+    """:func:`eigen` for a vehicle: K q = omega^2 M q over [rail vertical coords, u, sleepers'
+    z_j (layered supports)]."""
+    from scipy.linalg import eigh
+
+    if scene.rail.beam != "euler":
+        raise ValueError(f"eigen with a vehicle takes Rail(beam='euler') (the ANCF rail "
+                         f"linearised), got beam = {scene.rail.beam!r}")
+
+    veh = scene.active_vehicle
+    model = _kernel.rail_model(scene, ne)
+    rear, front = veh.span
+    if x.min() + rear < 0.0 or x.max() + front > scene.rail.length:
+        raise ValueError(f"positions: the vehicle's wheels span x = {rear}..{front} m, so its "
+                         f"reference must lie in [{-rear:.4g}, {scene.rail.length - front:.4g}] m")
+    free = np.asarray(model.free_to_full)
+    e0 = model.reference()
+    Kr = np.asarray(model.tangent_dense(e0))
+    Mr = np.asarray(model.mass_dense())
+    vert = free[free % 2 == 1]  # y and dy/ds: the straight rail's vertical coordinates
+    nr, nw, nb = vert.size, veh.n_wheels, veh.n_bodies
+    vm = _vehicle_matrices(scene)
+    Ks, Ms, Ss = _sleeper_blocks(scene, model, e0, vert)
+    ns = Ms.shape[0]
+    n_modes = v.integer("n_modes", n_modes, low=1, high=nr + nw + 2 * nb + ns)
+    kc = scene.contact_stiffness
+    nu = nw + 2 * nb
+    n = nr + nu + ns
+    freqs, shapes, frac = [], [], []
+    for x0 in x:
+        S = _couplings(model, e0, vert, [x0 + p for p in veh.positions])  # (nw, nr)
+        K = np.zeros((n, n))
+        M = np.zeros((n, n))
+        K[:nr, :nr] = Kr[np.ix_(vert, vert)] + kc * S.T @ S
+        M[:nr, :nr] = Mr[np.ix_(vert, vert)]
+        K[:nr, nr:nr + nw] = -kc * S.T
+        K[nr:nr + nw, :nr] = -kc * S
+        K[nr:nr + nu, nr:nr + nu] += vm[0]
+        K[nr:nr + nw, nr:nr + nw] += kc * np.eye(nw)
+        M[nr:nr + nu, nr:nr + nu] = np.diag(vm[1])
+        K[nr + nu:, nr + nu:] = Ks
+        M[nr + nu:, nr + nu:] = Ms
+        K[:nr, nr + nu:] = Ss.T
+        K[nr + nu:, :nr] = Ss
+        w2, vec = eigh(K, M, subset_by_index=(0, n_modes - 1))
+        freqs.append(np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi))
+        kin = vec * (M @ vec)
+        frac.append(kin[nr + nw:nr + nu].sum(axis=0) / kin.sum(axis=0))
+        full = np.zeros((model.n_dof + n - nr, n_modes))
+        full[vert] = vec[:nr]
+        full[model.n_dof:] = vec[nr:]
+        shapes.append(full)
+    axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial
+             else np.empty(0))
+    return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
+                       shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne,
+                       n_vehicle=nw + 2 * nb, body_fraction=np.asarray(frac))
+
+
+def _sleeper_blocks(scene: Scene, model, e0, vert) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The layered supports' blocks over the sleepers' z_j (docs: Model § Layered supports):
+    K_zz = (k_p + k_b) I, M_zz = m_s I and the coupling K_zr = -k_p s(x_j) to the rail's
+    vertical coordinates (the pads' k_p s s^T to ground is already in the rail's tangent).
+    Empty without sleepers."""
+    sp = scene.supports
+    if not sp.layered:
+        return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, vert.size))
+    xs = scene.support_positions
+    ns = len(xs)
+    Ks = (sp.stiffness + sp.ballast_stiffness) * np.eye(ns)
+    return Ks, sp.sleeper_mass * np.eye(ns), -sp.stiffness * _couplings(model, e0, vert, xs)
+
+
+def _vehicle_matrices(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """(K_v, mass diagonal over u) of the scene's vehicle, u = [Y per wheel, (z, phi) per
+    body]: K_v = sum k g g^T over the suspensions (docs: Model § The vehicle); the wheels'
+    masses on the wheels' entries."""
+    veh = scene.active_vehicle
+    vp = _kernel.vehicle_params(scene)
+    nw = veh.n_wheels
+    n = nw + 2 * len(vp.bodies)
+    K = np.zeros((n, n))
+    for sp in vp.suspensions:
+        g = np.zeros(n)
+        g[nw + 2 * sp.upper_body] += 1.0
+        g[nw + 2 * sp.upper_body + 1] += sp.upper_arm
+        if sp.lower_wheel >= 0:
+            g[sp.lower_wheel] -= 1.0
+        else:
+            g[nw + 2 * sp.lower_body] -= 1.0
+            g[nw + 2 * sp.lower_body + 1] -= sp.lower_arm
+        K += sp.stiffness * np.outer(g, g)
+    mass = [w.mass for w in veh.wheels]
+    for b in vp.bodies:
+        mass += [b.mass, b.inertia]
+    return K, np.asarray(mass)
+
+
+def _couplings(model, e0, vert, xs) -> np.ndarray:
+    """s(X) over the rail's vertical coordinates at each X in xs: y(X) = s(X) . e (the
+    positions are linear in e; each column from a unit vector)."""
+    S = np.zeros((len(xs), vert.size))
+    for j, i in enumerate(vert):
+        unit = np.zeros_like(e0)
+        unit[i] = 1.0
+        S[:, j] = np.asarray(model.positions(unit, list(xs)))[:, 1]
+    return S
 
 
 def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None

@@ -24,7 +24,8 @@ from .simulate import FIDELITY_LEVELS, simulate
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
     import pandas as pd
 
-__all__ = ["adequacy", "pinned_pinned_frequencies", "recommend", "shear_judgement"]
+__all__ = ["VEHICLE_LEVELS", "adequacy", "pinned_pinned_frequencies", "recommend",
+           "shear_judgement", "vehicle_adequacy", "vehicle_levels"]
 
 _HEADLINE = ("amplitude", "main_frequency", "peak_contact_force")
 
@@ -95,10 +96,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
             row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "level": lv, "error": ""}
             try:
                 r = simulate(scene, float(speed), fidelity=lv, **kw)
-                a = analyse(r)
-                row.update(amplitude=a.amplitude, main_frequency=a.main_frequency,
-                           peak_contact_force=a.max_contact_force, wall_time=r.wall_time,
-                           lost_contact=a.lost_contact)
+                row.update(_headline(r), wall_time=r.wall_time)
             except (ValueError, RuntimeError) as exc:  # DivergenceError is a RuntimeError
                 row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
                            wall_time=np.nan, lost_contact=False, error=str(exc))
@@ -114,8 +112,91 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     df.attrs["recommended"] = recommend(df)
     if scene.irregularity is not None and scene.irregularity.parts:
         df.attrs["contact_filter"] = contact_filter_judgement(scene)
+    if scene.vehicle is not None and scene.vehicle.n_bodies:
+        veh = vehicle_adequacy(scene, speeds, tol=tol, fidelity=reference, **simulate_kwargs)
+        df.attrs["vehicle"] = veh
+        df.attrs["vehicle_recommended"] = veh.attrs["recommended"]
     if shear:
         df.attrs["shear"] = shear_judgement(judged_scene, speeds, tol=tol, **simulate_kwargs)
+    return df
+
+
+def _headline(r) -> dict:
+    """Headline outputs of a run; with several wheels those of the worst wheel (largest
+    amplitude max|d|; the peak force is the largest of any wheel)."""
+    analyses = [analyse(r, wheel=i) for i in range(r.n_wheels)]
+    worst = max(analyses, key=lambda a: a.amplitude)
+    return dict(amplitude=worst.amplitude, main_frequency=worst.main_frequency,
+                peak_contact_force=max(a.max_contact_force for a in analyses),
+                lost_contact=any(a.lost_contact for a in analyses))
+
+
+#: vehicle levels of :func:`vehicle_adequacy`, least detailed first
+VEHICLE_LEVELS = ("unsprung masses", "bogie", "half car")
+
+
+def vehicle_levels(scene: Scene) -> dict:
+    """The scene's vehicle at each level it can be cut down to: "unsprung masses" (the wheels
+    alone, each under its constant static load of the weight distribution), "bogie" (the
+    bogie frames on their primary suspensions, the car body replaced by its constant pivot
+    loads; only with a car body) and the vehicle as given ("half car" with a car body, else
+    "bogie")."""
+    from dataclasses import replace
+
+    from .vehicle import Vehicle
+
+    veh = scene.active_vehicle
+    g = scene.gravity
+    loads = veh.static_loads(g)
+    wheels = tuple(replace(w, load=P - w.mass * g) for w, P in zip(veh.wheels, loads))
+    out = {"unsprung masses": replace(scene, vehicle=Vehicle(wheels=wheels,
+                                                             positions=veh.positions))}
+    if veh.car is not None:
+        bogies = tuple(replace(b, load=F) for b, F in zip(veh.bogies, veh.pivot_loads(g)))
+        out["bogie"] = replace(scene, vehicle=replace(veh, bogies=bogies, car=None))
+        out["half car"] = scene
+    else:
+        out["bogie"] = scene
+    return out
+
+
+def vehicle_adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
+                     **simulate_kwargs) -> pd.DataFrame:
+    """Whether the bogies and the car body matter for ``scene`` (a scene with a vehicle):
+    runs each of :func:`vehicle_levels` at each speed [m/s] and compares the worst wheel's
+    headline outputs (``amplitude``, ``main_frequency``, ``peak_contact_force``) with the
+    vehicle as given. One row per (speed, vehicle level) with the relative differences
+    ``d_*`` and ``adequate`` (all <= tol); ``df.attrs["recommended"]`` is the least detailed
+    level adequate at every speed. The suspension isolates the bodies above ~20 Hz, so for
+    the wheel/rail force they rarely matter; the neighbouring wheels' waves through the rail
+    are in every level."""
+    if not isinstance(scene, Scene) or scene.vehicle is None:
+        raise ValueError("vehicle_adequacy needs a Scene with a vehicle (Scene(vehicle=...))")
+    import pandas as pd
+
+    scenes = vehicle_levels(scene)
+    full = list(scenes)[-1]
+    rows = []
+    for speed in np.atleast_1d(np.asarray(speeds, dtype=float)):
+        ref = None
+        for name in [full] + [n for n in scenes if n != full]:
+            row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "vehicle": name,
+                   "error": ""}
+            try:
+                r = simulate(scenes[name], float(speed), **simulate_kwargs)
+                row.update(_headline(r), wall_time=r.wall_time)
+            except (ValueError, RuntimeError) as exc:
+                row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
+                           wall_time=np.nan, lost_contact=False, error=str(exc))
+            ref = row if ref is None else ref
+            for key in _HEADLINE:
+                row["d_" + key] = abs(row[key] / ref[key] - 1.0) if ref[key] else np.nan
+            rows.append(row)
+    df = pd.DataFrame(rows)
+    df["adequate"] = (df[["d_" + k for k in _HEADLINE]] <= tol).all(axis=1) & (df.error == "")
+    ok = df.groupby("vehicle", sort=False)["adequate"].all()
+    df.attrs["tol"] = tol
+    df.attrs["recommended"] = next((n for n in VEHICLE_LEVELS if ok.get(n, False)), full)
     return df
 
 

@@ -486,6 +486,11 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result (from trackwheel.simulate), "
                         f"got {type(result).__name__}")
+    if result.n_wheels > 1:
+        if analysis is not None:
+            raise ValueError("analysis: leave it None for a run with several wheels (each "
+                             "wheel is analysed here)")
+        return _dynamic_wheels(result, f_max)
     if analysis is None:
         analysis = analyse(result)
     elif not isinstance(analysis, Analysis):
@@ -535,6 +540,38 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
         ax.grid(True, alpha=0.3)
     fig.suptitle(f"{_speed_kmh(result):g} km/h, k_s = {result.scene.supports.stiffness / 1e6:g}"
                  f" MN/m, {_run_label(result, dt=True, n_elements=True)}")
+    return fig
+
+
+def _dynamic_wheels(result, f_max) -> Figure:
+    """:func:`dynamic` for a vehicle: every wheel's contact force N and dynamic part d against
+    time, and the spectra of d, one colour per wheel (wheel i: ``analyse(result, wheel=i)``)."""
+    from .analysis import analyse
+
+    fig = Figure(figsize=(8.0, 8.5), layout="constrained")
+    ax_n, ax_d, ax_f = fig.subplots(3, 1)
+    f_max = 1000.0 if f_max is None else v.positive("f_max", f_max, "Hz")
+    for i in range(result.n_wheels):
+        a = analyse(result, wheel=i)
+        ax_n.plot(a.t, a.normal_force * 1e-3, color=f"C{i}", linewidth=0.9, label=f"wheel {i}")
+        ax_d.plot(a.t, a.dynamic * 1e6, color=f"C{i}", linewidth=0.9,
+                  label=f"wheel {i}: max|d| = {a.amplitude * 1e6:.3g} µm")
+        freqs, amps = a.spectrum
+        keep = freqs <= f_max
+        ax_f.plot(freqs[keep], amps[keep] * 1e6, color=f"C{i}", linewidth=0.9,
+                  label=f"wheel {i}: {a.main_frequency:.1f} Hz")
+    ax_n.set_ylabel("contact force N [kN]")
+    ax_d.set_ylabel("dynamic part d = y_B - y_qs [µm]")
+    for ax in (ax_n, ax_d):
+        ax.set_xlabel("time t [s]")
+    ax_f.set_xlim(0.0, f_max)
+    ax_f.set_xlabel("frequency [Hz]")
+    ax_f.set_ylabel("amplitude spectrum of d [µm]")
+    for ax in (ax_n, ax_d, ax_f):
+        ax.grid(True, alpha=0.3)
+        _legend_outside(ax)
+    fig.suptitle(f"{_speed_kmh(result):g} km/h, {result.n_wheels} wheels, "
+                 f"{_run_label(result, dt=True, n_elements=True)}")
     return fig
 
 

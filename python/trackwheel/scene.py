@@ -263,7 +263,17 @@ class Contact:
 
 @dataclass(frozen=True)
 class Scene:
-    """A wheel on a rail on supports: everything the kernel needs, in SI units."""
+    """A wheel (or a vehicle) on a rail on supports: everything the kernel needs, in SI units.
+
+    ``vehicle=None`` (the default) is the single wheel ``Scene.wheel`` under its constant load,
+    the paper's model. With a :class:`~trackwheel.Vehicle` the wheels, their places and their
+    loads come from the vehicle, and ``Scene.wheel`` is derived from it, whatever was given:
+    the vehicle's first wheel carrying the mean static wheel load (it sets the contact
+    stiffness and the default mesh and step). Give the wheels in the Vehicle; so
+    ``dataclasses.replace(scene, vehicle=other)`` works, and ``vehicle=None`` turns the scene
+    back into the single (derived) wheel. All wheels of a vehicle share one contact law, so they
+    need the same radius and elastic constants.
+    """
 
     rail: Rail = field(default_factory=Rail)
     supports: Supports = field(default_factory=Supports)
@@ -273,6 +283,9 @@ class Scene:
     rail_gravity: bool = True  #: apply the rail's own weight
     #: rail profile r(X) [m] (positive = bump, docs: Model § Irregularities), or None for a smooth rail
     irregularity: Irregularity | None = None
+    #: the vehicle (trackwheel.Vehicle), or None: the single wheel ``wheel``
+    #: (docs: Model § The vehicle)
+    vehicle: object = None
 
     def __post_init__(self):
         for f in fields(self)[:4]:
@@ -285,11 +298,39 @@ class Scene:
         if self.irregularity is not None and not isinstance(self.irregularity, Irregularity):
             raise TypeError(f"Scene.irregularity must be a trackwheel.Irregularity or None, "
                             f"got {type(self.irregularity).__name__}")
+        if self.vehicle is not None:
+            self._derive_wheel()
         if self.wheel.load == 0.0 and self.gravity == 0.0:  # P = F + M g = 0
             raise ValueError("Wheel.load = 0 N with Scene.gravity = 0 m/s^2 leaves the wheel "
                              "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
                              "Scene.gravity > 0")
         self.supports.resolve(self.rail.length)  # supports must lie on the rail
+
+    def _derive_wheel(self):
+        from dataclasses import replace
+
+        from .vehicle import Vehicle
+
+        veh = self.vehicle
+        if not isinstance(veh, Vehicle):
+            raise TypeError(f"Scene.vehicle must be a trackwheel.Vehicle or None, "
+                            f"got {type(veh).__name__}")
+        w0 = veh.wheels[0]
+        for i, w in enumerate(veh.wheels):
+            if (w.radius, w.youngs_modulus, w.poisson_ratio) != (
+                    w0.radius, w0.youngs_modulus, w0.poisson_ratio):
+                raise ValueError(f"Vehicle.wheels[{i}] differs from wheel 0 in radius or elastic "
+                                 "constants; the wheels share one contact law")
+        loads = veh.static_loads(self.gravity)
+        derived = replace(w0, load=max(sum(loads) / len(loads) - w0.mass * self.gravity, 0.0))
+        object.__setattr__(self, "wheel", derived)
+
+    @property
+    def active_vehicle(self):
+        """The vehicle that runs: ``vehicle``, or ``Vehicle.single_wheel(wheel)`` if None."""
+        from .vehicle import Vehicle
+
+        return Vehicle.single_wheel(self.wheel) if self.vehicle is None else self.vehicle
 
     @classmethod
     def kato2005(cls) -> "Scene":

@@ -79,7 +79,9 @@ def _mesh(scene: Scene, n_elements) -> int:
 def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> StaticResult:
     """Static equilibrium with the wheel centre held at ``x_wheel`` [m] (0 <= x_wheel <= L).
 
-    Returns the deflected rail and the contact-point displacement y_B [m].
+    Returns the deflected rail and the contact-point displacement y_B [m]. With a
+    ``scene.vehicle`` this is its derived ``Scene.wheel`` alone (the first wheel under the mean
+    static load); :func:`vehicle_static` gives the whole vehicle's static state.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
@@ -111,6 +113,54 @@ def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> Q
     return QuasiStatic(positions=x, y_contact=np.asarray(d["y_contact"]),
                        y_wheel=np.asarray(d["y_wheel"]), contact_s=np.asarray(d["contact_s"]),
                        normal_force=np.asarray(d["normal_force"]))
+
+
+@dataclass(frozen=True)
+class VehicleStatic:
+    """The static state of a vehicle on the track (the start of :func:`trackwheel.simulate`)."""
+
+    x_wheels: np.ndarray  #: X_A of each wheel, (n_wheels,) [m]
+    y_wheels: np.ndarray  #: Y_A, (n_wheels,) [m]
+    y_contact: np.ndarray  #: y_B under each wheel, (n_wheels,) [m]
+    normal_force: np.ndarray  #: N = the lever-rule static wheel loads, (n_wheels,) [N]
+    bodies: np.ndarray  #: (n_bodies, 2): z [m], phi [rad] of the bogies, then the car body
+    rail_coordinates: np.ndarray  #: ANCF coordinates e [m, m, -, -]
+    #: layered supports: sleeper heights z_j [m] (negative = down), one per support; else empty
+    sleeper_z: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: layered supports: ballast force under each sleeper, -k_b z_j [N] (positive =
+    #: compression); their sum is the vehicle's weight plus that of rail and sleepers on them
+    ballast_force: np.ndarray = field(default_factory=lambda: np.empty(0))
+
+
+def vehicle_static(scene: Scene, x_ref: float, *, n_elements: int | None = None
+                   ) -> VehicleStatic:
+    """Static equilibrium of the scene's vehicle with its reference point (x = 0) at
+    ``x_ref`` [m]: the rail under every wheel's static load of the weight distribution at once
+    (docs: Model § The vehicle), each body where its springs carry those loads."""
+    from .vehicle import static_bodies
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    veh = scene.active_vehicle
+    rear, front = veh.span
+    x = v.number("x_ref", x_ref, low=-rear, high=scene.rail.length - front, unit="m")
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    xs = [x + p for p in veh.positions]
+    contacts = []
+    for w in veh.wheels:
+        c = _kernel.contact_params(scene)
+        c.radius = w.radius
+        contacts.append(c)
+    sols = _core.static_solve_wheels(model, _kernel.static_wheels_params(scene), contacts, xs)
+    y = np.array([d["y_wheel"] for d in sols])
+    return VehicleStatic(
+        x_wheels=np.asarray(xs), y_wheels=y,
+        y_contact=np.array([d["y_contact"] for d in sols]),
+        normal_force=np.array([d["normal_force"] for d in sols]),
+        bodies=np.asarray(static_bodies(veh, scene.gravity, y)).reshape(-1, 2),
+        rail_coordinates=np.asarray(sols[0]["e"]),
+        sleeper_z=np.asarray(sols[0]["sleeper_z"]),
+        ballast_force=np.asarray(sols[0]["ballast_force"]))
 
 
 def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = None,
