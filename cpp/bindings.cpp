@@ -17,8 +17,10 @@
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "eigen_analysis.hpp"
+#include "frequency.hpp"
 #include "generalized_alpha.hpp"
 #include "limits.hpp"
+#include "linear_beam.hpp"
 #include "linear_track.hpp"
 #include "model.hpp"
 #include "output.hpp"
@@ -41,6 +43,8 @@ py::dict static_to_dict(const StaticResult& r) {
   d["normal_force"] = r.normal_force;
   d["horizontal_reaction"] = r.horizontal_reaction;
   d["iterations"] = r.iterations;
+  d["sleeper_z"] = r.z;
+  d["ballast_force"] = r.ballast_force;
   return d;
 }
 
@@ -83,6 +87,21 @@ py::dict output_to_dict(SimOutput&& o) {
     if (table[f].per_wheel) arr = arr.attr("reshape")(n / nw, nw);
     d[table[f].name] = arr;
   }
+  {  // the vehicle's bodies: z [m] and phi [rad], (n_samples, n_bodies) each
+    const py::ssize_t nb = o.rec.n_bodies();
+    const std::vector<double>& b = o.rec.bodies();
+    const py::ssize_t ns = nb > 0 ? static_cast<py::ssize_t>(b.size()) / (2 * nb) : 0;
+    py::array_t<double> z({ns, nb}), phi({ns, nb});
+    auto zm = z.mutable_unchecked<2>();
+    auto pm = phi.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < ns; ++i)
+      for (py::ssize_t k = 0; k < nb; ++k) {
+        zm(i, k) = b[2 * (i * nb + k)];
+        pm(i, k) = b[2 * (i * nb + k) + 1];
+      }
+    d["body_z"] = z;
+    d["body_phi"] = phi;
+  }
   d["steps"] = o.steps;
   d["newton_iterations"] = o.newton_iterations;
   d["factorizations"] = o.factorizations;
@@ -101,8 +120,8 @@ py::tuple output_table() {
 }
 
 Model make_model(const RailModel& rail, const std::vector<WheelParams>& wheels,
-                 const ContactParams& contact) {
-  return Model{rail, wheels, contact};
+                 const ContactParams& contact, const VehicleParams& vehicle = VehicleParams()) {
+  return Model{rail, wheels, contact, vehicle};
 }
 
 // A dense square as a band matrix of half bandwidth b (entries outside the band ignored).
@@ -202,7 +221,10 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)
       .def_readwrite("stiffness", &SupportParams::stiffness)
-      .def_readwrite("damping", &SupportParams::damping);
+      .def_readwrite("damping", &SupportParams::damping)
+      .def_readwrite("sleeper_mass", &SupportParams::sleeper_mass)
+      .def_readwrite("ballast_stiffness", &SupportParams::ballast_stiffness)
+      .def_readwrite("ballast_damping", &SupportParams::ballast_damping);
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
       .def(py::init<>())
@@ -236,6 +258,25 @@ PYBIND11_MODULE(_core, m) {
   py::enum_<ContactLaw>(m, "ContactLaw")
       .value("linear", ContactLaw::Linear)
       .value("hertz", ContactLaw::Hertz);
+  py::class_<BodyParams>(m, "BodyParams")
+      .def(py::init<>())
+      .def_readwrite("mass", &BodyParams::mass, "[kg]")
+      .def_readwrite("inertia", &BodyParams::inertia, "pitch inertia [kg m^2]")
+      .def_readwrite("gravity", &BodyParams::gravity, "[m/s^2]")
+      .def_readwrite("load", &BodyParams::load, "constant downward force on the centre [N]");
+  py::class_<SuspensionParams>(m, "SuspensionParams")
+      .def(py::init<>())
+      .def_readwrite("stiffness", &SuspensionParams::stiffness, "k [N/m]")
+      .def_readwrite("damping", &SuspensionParams::damping, "c [N s/m]")
+      .def_readwrite("lower_wheel", &SuspensionParams::lower_wheel, "wheel index or -1")
+      .def_readwrite("lower_body", &SuspensionParams::lower_body, "body index or -1")
+      .def_readwrite("lower_arm", &SuspensionParams::lower_arm, "[m]")
+      .def_readwrite("upper_body", &SuspensionParams::upper_body, "body index")
+      .def_readwrite("upper_arm", &SuspensionParams::upper_arm, "[m]");
+  py::class_<VehicleParams>(m, "VehicleParams")
+      .def(py::init<>())
+      .def_readwrite("bodies", &VehicleParams::bodies, "a copy: assign the whole list")
+      .def_readwrite("suspensions", &VehicleParams::suspensions, "a copy: assign the whole list");
   py::class_<ContactParams>(m, "ContactParams")
       .def(py::init<>())
       .def_readwrite("law", &ContactParams::law)
@@ -317,10 +358,37 @@ PYBIND11_MODULE(_core, m) {
           }
           return static_to_dict(r);
         });
+  m.def(
+      "static_solve_wheels",
+      [](const RailModel& rail, const std::vector<WheelParams>& w,
+         const std::vector<ContactParams>& c, const std::vector<double>& x) {
+        std::vector<StaticResult> rs;
+        {
+          py::gil_scoped_release nogil;
+          rs = solve_static_wheels(rail, w, c, x);
+        }
+        py::list out;
+        for (const StaticResult& r : rs) out.append(static_to_dict(r));
+        return out;
+      },
+      py::arg("rail"), py::arg("wheels"), py::arg("contacts"), py::arg("x_wheels"),
+      "Static equilibrium of several wheels on the rail, wheel w at x_wheels[w] under its load "
+      "F + M g: one static_solve dict per wheel (the same rail e in each)");
   m.def("rail_static", [](const RailModel& rail) {
     py::gil_scoped_release nogil;
     return solve_rail_static(rail);
   });
+  m.def(
+      "track_static",
+      [](const RailModel& rail) {
+        StaticResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = solve_track_static(rail);
+        }
+        return static_to_dict(r);
+      },
+      "Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}");
   m.def("quasi_static", [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
                            const std::vector<double>& x) {
     std::vector<StaticResult> rs;
@@ -343,6 +411,11 @@ PYBIND11_MODULE(_core, m) {
     d["normal_force"] = N;
     return d;
   });
+  m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("beam"),
+        py::arg("load"), py::arg("x"), py::arg("n_modes") = 0,
+        py::call_guard<py::gil_scoped_release>(),
+        "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
+        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.");
   m.def(
       "vertical_modes",
       [](const RailModel& rail, double M, double k, const std::vector<double>& x, int n_modes) {
@@ -353,7 +426,8 @@ PYBIND11_MODULE(_core, m) {
         }
         return modal_to_tuple(r);
       },
-      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))");
+      "Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, "
+      "n_modes))");
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
@@ -376,6 +450,54 @@ PYBIND11_MODULE(_core, m) {
       "K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) "
       "at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates "
       "(the direction's free coordinates, full indices in dofs, then the wheel's Y_w)");
+
+  // ---------------------------------------------------------------- linear beam, frequency domain
+  py::class_<BeamParams>(m, "BeamParams")
+      .def(py::init<>())
+      .def_readwrite("shear_stiffness", &BeamParams::shear_stiffness,
+                     "kappa G A [N]; 0: Euler-Bernoulli")
+      .def_readwrite("rotary_inertia", &BeamParams::rotary_inertia, "rho I [kg m]");
+  m.def("timoshenko_stiffness", &timoshenko_stiffness, py::arg("EI"), py::arg("kGA"), py::arg("l"),
+        "Exact IIE Timoshenko element stiffness (4x4) over [w1, psi1, w2, psi2]");
+  m.def("timoshenko_mass", &timoshenko_mass, py::arg("rhoA"), py::arg("rhoI"), py::arg("EI"),
+        py::arg("kGA"), py::arg("l"), "Consistent IIE element mass (4x4) with rotary inertia");
+  m.def("timoshenko_energy", &timoshenko_energy, py::arg("EI"), py::arg("kGA"), py::arg("l"),
+        py::arg("q"), "IIE element strain energy [J]");
+  m.def(
+      "timoshenko_shapes",
+      [](double xi, double l, double phi) {
+        const BeamShapes s = timoshenko_shapes(xi, l, phi);
+        Eigen::Matrix<double, 5, 4> out;
+        for (int a = 0; a < 4; ++a) out.col(a) << s.w[a], s.ws[a], s.wss[a], s.psi[a], s.psis[a];
+        return out;
+      },
+      py::arg("xi"), py::arg("l"), py::arg("phi"),
+      "IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]");
+  m.def(
+      "receptance",
+      [](const RailModel& rail, const BeamParams& beam, double x, const std::vector<double>& xr,
+         const std::vector<double>& freqs) {
+        py::gil_scoped_release nogil;
+        return receptance(rail, beam, x, xr, freqs);
+      },
+      py::arg("rail"), py::arg("beam"), py::arg("x"), py::arg("x_response"), py::arg("freqs"),
+      "Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x");
+  m.def(
+      "track_modes",
+      [](const RailModel& rail, const BeamParams& beam, double M, double k,
+         const std::vector<double>& x, int n_modes) {
+        std::vector<Eigen::MatrixXd> shapes;
+        Eigen::MatrixXd f;
+        {
+          py::gil_scoped_release nogil;
+          f = track_modes(rail, beam, M, k, x, n_modes, &shapes);
+        }
+        return py::make_tuple(f, shapes);
+      },
+      py::arg("rail"), py::arg("beam"), py::arg("wheel_mass"), py::arg("contact_stiffness"),
+      py::arg("positions"), py::arg("n_modes"),
+      "Linear-track modes: (frequencies (n_pos, n_modes) [Hz], shapes per position (ny + 1, "
+      "n_modes) over the y coordinates then the wheel)");
 
   // ---------------------------------------------------------------- dynamics
   py::enum_<Integrator>(m, "Integrator")
@@ -415,7 +537,12 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("e", &SimState::e, "rail coordinates (n_dof,)")
       .def_readwrite("edot", &SimState::edot, "rail velocities (n_dof,)")
       .def_readwrite("wheels", &SimState::wheels,
-                     "one WheelState per wheel (a copy: assign the whole list)");
+                     "one WheelState per wheel (a copy: assign the whole list)")
+      .def_readwrite("body", &SimState::body, "(2 n_bodies,) [z, phi] per vehicle body")
+      .def_readwrite("bodydot", &SimState::bodydot, "(2 n_bodies,) rates")
+      .def_readwrite("z", &SimState::z,
+                     "sleeper heights (n_sleepers,) [m]; empty: at rest under the initial rail")
+      .def_readwrite("zdot", &SimState::zdot, "sleeper velocities (n_sleepers,) [m/s]");
 
   // trackwheel.DivergenceError(message, time=, step=, cause=) for the kernel's DivergenceError
   py::register_exception_translator([](std::exception_ptr p) {
@@ -437,9 +564,10 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "simulate",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
-         const SimSettings& s, const SimState& init, py::object progress) {
+         const SimSettings& s, const SimState& init, py::object progress,
+         const VehicleParams& vehicle) {
         const ProgressFn fn = python_progress(progress);
-        const Model model = make_model(rail, wheels, c);
+        const Model model = make_model(rail, wheels, c, vehicle);
         SimOutput o;
         {
           py::gil_scoped_release nogil;
@@ -448,12 +576,12 @@ PYBIND11_MODULE(_core, m) {
         return output_to_dict(std::move(o));
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
-      py::arg("initial"), py::arg("progress") = py::none(),
+      py::arg("initial"), py::arg("progress") = py::none(), py::arg("vehicle") = VehicleParams(),
       "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
       "settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns "
       "{field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and "
-      "the counters steps, newton_iterations, factorizations, state_changes, stability_limit, "
-      "final_state");
+      "the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, "
+      "newton_iterations, factorizations, state_changes, stability_limit, final_state");
   m.def(
       "highest_frequency",
       [](const RailModel& rail, const WheelParams& w, const ContactParams& c,
@@ -497,13 +625,15 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("wheel_model", &LinearOptions::wheel_model)
       .def_readwrite("n_modes", &LinearOptions::n_modes)
       .def_readwrite("sudden", &LinearOptions::sudden)
-      .def_readwrite("drop_height", &LinearOptions::drop_height);
+      .def_readwrite("drop_height", &LinearOptions::drop_height)
+      .def_readwrite("beam", &LinearOptions::beam);
   m.def(
       "simulate_linear",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
-         const SimSettings& s, const LinearOptions& opt, py::object progress) {
+         const SimSettings& s, const LinearOptions& opt, py::object progress,
+         const VehicleParams& vehicle) {
         const ProgressFn fn = python_progress(progress);
-        const Model model = make_model(rail, wheels, c);
+        const Model model = make_model(rail, wheels, c, vehicle);
         SimOutput o;
         {
           py::gil_scoped_release nogil;
@@ -514,22 +644,29 @@ PYBIND11_MODULE(_core, m) {
         return d;
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
-      py::arg("options"), py::arg("progress") = py::none(),
-      "Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)");
+      py::arg("options"), py::arg("progress") = py::none(), py::arg("vehicle") = VehicleParams(),
+      "Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)");
 
   // ---------------------------------------------------------------- test hooks
   m.def(
       "ga_probe",
       [](const RailModel& rail, const std::vector<WheelParams>& wheels, const ContactParams& c,
-         const SimSettings& s, const SimState& init, double t1, std::optional<Eigen::VectorXd> x) {
-        const Model model = make_model(rail, wheels, c);
+         const SimSettings& s, const SimState& init, double t1, std::optional<Eigen::VectorXd> x,
+         const VehicleParams& vehicle) {
+        const Model model = make_model(rail, wheels, c, vehicle);
         check_settings(s);
         check_model(model);
         check_coordinates(rail, init.e, "initial.e");
         if (static_cast<int>(init.wheels.size()) != model.n_wheels())
           throw std::invalid_argument("initial needs one WheelState per wheel");
+        if (init.body.size() != 2 * model.n_bodies() || init.bodydot.size() != init.body.size())
+          throw std::invalid_argument("initial needs (z, phi) per vehicle body");
         System sys(model, s);
         SimState st = init;
+        if (!sys.sleepers().empty() && st.z.size() == 0) {  // at rest under the given rail
+          st.z = sys.sleepers().static_z(st.e);
+          st.zdot = Eigen::VectorXd::Zero(st.z.size());
+        }
         Eval ev;
         Accel acc;
         sys.evaluate(0.0, st, true, ev);
@@ -538,33 +675,39 @@ PYBIND11_MODULE(_core, m) {
         SimOutput out;
         const Divergence div(s, [] { return std::string("probe"); });
         GeneralizedAlpha ga(sys, st, ev, acc, out, div);
-        const int nf = sys.n_free(), m = sys.n_border();
-        Eigen::VectorXd start(nf + m);
-        start << rail.to_free(acc.edd), acc.x;
+        const int nf = sys.n_free(), m = sys.n_border(), ns = sys.sleepers().size();
+        Eigen::VectorXd start(nf + m + ns);
+        start << rail.to_free(acc.edd), acc.x, acc.zdd;
         Accel it = acc;
         if (x) {
-          if (x->size() != nf + m)
+          if (x->size() != nf + m + ns)
             throw std::invalid_argument(
-                "x must have n_free + 3 n_wheels = " + std::to_string(nf + m) + " entries");
+                "x must have n_free + 3 n_wheels + 2 n_bodies + n_sleepers = " +
+                std::to_string(nf + m + ns) + " entries");
           it.edd = Eigen::VectorXd::Zero(rail.n_dof());
           rail.add_from_free(x->head(nf), it.edd);
-          it.x = x->tail(m);
+          it.x = x->segment(nf, m);
+          it.zdd = x->tail(ns);
         }
-        Eigen::VectorXd minus_r;
+        Eigen::VectorXd minus_r, dx;
         Eigen::MatrixXd J;
-        ga.probe(t1, it, minus_r, J);
+        ga.probe(t1, it, minus_r, J, dx);
         py::dict d;
         d["start"] = start;
         d["residual"] = minus_r;
         d["matrix"] = J;
+        d["solution"] = dx;
         return d;
       },
       py::arg("rail"), py::arg("wheels"), py::arg("contact"), py::arg("settings"),
       py::arg("initial"), py::arg("t1"), py::arg("x") = py::none(),
+      py::arg("vehicle") = VehicleParams(),
       "Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] "
-      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel] (None: the start "
-      "accelerations). Returns {'start': the start accelerations in that layout, 'residual': "
-      "-r, 'matrix': the iteration matrix dr/dx (assembled, dense)}");
+      "at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, "
+      "z'' per sleeper] (None: the start accelerations). Returns {'start': the start "
+      "accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx "
+      "(assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction "
+      "(the sleepers condensed)}");
   m.def(
       "band_solve",
       [](const Eigen::MatrixXd& A, int half_bandwidth, const Eigen::VectorXd& r) {

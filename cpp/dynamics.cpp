@@ -7,6 +7,7 @@
 #include "banded.hpp"
 #include "explicit_rk4.hpp"
 #include "generalized_alpha.hpp"
+#include "sleepers.hpp"
 #include "slip.hpp"
 
 namespace trackwheel {
@@ -16,10 +17,26 @@ namespace {
 void check_initial(const Model& model, const SimState& st) {
   if (st.e.size() != model.rail.n_dof() || st.edot.size() != model.rail.n_dof())
     throw std::invalid_argument("initial rail state has the wrong size");
+  const int ns = Sleepers(model.rail).size();
+  if ((st.z.size() != 0 && st.z.size() != ns) || st.zdot.size() != st.z.size())
+    throw std::invalid_argument("initial sleeper state z, zdot must be empty (static) or have " +
+                                std::to_string(ns) + " entries");
   if (static_cast<int>(st.wheels.size()) != model.n_wheels())
     throw std::invalid_argument("initial state has " + std::to_string(st.wheels.size()) +
                                 " wheel states; the model has " + std::to_string(model.n_wheels()) +
                                 " wheels");
+  const long nb2 = 2L * model.n_bodies();
+  if (st.body.size() != nb2 || st.bodydot.size() != nb2)
+    throw std::invalid_argument("initial body state must have 2 n_bodies = " + std::to_string(nb2) +
+                                " entries (z, phi per body)");
+}
+
+// Sleepers not given start at rest in equilibrium under the initial rail.
+void start_sleepers(const RailModel& rail, SimState& st) {
+  const Sleepers sl(rail);
+  if (sl.empty() || st.z.size() == sl.size()) return;
+  st.z = sl.static_z(st.e);
+  st.zdot = Eigen::VectorXd::Zero(sl.size());
 }
 
 // Consistent start: contact points, slip states and the accelerations that go with them.
@@ -61,7 +78,9 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
   SimOutput out;
   out.rec.start(model.n_wheels(), set.record_energy,
                 static_cast<std::size_t>(n_steps_of(set) / set.output_every + 2));
+  out.rec.start_bodies(model.n_bodies());
   SimState st = initial;
+  start_sleepers(model.rail, st);
   Eval ev;
   Accel acc;
   start_state(sys, st, ev, acc);
@@ -76,7 +95,11 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
     wd.y0.push_back(st.wheels[w].y);
     wd.reach.push_back(10.0 * p.radius);
   }
-  const double omega_max = highest_frequency(model, st.e, xs, ys);
+  // the bodies' weight reaches the track through the wheels: the same cap per newton of load
+  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
+  // a sleeper between pad and ballast can be stiffer than anything in the rail
+  const double omega_max =
+      std::max(highest_frequency(model, st.e, xs, ys), Sleepers(model.rail).highest_frequency());
   out.stability_limit = explicit_stability_limit(omega_max);
   const Divergence div(set, [&] { return stability_cause(set, out.stability_limit, omega_max); });
 

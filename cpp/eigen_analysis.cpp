@@ -6,6 +6,7 @@
 #include <string>
 
 #include "limits.hpp"
+#include "sleepers.hpp"
 
 namespace trackwheel {
 
@@ -20,6 +21,24 @@ void solve_pencil(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int n_mode
   f.resize(n_modes);
   for (int k = 0; k < n_modes; ++k) f(k) = std::sqrt(std::max(w2(k), 0.0)) / (2.0 * M_PI);
   V = es.eigenvectors().leftCols(n_modes);
+}
+
+// The sleepers' rows and columns from local index z0 on: the rail's band already holds the pads
+// as springs and dampers to the ground, (k_p, c_p) s_j s_j^T; the pad's other end is z_j.
+template <class Push>
+void add_sleepers(const Sleepers& sl, const std::vector<int>& local, int z0, int ns, Push& push) {
+  for (int j = 0; j < ns; ++j) {
+    const int z = z0 + j;
+    const double kp = sl.pad_stiffness(j), cp = sl.pad_damping(j);
+    for (int a = 0; a < 4; ++a) {
+      const int i = local[sl.index(j, a)];
+      if (i < 0) continue;
+      const double w = sl.weight(j, a);
+      push(i, z, -kp * w, 0.0, -cp * w);
+      push(z, i, -kp * w, 0.0, -cp * w);
+    }
+    push(z, z, kp + sl.ballast_stiffness(j), sl.mass(j), cp + sl.ballast_damping(j));
+  }
 }
 
 void check_dense_size(int n, int n_modes) {
@@ -55,7 +74,9 @@ SparsePencil direction_pencil(const RailModel& rail, int component, double wheel
     }
   const int nr = static_cast<int>(p.dofs.size());
   const bool with_wheel = component == 1 && wheel_mass > 0.0;
-  p.n = nr + (with_wheel ? 1 : 0);
+  const Sleepers sl(rail);
+  const int ns = component == 1 ? sl.size() : 0, z0 = nr + (with_wheel ? 1 : 0);
+  p.n = z0 + ns;
   BandMatrix Kb(rail.n_free(), kHalfBandwidth);
   rail.add_tangent(rail.reference(), 1.0, Kb);
   const BandMatrix &Mb = rail.mass(), &Cb = rail.support_damping();
@@ -91,12 +112,14 @@ SparsePencil direction_pencil(const RailModel& rail, int component, double wheel
     }
     push(nr, nr, contact_stiffness, wheel_mass, 0.0);
   }
+  add_sleepers(sl, local, z0, ns, push);
   return p;
 }
 
 ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double contact_stiffness,
                            const std::vector<double>& positions, int n_modes) {
   const bool with_wheel = wheel_mass > 0.0;
+  const int ns = Sleepers(rail).size();
   const int npos = with_wheel ? static_cast<int>(positions.size()) : 1;
   ModalResult out;
   out.frequencies.resize(npos, n_modes < 1 ? 0 : n_modes);
@@ -109,9 +132,12 @@ ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double cont
     Eigen::VectorXd f;
     solve_pencil(K, M, n_modes, f, V);
     out.frequencies.row(p) = f.transpose();
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(rail.n_dof() + 1, n_modes);
-    for (size_t a = 0; a < pen.dofs.size(); ++a) S.row(pen.dofs[a]) = V.row(a);
-    if (with_wheel) S.row(rail.n_dof()) = V.row(pen.n - 1);
+    // local order: rail coordinates, the wheel's Y_w, the sleepers' z (direction_pencil)
+    const int nr = static_cast<int>(pen.dofs.size()), z0 = nr + (with_wheel ? 1 : 0);
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(rail.n_dof() + 1 + ns, n_modes);
+    for (int a = 0; a < nr; ++a) S.row(pen.dofs[a]) = V.row(a);
+    if (with_wheel) S.row(rail.n_dof()) = V.row(nr);
+    for (int j = 0; j < ns; ++j) S.row(rail.n_dof() + 1 + j) = V.row(z0 + j);
     out.shapes.push_back(S);
   }
   return out;

@@ -5,7 +5,9 @@
 // exactly an Euler-Bernoulli Hermite beam in y plus a cubic bar in x, and the two decouple, so the
 // vertical problem uses the y-coordinates (y, y_s) only and the axial modes are reported apart.
 // The wheel is a mass M on the contact spring k attached to the rail at X through the shape
-// functions: V = k/2 (Y_w - S_y(X) e)^2. Solves K x = omega^2 M x (symmetric-definite).
+// functions: V = k/2 (Y_w - S_y(X) e)^2. Layered supports append one DOF z_j per sleeper
+// (mass m_s, pad k_p to the rail, ballast k_b to the ground). Solves K x = omega^2 M x
+// (symmetric-definite).
 #pragma once
 
 #include <Eigen/Core>
@@ -17,14 +19,16 @@ namespace trackwheel {
 
 struct ModalResult {
   Eigen::MatrixXd frequencies;          // (n_positions, n_modes) [Hz], ascending
-  std::vector<Eigen::MatrixXd> shapes;  // per position: (n_dof + 1, n_modes), rail full coords
-                                        // then the wheel's Y_w; mass-normalised
+  std::vector<Eigen::MatrixXd> shapes;  // per position: (n_dof + 1 + n_sleepers, n_modes), rail
+                                        // full coords, the wheel's Y_w, then the sleepers' z_j
+                                        // (layered supports); mass-normalised
 };
 
 // One direction's K and M (and the dampers' C) at the straight reference, as sparse triplets over
 // local coordinates: the free coordinates of that direction in full order (dofs), then, for the
-// vertical pencil with a wheel, the wheel's Y_w. Built from the band matrices: O(n) memory, for
-// the partial (shift-invert) eigen solver in trackwheel.eigen and for the reflection tests.
+// vertical pencil, the wheel's Y_w (with a wheel) and the sleepers' z_j (layered supports). Built
+// from the band matrices: O(n) memory, for the partial (shift-invert) eigen solver in
+// trackwheel.eigen and for the reflection tests.
 struct SparsePencil {
   int n = 0;
   std::vector<int> dofs;        // local -> full ANCF index (rail coordinates only)

@@ -14,6 +14,10 @@ void ExplicitRK4::stage(double c, const Accel& a, const SimState& from_rate, Sim
   const double h = sys_.settings().dt;
   k.e = st_.e + c * h * from_rate.edot;
   k.edot = st_.edot + c * h * a.edd;
+  if (st_.z.size() > 0) {
+    k.z = st_.z + c * h * from_rate.zdot;
+    k.zdot = st_.zdot + c * h * a.zdd;
+  }
   for (int w = 0; w < sys_.n_wheels(); ++w) {
     const int o = kBorderPerWheel * w;
     const WheelState& s = st_.wheels[w];
@@ -22,6 +26,10 @@ void ExplicitRK4::stage(double c, const Accel& a, const SimState& from_rate, Sim
     k.wheels[w].theta = s.theta + c * h * from_rate.wheels[w].thetadot;
     k.wheels[w].thetadot = s.thetadot + c * h * a.x(o + kTheta);
   }
+  const int ob = kBorderPerWheel * sys_.n_wheels(), m = 2 * sys_.n_bodies();
+  if (m == 0) return;
+  k.body = st_.body + c * h * from_rate.bodydot;
+  k.bodydot = st_.bodydot + c * h * a.x.segment(ob, m);
 }
 
 void ExplicitRK4::step(long n) {
@@ -55,6 +63,10 @@ void ExplicitRK4::step(long n) {
   const double wt = h / 6.0;
   st_.e += wt * (k1_.edot + 2.0 * k2_.edot + 2.0 * k3_.edot + k4_.edot);
   st_.edot += wt * (acc_.edd + 2.0 * a2_.edd + 2.0 * a3_.edd + a4_.edd);
+  if (st_.z.size() > 0) {
+    st_.z += wt * (k1_.zdot + 2.0 * k2_.zdot + 2.0 * k3_.zdot + k4_.zdot);
+    st_.zdot += wt * (acc_.zdd + 2.0 * a2_.zdd + 2.0 * a3_.zdd + a4_.zdd);
+  }
   for (int w = 0; w < sys_.n_wheels(); ++w) {
     const int o = kBorderPerWheel * w, ty = o + kY, tt = o + kTheta;
     WheelState& s = st_.wheels[w];
@@ -64,6 +76,12 @@ void ExplicitRK4::step(long n) {
     s.theta += wt * (k1_.wheels[w].thetadot + 2.0 * k2_.wheels[w].thetadot +
                      2.0 * k3_.wheels[w].thetadot + k4_.wheels[w].thetadot);
     s.thetadot += wt * (acc_.x(tt) + 2.0 * a2_.x(tt) + 2.0 * a3_.x(tt) + a4_.x(tt));
+  }
+  const int ob = kBorderPerWheel * sys_.n_wheels(), m = 2 * sys_.n_bodies();
+  if (m > 0) {
+    st_.body += wt * (k1_.bodydot + 2.0 * k2_.bodydot + 2.0 * k3_.bodydot + k4_.bodydot);
+    st_.bodydot += wt * (acc_.x.segment(ob, m) + 2.0 * a2_.x.segment(ob, m) +
+                         2.0 * a3_.x.segment(ob, m) + a4_.x.segment(ob, m));
   }
   if (!finite_state(st_)) div_.fail(n, "non-finite state");
 }

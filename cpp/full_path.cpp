@@ -44,6 +44,7 @@ void FullStepper::record_sample(double t) {
     // driving reaction holding X_A: M X'' = 0 = R + N n_x + lambda t_x
     rec.push(Field::reaction, -(we.cf.F(0) + lambda * we.rk.b(0)));
   }
+  for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
 }
 
 }  // namespace trackwheel

@@ -26,6 +26,7 @@ GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& a
       cv_(c_.gp * h_),
       a_e_(acc.edd),
       a_b_(acc.x),
+      a_z_(acc.zdd),
       prev_(acc),
       key_(sys.n_wheels()),
       dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {}
@@ -37,6 +38,11 @@ void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Acce
   ae_ = (c_.af * acc0.edd - c_.am * a_e_ + (1.0 - c_.af) * x.edd) / (1.0 - c_.am);
   s1.e = s0.e + h * s0.edot + h * h * ((0.5 - bet) * a_e_ + bet * ae_);
   s1.edot = s0.edot + h * ((1.0 - gam) * a_e_ + gam * ae_);
+  if (a_z_.size() > 0) {
+    az_ = (c_.af * acc0.zdd - c_.am * a_z_ + (1.0 - c_.af) * x.zdd) / (1.0 - c_.am);
+    s1.z = s0.z + h * s0.zdot + h * h * ((0.5 - bet) * a_z_ + bet * az_);
+    s1.zdot = s0.zdot + h * ((1.0 - gam) * a_z_ + gam * az_);
+  }
   ab_.resize(a_b_.size());
   for (int w = 0; w < sys_.n_wheels(); ++w) {
     const int o = kBorderPerWheel * w;
@@ -52,6 +58,14 @@ void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Acce
     w1.ydot = w0.ydot + h * ((1.0 - gam) * ay0 + gam * ay);
     w1.theta = w0.theta + h * w0.thetadot + h * h * ((0.5 - bet) * ath0 + bet * ath);
     w1.thetadot = w0.thetadot + h * ((1.0 - gam) * ath0 + gam * ath);
+  }
+  const int ob = kBorderPerWheel * sys_.n_wheels();
+  for (int k = 0; k < 2 * sys_.n_bodies(); ++k) {  // the vehicle's bodies: z, phi
+    const double a0 = a_b_(ob + k);
+    const double a = c_.algorithmic(x.x(ob + k), acc0.x(ob + k), a0);
+    ab_(ob + k) = a;
+    s1.body(k) = s0.body(k) + h * s0.bodydot(k) + h * h * ((0.5 - bet) * a0 + bet * a);
+    s1.bodydot(k) = s0.bodydot(k) + h * ((1.0 - gam) * a0 + gam * a);
   }
 }
 
@@ -96,20 +110,27 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
     for (int w = 0; w < sys_.n_wheels(); ++w) s1.wheels[w].s = ev_.w[w].pt.s;
     sys_.residual(s1, ev_, x, cv_, r1_, r2_);
     if (matrix_is_stale(s1, it)) rebuild_matrix(n, s1, x, it);
-    sys_.solve(r1_, r2_, x1_, x2_);
+    sys_.solve(r1_, r2_, x1_, x2_, dz_);
     ++out_.newton_iterations;
     dedd_.setZero();
     sys_.rail().add_from_free(x1_, dedd_);
     x.edd += dedd_;
     x.x += x2_;
     double dq = x1_.lpNorm<Eigen::Infinity>();
+    if (dz_.size() > 0) {
+      x.zdd += dz_;
+      dq = std::max(dq, dz_.lpNorm<Eigen::Infinity>());
+    }
     bool small_lambda = true;
     for (int w = 0; w < sys_.n_wheels(); ++w) {
       const int o = kBorderPerWheel * w;
       const WheelParams& p = sys_.model().wheels[w];
       dq = std::max({dq, std::abs(x2_(o + kY)), p.radius * std::abs(x2_(o + kTheta))});
-      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, p.total_load());
+      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, sys_.static_load(w));
     }
+    const int ob = kBorderPerWheel * sys_.n_wheels();
+    for (int k = 0; k < 2 * sys_.n_bodies(); k += 2)  // body pitch: as the 1 m-arm displacement
+      dq = std::max({dq, std::abs(x2_(ob + k)), std::abs(x2_(ob + k + 1))});
     dq *= cq_;
     if (dq <= set.newton_tol && small_lambda) {
       predict(s0, acc0, x, s1);
@@ -144,6 +165,7 @@ void GeneralizedAlpha::step(long n) {
     if (have_prev_ && attempt == 0) {
       x_.edd = 2.0 * acc0_.edd - prev_.edd;
       x_.x = 2.0 * acc0_.x - prev_.x;
+      if (acc0_.zdd.size() > 0) x_.zdd = 2.0 * acc0_.zdd - prev_.zdd;
     } else {
       x_ = acc0_;
     }
@@ -166,21 +188,27 @@ void GeneralizedAlpha::step(long n) {
     std::swap(st_, s1_);
     std::swap(a_e_, ae_);
     std::swap(a_b_, ab_);
+    std::swap(a_z_, az_);
     std::swap(acc_, x_);
     return;
   }
 }
 
 void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r,
-                             Eigen::MatrixXd& J) {
+                             Eigen::MatrixXd& J, Eigen::VectorXd& dx) {
   SimState s1 = st_;
   predict(st_, acc_, x, s1);
   sys_.evaluate(t1, s1, true, ev_);
   sys_.residual(s1, ev_, x, cv_, r1_, r2_);
   sys_.assemble_iteration_matrix(s1, ev_, x, cq_, cv_, true);
   J = sys_.iteration_matrix_dense();
-  minus_r.resize(r1_.size() + r2_.size());
-  minus_r << r1_, r2_;
+  const Eigen::VectorXd& rs = sys_.sleeper_residual();
+  minus_r.resize(r1_.size() + r2_.size() + rs.size());
+  minus_r << r1_, r2_, rs;
+  if (!sys_.factorize_iteration_matrix()) throw std::runtime_error("singular Newton matrix");
+  sys_.solve(r1_, r2_, x1_, x2_, dz_);
+  dx.resize(minus_r.size());
+  dx << x1_, x2_, dz_;
 }
 
 }  // namespace trackwheel

@@ -32,8 +32,10 @@ class GeneralizedAlpha : public FullStepper {
   void record(long n) override { record_sample(n * h_); }
   // Test hook: at the iterate x of the step from the current state to t1, the negated residual
   // -r (the right-hand side of J dx = -r, as the Newton loop solves it) and the assembled
-  // (unfactorised) iteration matrix J = dr/dx, dense.
-  void probe(double t1, const Accel& x, Eigen::VectorXd& minus_r, Eigen::MatrixXd& J);
+  // (unfactorised) iteration matrix J = dr/dx, dense; x = [e''_free, border, z''], and dx the
+  // kernel's Newton correction (the sleepers condensed) in that layout.
+  void probe(double t1, const Accel& x, Eigen::VectorXd& minus_r, Eigen::MatrixXd& J,
+             Eigen::VectorXd& dx);
 
  private:
   // q_{n+1}, v_{n+1} and the algorithmic accelerations (ae_, ab_) from the iterate x.
@@ -47,6 +49,7 @@ class GeneralizedAlpha : public FullStepper {
   double h_, cq_, cv_;
   Eigen::VectorXd a_e_, a_b_;  // algorithmic accelerations: rail (full), border
   Eigen::VectorXd ae_, ab_;    // their candidates at the current iterate
+  Eigen::VectorXd a_z_, az_;   // the sleepers' algorithmic accelerations and candidates
   Accel prev_;                 // accelerations of the step before (predictor)
   bool have_prev_ = false;
   // The factorised matrix is reused (modified Newton) while every wheel's contact stays in
@@ -58,7 +61,7 @@ class GeneralizedAlpha : public FullStepper {
   };
   std::vector<MatrixKey> key_;
   bool have_matrix_ = false;
-  Eigen::VectorXd r1_, r2_, x1_, x2_, dedd_;
+  Eigen::VectorXd r1_, r2_, x1_, x2_, dz_, dedd_;
   SimState s0_, s1_;  // the step's start and its iterate
   Accel acc0_, x_;    // the start accelerations and the Newton iterate
 };

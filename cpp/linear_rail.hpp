@@ -1,8 +1,8 @@
 // The linear vertical rail of the fast path (docs: Model § Rail (linearised), § Eigen analysis):
 // the Euler-Bernoulli Hermite beam in y (exactly the ANCF element linearised about the straight
-// rail, its y coordinates only) on linear supports, with constant band matrices M, C, K over
-// generalised coordinates q: the y coordinates, or the lowest n_modes mass-normalised modes (q =
-// Phi z).
+// rail, its y coordinates only) or the Timoshenko beam of linear_beam.hpp on linear supports, with
+// constant band matrices M, C, K over generalised coordinates q: the y coordinates, or the lowest
+// n_modes mass-normalised modes (q = Phi z).
 #pragma once
 
 #include <Eigen/Core>
@@ -14,6 +14,7 @@
 
 #include "banded.hpp"
 #include "limits.hpp"
+#include "linear_beam.hpp"
 #include "rail.hpp"
 
 namespace trackwheel {
@@ -29,7 +30,10 @@ struct LinearTrack {
   Eigen::MatrixXd Phi;         // ny x nq (modal only)
   const RailModel* rail = nullptr;
 
-  explicit LinearTrack(const RailModel& r, int n_modes) : rail(&r) {
+  BeamParams beam;  // Euler-Bernoulli (default) or Timoshenko
+
+  LinearTrack(const RailModel& r, int n_modes, const BeamParams& beam_params = BeamParams())
+      : rail(&r), beam(beam_params) {
     const auto& f2f = r.full_to_free();
     y_of_full.assign(r.n_dof(), -1);
     for (int i = 0; i < r.n_dof(); ++i)
@@ -38,20 +42,9 @@ struct LinearTrack {
         full_of_y.push_back(i);
       }
     ny = static_cast<int>(full_of_y.size());
-    // y blocks of the free-coordinate band matrices at the straight reference
-    BandMatrix Kf(r.n_free(), kHalfBandwidth);
-    r.add_tangent(r.reference(), 1.0, Kf);
-    BandMatrix My(ny, 3), Cy(ny, 3), Ky(ny, 3);
-    for (int a = 0; a < ny; ++a)
-      for (int b = std::max(0, a - 3); b <= std::min(ny - 1, a + 3); ++b) {
-        const int i = f2f[full_of_y[a]], j = f2f[full_of_y[b]];
-        if (!r.mass().in_band(i, j)) continue;
-        My.at(a, b) = r.mass().at(i, j);
-        Cy.at(a, b) = r.support_damping().at(i, j);
-        Ky.at(a, b) = Kf.at(i, j);
-      }
-    Eigen::VectorXd Qgy(ny);
-    for (int a = 0; a < ny; ++a) Qgy(a) = r.gravity_force()(full_of_y[a]);
+    BandMatrix My, Cy, Ky;
+    Eigen::VectorXd Qgy;
+    linear_beam(r, beam, full_of_y, y_of_full, My, Cy, Ky, Qgy);
     if (n_modes <= 0) {
       nq = ny;
       M = My;
@@ -97,16 +90,19 @@ struct LinearTrack {
     return e;
   }
 
+  // The element under X and its w shape functions (Hermite for Euler-Bernoulli).
+  BeamPoint point(double X) const { return beam_point(*rail, beam, X); }
+
   // s(X), s_s(X), s_ss(X) over q: y(X) = s . q etc.
   void coupling(double X, Eigen::VectorXd& s, Eigen::VectorXd& ss, Eigen::VectorXd& sss) const {
-    const MeshPoint mp = rail->locate(X);
+    const BeamPoint bp = point(X);
     Eigen::VectorXd y = Eigen::VectorXd::Zero(ny), ys = y, yss = y;
     for (int a = 0; a < 4; ++a) {
-      const int k = y_of_full[mp.dof0() + 2 * a + 1];
+      const int k = y_of_full[4 * bp.element + 2 * a + 1];
       if (k < 0) continue;
-      y(k) = mp.h.n[a];
-      ys(k) = mp.h.ns[a];
-      yss(k) = mp.h.nss[a];
+      y(k) = bp.n[a];
+      ys(k) = bp.ns[a];
+      yss(k) = bp.nss[a];
     }
     if (modal) {
       s = Phi.transpose() * y;

@@ -7,6 +7,7 @@
 #include "banded.hpp"
 #include "generalized_alpha.hpp"
 #include "linear_rail.hpp"
+#include "sleepers.hpp"
 
 namespace trackwheel {
 
@@ -63,6 +64,16 @@ class LinearStepper : public Stepper {
   void couple(double t1);
   void border(int w, double t, double cq, double cv, Eigen::Matrix2d& D, Eigen::Vector2d& r2);
   void solve_border(long n, double t, double cq, double cv, int m);
+  // The vehicle (vehicle.hpp): the static wheel loads of its weight distribution, the bodies'
+  // rows and the suspensions' terms of the wheels' force rows in the border system S_ [dx] =
+  // rhs_, the bodies' predictor and update.
+  double static_load(int w) const;
+  void add_vehicle_rows(double cq, double cv);
+  void predict_bodies(double h);
+  void update_bodies(double cq, double cv);
+  void predict_sleepers(double h);
+  void add_sleeper_residual();
+  void correct_sleepers();
 
   const Model& model_;
   const SimSettings& set_;
@@ -72,10 +83,17 @@ class LinearStepper : public Stepper {
   const Divergence& div_;
   const GACoefficients c_;
   const int nw_;
+  Sleepers sl_;   // layered supports (sleepers.hpp): z'' condensed into A_
   BandMatrix A_;  // M + cv C + cq K, factorised once
   bool damped_;
   Eigen::VectorXd q_, qd_, qdd_, a_;
+  Eigen::VectorXd z_, zd_, zdd_, az_, zh_, zdh_, azh_, zdd1_, rs_, dz_;  // sleepers
   std::vector<LinearWheel> wh_;
+  const int nb_;  // vehicle bodies
+  const VehicleMatrices vm_;
+  Eigen::VectorXd Pst_;                              // static wheel loads [N]
+  Eigen::VectorXd zb_, zbd_, zbdd_, zba_;            // bodies: [z, phi], rates, accel., algorithmic
+  Eigen::VectorXd zbh_, zbdh_, zbah_, u_, ud_, fu_;  // predictors and suspension buffers
   // per-step buffers (no allocation in the time loop)
   Eigen::VectorXd ah_, qh_, qdh_, g_, Cq_, Kq_, r1_, x1_, tmp_, qdd1_, rhs_, xb_;
   std::vector<double> aYh_, Yh_, Ydh_;
@@ -88,18 +106,27 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
     : model_(model),
       set_(set),
       opt_(opt),
-      tr_(model.rail, opt.n_modes),
+      tr_(model.rail, opt.n_modes, opt.beam),
       out_(out),
       div_(div),
       c_(set.rho_inf),
       nw_(model.n_wheels()),
+      sl_(model.rail),
       damped_(!tr_.C.is_zero()),
-      wh_(nw_) {
+      wh_(nw_),
+      nb_(model.n_bodies()),
+      vm_(vehicle_matrices(model.vehicle, model.n_wheels())) {
+  if (tr_.modal && !sl_.empty())
+    throw std::invalid_argument(
+        "n_modes (modal superposition) does not take layered supports (sleeper_mass given); "
+        "with sleepers use all coordinates (n_modes=None in trackwheel.simulate)");
   initial_state();
   const double h = set.dt, cq = c_.bp * h * h, cv = c_.gp * h;
   A_.resize(tr_.nq, tr_.bw);
   A_.set_linear_combination(1.0, tr_.M, cv, tr_.C);
   A_.add_scaled(cq, tr_.K);
+  sl_.set_coefficients(1.0, cv, cq);
+  sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
 }
 
@@ -134,20 +161,34 @@ double LinearStepper::contact_force(int w, double t, double& dN) const {
 // accelerations with the initial contact forces.
 void LinearStepper::initial_state() {
   const int nq = tr_.nq;
+  const int ns = sl_.size();
+  const std::vector<int>& map = tr_.y_of_full;
+  // the sleepers at rest condensed (their residual at z = 0 is -m_s g), z from the rail
   BandMatrix Kf = tr_.K;
+  sl_.set_coefficients(0.0, 0.0, 1.0);
+  sl_.condense_matrix(map, Kf);
   if (!Kf.factorize()) throw std::runtime_error("rail stiffness is singular");
+  Pst_.resize(nw_);
+  const Eigen::VectorXd fv =
+      nb_ > 0 ? static_wheel_forces(vm_, Eigen::VectorXd::Zero(nw_)) : Eigen::VectorXd();
+  for (int w = 0; w < nw_; ++w) Pst_(w) = model_.wheels[w].total_load() - (nb_ > 0 ? fv(w) : 0.0);
   q_ = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
     tr_.coupling(X(w, 0.0), wh_[w].s, wh_[w].ss, wh_[w].sss);
-    if (!opt_.sudden) q_ -= model_.wheels[w].total_load() * wh_[w].s;
+    if (!opt_.sudden) q_ -= static_load(w) * wh_[w].s;
   }
+  z_ = Eigen::VectorXd::Zero(ns);
+  sl_.forces(Eigen::VectorXd::Zero(nq), nullptr, map, z_, nullptr, rs_);
+  sl_.condense_rhs(rs_, map, q_);
   Kf.solve_in_place(q_);
+  sl_.back_substitute(rs_, q_, map, z_);
+  zd_ = Eigen::VectorXd::Zero(ns);
   qd_ = Eigen::VectorXd::Zero(nq);
   Eigen::VectorXd rhs = tr_.Qg, Kq;
   for (int w = 0; w < nw_; ++w) {
     LinearWheel& lw = wh_[w];
     const WheelParams& p = model_.wheels[w];
-    const double P = p.total_load(), k = model_.contact.stiffness;
+    const double P = static_load(w), k = model_.contact.stiffness;
     const double compression = rigid() || opt_.sudden ? 0.0 : static_compression(law(), k, P);
     double rate;
     const double e = opt_.wheel_model == WheelModel::MovingForce ? 0.0 : excitation(w, 0.0, rate);
@@ -163,7 +204,11 @@ void LinearStepper::initial_state() {
     rhs -= lw.N * lw.s;
   }
   tr_.K.multiply(q_, Kq);
+  sl_.add_rail_force(z_, &zd_, map, Kq);
   rhs -= Kq;
+  sl_.forces(q_, &qd_, map, z_, &zd_, zdd_);
+  for (int j = 0; j < ns; ++j) zdd_(j) /= sl_.mass(j);
+  az_ = zdd_;
   BandMatrix Mf = tr_.M;
   if (!Mf.factorize()) throw std::runtime_error("rail mass matrix is singular");
   Mf.solve_in_place(rhs);
@@ -171,12 +216,19 @@ void LinearStepper::initial_state() {
   a_ = qdd_;
   for (int w = 0; w < nw_; ++w) {
     LinearWheel& lw = wh_[w];
-    lw.Ydd =
-        rigid() ? lw.s.dot(qdd_) : (lw.N - model_.wheels[w].total_load()) / model_.wheels[w].mass;
+    lw.Ydd = rigid() ? lw.s.dot(qdd_) : (lw.N - static_load(w)) / model_.wheels[w].mass;
     lw.aY = lw.Ydd;
     lw.W.resize(nq, 4);
   }
+  if (nb_ > 0) {  // the bodies where their springs carry the static loads, at rest
+    Eigen::VectorXd Y(nw_);
+    for (int w = 0; w < nw_; ++w) Y(w) = wh_[w].Y;
+    zb_ = static_bodies(vm_, Y);
+    zbd_ = zbdd_ = zba_ = Eigen::VectorXd::Zero(2 * nb_);
+  }
 }
+
+double LinearStepper::static_load(int w) const { return Pst_(w); }
 
 // Couplings at t1 and Z = A^-1 s(X) = sum_a N_a A^-1 s_a, the columns cached per element.
 void LinearStepper::couple(double t1) {
@@ -184,16 +236,16 @@ void LinearStepper::couple(double t1) {
     LinearWheel& lw = wh_[w];
     const double X1 = X(w, t1);
     tr_.coupling(X1, lw.s, lw.ss, lw.sss);
-    const MeshPoint mp = model_.rail.locate(X1);
-    if (mp.element != lw.cache_el) {
+    const BeamPoint bp = tr_.point(X1);
+    if (bp.element != lw.cache_el) {
       for (int k = 0; k < 4; ++k) {
-        lw.W.col(k) = tr_.basis(mp.dof0() + 2 * k + 1);
+        lw.W.col(k) = tr_.basis(4 * bp.element + 2 * k + 1);
         if (!lw.W.col(k).isZero(0.0)) A_.solve_in_place(lw.W.col(k));
       }
-      lw.cache_el = mp.element;
+      lw.cache_el = bp.element;
     }
-    lw.Z = mp.h.n[0] * lw.W.col(0) + mp.h.n[1] * lw.W.col(1) + mp.h.n[2] * lw.W.col(2) +
-           mp.h.n[3] * lw.W.col(3);
+    lw.Z = bp.n[0] * lw.W.col(0) + bp.n[1] * lw.W.col(1) + bp.n[2] * lw.W.col(2) +
+           bp.n[3] * lw.W.col(3);
   }
 }
 
@@ -249,7 +301,7 @@ void LinearStepper::border(int w, double t, double cq, double cv, Eigen::Matrix2
 void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) {
   Eigen::Matrix2d D;
   Eigen::Vector2d r2;
-  if (nw_ == 1) {
+  if (nw_ == 1 && nb_ == 0) {
     border(0, t, cq, cv, D, r2);
     D(1, 1) -= u_dot(wh_[0], wh_[0].Z);
     const Eigen::Vector2d rhs(r2(0), r2(1) - u_dot(wh_[0], x1_));
@@ -259,7 +311,7 @@ void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) 
     return;
   }
   S_.setZero(m, m);
-  rhs_.resize(m);
+  rhs_.setZero(m);
   for (int w = 0; w < nw_; ++w) {
     border(w, t, cq, cv, D, r2);
     S_.block<2, 2>(2 * w, 2 * w) = D;
@@ -267,10 +319,45 @@ void LinearStepper::solve_border(long n, double t, double cq, double cv, int m) 
     rhs_(2 * w) = r2(0);
     rhs_(2 * w + 1) = r2(1) - u_dot(wh_[w], x1_);
   }
+  if (nb_ > 0) add_vehicle_rows(cq, cv);
   lu_.compute(S_);
   const double det = lu_.determinant();
   if (!std::isfinite(det) || det == 0.0) div_.fail(n, "singular iteration matrix");
   xb_ = lu_.solve(rhs_);
+}
+
+// Border rows of the vehicle: wheel w's force row (2 w) gains the suspension force f_u,w, the
+// bodies' rows (2 n_w + k) are M_v z'' - f_u = 0; both depend on u'' through cq K_v + cv C_v.
+void LinearStepper::add_vehicle_rows(double cq, double cv) {
+  const int nu = nw_ + 2 * nb_;
+  u_.resize(nu);
+  ud_.resize(nu);
+  for (int w = 0; w < nw_; ++w) {
+    u_(w) = wh_[w].Y;
+    ud_(w) = wh_[w].Yd;
+  }
+  u_.tail(2 * nb_) = zb_;
+  ud_.tail(2 * nb_) = zbd_;
+  fu_ = vehicle_forces(vm_, u_, ud_);
+  auto row = [&](int i) { return i < nw_ ? 2 * i : 2 * nw_ + i - nw_; };
+  for (int i = 0; i < nu; ++i) {
+    const double inertia = i < nw_ ? 0.0 : vm_.mass(i) * zbdd_(i - nw_);
+    rhs_(row(i)) += fu_(i) - inertia;
+    if (i >= nw_) S_(row(i), row(i)) += vm_.mass(i);
+    for (int j = 0; j < nu; ++j) S_(row(i), row(j)) += cq * vm_.K(i, j) + cv * vm_.C(i, j);
+  }
+}
+
+void LinearStepper::predict_bodies(double h) {
+  const double am = c_.am, af = c_.af, gam = c_.gam, bet = c_.bet;
+  zbah_ = (af * zbdd_ - am * zba_) / (1.0 - am);
+  zbh_ = zb_ + h * zbd_ + h * h * ((0.5 - bet) * zba_ + bet * zbah_);
+  zbdh_ = zbd_ + h * ((1.0 - gam) * zba_ + gam * zbah_);
+}
+
+void LinearStepper::update_bodies(double cq, double cv) {
+  zb_ = zbh_ + cq * zbdd_;
+  zbd_ = zbdh_ + cv * zbdd_;
 }
 
 void LinearStepper::step(long n) {
@@ -290,6 +377,7 @@ void LinearStepper::step(long n) {
     Yh_[w] = lw.Y + h * lw.Yd + h * h * ((0.5 - bet) * lw.aY + bet * aYh_[w]);
     Ydh_[w] = lw.Yd + h * ((1.0 - gam) * lw.aY + gam * aYh_[w]);
   }
+  predict_sleepers(h);
   // g = C qdh + K qh - Q_g: r_q(qdd) = (M + cv C + cq K) qdd + g + sum_w s_w N_w
   tr_.K.multiply(qh_, g_);
   if (damped_) {
@@ -300,13 +388,22 @@ void LinearStepper::step(long n) {
   // Newton from qdd_{n+1} = 0: exact in one iteration for the linear wheel models
   qdd1_.setZero(tr_.nq);
   for (LinearWheel& lw : wh_) lw.Ydd = 0.0;
-  const int m = 2 * nw_;
+  const int m = 2 * nw_ + 2 * nb_;
+  if (nb_ > 0) {
+    predict_bodies(h);
+    zbdd_.setZero();
+  }
   for (int it = 0; it < std::max(set_.max_newton, 1); ++it) {
     q_ = qh_ + cq * qdd1_;
     qd_ = qdh_ + cv * qdd1_;
     for (int w = 0; w < nw_; ++w) {
       wh_[w].Y = Yh_[w] + cq * wh_[w].Ydd;
       wh_[w].Yd = Ydh_[w] + cv * wh_[w].Ydd;
+    }
+    if (nb_ > 0) update_bodies(cq, cv);
+    if (!sl_.empty()) {
+      z_ = zh_ + cq * zdd1_;
+      zd_ = zdh_ + cv * zdd1_;
     }
     // residuals r = inertia + internal - external (solve J dx = -r)
     if (it == 0) {
@@ -327,6 +424,7 @@ void LinearStepper::step(long n) {
       }
       r1_ = -r1_;
     }
+    add_sleeper_residual();
     // Schur complement on the 2-wide borders with Z_w = A^-1 s_w from the element cache
     x1_ = r1_;
     A_.solve_in_place(x1_);
@@ -335,20 +433,33 @@ void LinearStepper::step(long n) {
     ++out_.newton_iterations;
     qdd1_ += x1_;
     double dq = x1_.lpNorm<Eigen::Infinity>();
+    if (!sl_.empty()) {
+      sl_.back_substitute(rs_, x1_, tr_.y_of_full, dz_);
+      zdd1_ += dz_;
+      dq = std::max(dq, dz_.lpNorm<Eigen::Infinity>());
+    }
     bool small_force = true;
     for (int w = 0; w < nw_; ++w) {
       wh_[w].Ydd += xb_(2 * w);
       wh_[w].N += xb_(2 * w + 1);
       dq = std::max(dq, std::abs(xb_(2 * w)));
-      small_force &=
-          std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, model_.wheels[w].total_load());
+      small_force &= std::abs(xb_(2 * w + 1)) <= 1e-6 * std::max(1.0, static_load(w));
+    }
+    if (nb_ > 0) {
+      zbdd_ += xb_.tail(2 * nb_);
+      dq = std::max(dq, xb_.tail(2 * nb_).lpNorm<Eigen::Infinity>());
     }
     dq *= cq;
     if (opt_.wheel_model != WheelModel::Hertz || (dq <= set_.newton_tol && small_force)) {
+      if (nb_ > 0) {
+        update_bodies(cq, cv);
+        zba_ = zbah_ + ((1.0 - af) / (1.0 - am)) * zbdd_;
+      }
       q_ = qh_ + cq * qdd1_;  // the state at the final accelerations
       qd_ = qdh_ + cv * qdd1_;
       a_ = ah_ + ((1.0 - af) / (1.0 - am)) * qdd1_;
       qdd_ = qdd1_;
+      correct_sleepers();
       for (int w = 0; w < nw_; ++w) {
         LinearWheel& lw = wh_[w];
         lw.Y = Yh_[w] + cq * lw.Ydd;
@@ -366,8 +477,40 @@ void LinearStepper::step(long n) {
                    " iterations");
 }
 
+// The sleepers' generalized-alpha predictors (as the rail's in step) and z''_{n+1} = 0.
+void LinearStepper::predict_sleepers(double h) {
+  if (sl_.empty()) return;
+  const double am = c_.am, af = c_.af, gam = c_.gam, bet = c_.bet;
+  azh_ = (af * zdd_ - am * az_) / (1.0 - am);
+  zh_ = z_ + h * zd_ + h * h * ((0.5 - bet) * az_ + bet * azh_);
+  zdh_ = zd_ + h * ((1.0 - gam) * az_ + gam * azh_);
+  zdd1_.setZero(sl_.size());
+}
+
+// The sleepers' pull on the rail into -r (r1_), their own negated residual rs_ and its
+// condensation into r1_.
+void LinearStepper::add_sleeper_residual() {
+  if (sl_.empty()) return;
+  const std::vector<int>& map = tr_.y_of_full;
+  sl_.add_rail_force(z_, &zd_, map, r1_, 1.0);
+  sl_.forces(q_, &qd_, map, z_, &zd_, rs_);
+  for (int j = 0; j < sl_.size(); ++j) rs_(j) -= sl_.mass(j) * zdd1_(j);
+  sl_.condense_rhs(rs_, map, r1_);
+}
+
+// The sleepers' state at the converged z''_{n+1}.
+void LinearStepper::correct_sleepers() {
+  if (sl_.empty()) return;
+  const double h = set_.dt, cq = c_.bp * h * h, cv = c_.gp * h;
+  z_ = zh_ + cq * zdd1_;
+  zd_ = zdh_ + cv * zdd1_;
+  az_ = azh_ + ((1.0 - c_.af) / (1.0 - c_.am)) * zdd1_;
+  zdd_ = zdd1_;
+}
+
 bool LinearStepper::finite() const {
-  if (!q_.allFinite()) return false;
+  if (!q_.allFinite() || !z_.allFinite()) return false;
+  if (nb_ > 0 && !zb_.allFinite()) return false;
   for (const LinearWheel& lw : wh_)
     if (!std::isfinite(lw.Y)) return false;
   return true;
@@ -378,6 +521,9 @@ double LinearStepper::vibration_energy() const {
   tr_.M.multiply(qd_, Mqd);
   double E = 0.5 * qd_.dot(Mqd);
   for (int w = 0; w < nw_; ++w) E += 0.5 * model_.wheels[w].mass * wh_[w].Yd * wh_[w].Yd;
+  for (int b = 0; b < nb_; ++b)
+    E += 0.5 * model_.vehicle.bodies[b].mass * zbd_(2 * b) * zbd_(2 * b);
+  if (!sl_.empty()) E += sl_.kinetic_energy(zd_);
   return E;
 }
 
@@ -414,16 +560,28 @@ void LinearStepper::record_sample(double t) {
     rec.push(Field::penetration, delta[w]);
     rec.push(Field::slip_state, lw.N > 0.0 ? 1 : 0);
   }
+  for (int b = 0; b < nb_; ++b) rec.push_body(zb_(2 * b), zb_(2 * b + 1));
   if (!rec.wants(Field::energy)) return;
   Eigen::VectorXd Mqd, Kq;
   tr_.M.multiply(qd_, Mqd);
   tr_.K.multiply(q_, Kq);
   double E = 0.5 * qd_.dot(Mqd) + 0.5 * q_.dot(Kq) - tr_.Qg.dot(q_);
+  if (!sl_.empty()) E += sl_.energy(q_, tr_.y_of_full, z_, zd_);
   for (int w = 0; w < nw_; ++w) {
     const WheelParams& p = model_.wheels[w];
     E += 0.5 * p.mass * wh_[w].Yd * wh_[w].Yd;
     E += p.total_load() * wh_[w].Y;
     if (!rigid()) E += contact_potential(law(), model_.contact.stiffness, delta[w]);
+  }
+  if (nb_ > 0) {
+    Eigen::VectorXd u(nw_ + 2 * nb_), ud(nw_ + 2 * nb_);
+    for (int w = 0; w < nw_; ++w) {
+      u(w) = wh_[w].Y;
+      ud(w) = wh_[w].Yd;
+    }
+    u.tail(2 * nb_) = zb_;
+    ud.tail(2 * nb_) = zbd_;
+    E += vehicle_energy(vm_, u, ud);
   }
   rec.push(Field::energy, E);
 }
@@ -434,9 +592,14 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
                           const ProgressFn& progress) {
   check_settings(set);
   check_model(model);
+  if (model.n_bodies() > 0 && opt.wheel_model == WheelModel::MovingForce)
+    throw std::invalid_argument(
+        "a vehicle with bodies needs wheel dynamics: wheel_model moving_mass, sprung or hertz, "
+        "not moving_force");
   SimOutput out;
   out.rec.start(model.n_wheels(), set.record_energy,
                 static_cast<std::size_t>(n_steps_of(set) / set.output_every + 2));
+  out.rec.start_bodies(model.n_bodies());
   const Divergence div(set, [&set] {
     return "the time step " + format3(set.dt) + " s is too large for the contact";
   });
@@ -448,9 +611,36 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
     wd.y0.push_back(stepper.wheel_height(w));
     wd.reach.push_back(10.0 * p.radius);
   }
+  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
   stepper.record_sample(0.0);
   run_time_loop(stepper, set, wd, div, out, progress);
   return out;
+}
+
+Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam, double load,
+                                   const std::vector<double>& x, int n_modes) {
+  const LinearTrack tr(rail, n_modes, beam);
+  Sleepers sl(rail);
+  if (!sl.empty() && tr.modal)
+    throw std::invalid_argument("n_modes (modal superposition) does not take layered supports");
+  // the sleepers at rest condensed, as in LinearStepper::initial_state
+  sl.set_coefficients(0.0, 0.0, 1.0);
+  BandMatrix K = tr.K;
+  sl.condense_matrix(tr.y_of_full, K);
+  if (!K.factorize()) throw std::runtime_error("rail stiffness is singular");
+  Eigen::VectorXd q_rail = tr.Qg, rs, s, ss, sss;  // the track under its own weight
+  const Eigen::VectorXd z = Eigen::VectorXd::Zero(sl.size());
+  sl.forces(Eigen::VectorXd::Zero(tr.nq), nullptr, tr.y_of_full, z, nullptr, rs);
+  sl.condense_rhs(rs, tr.y_of_full, q_rail);
+  K.solve_in_place(q_rail);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    tr.coupling(x[i], s, ss, sss);
+    Eigen::VectorXd u = s;  // K^-1 s: the track under a unit upward load at X_i
+    K.solve_in_place(u);
+    y(static_cast<Eigen::Index>(i)) = s.dot(q_rail) - load * s.dot(u);
+  }
+  return y;
 }
 
 }  // namespace trackwheel

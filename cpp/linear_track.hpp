@@ -2,7 +2,8 @@
 // analysis).
 //
 // The rail is the Euler-Bernoulli Hermite beam in y (exactly the ANCF element linearised about the
-// straight rail, its y coordinates only) on linear supports, with constant mass, damping and
+// straight rail, its y coordinates only), or the Timoshenko beam of linear_beam.hpp, on linear
+// supports, with constant mass, damping and
 // stiffness matrices: M q'' + C q' + K q = Q_g + s(X)^T F. Optionally it is reduced to its lowest
 // n_modes modes (modal superposition, q = Phi z). The wheel acts at X_A(t) = X_0 + v t through
 // the shape functions s(X) and is one of:
@@ -20,7 +21,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
+#include "linear_beam.hpp"
 #include "model.hpp"
 #include "time_loop.hpp"
 
@@ -33,10 +36,18 @@ struct LinearOptions {
   int n_modes = 0;           // 0: all coordinates (factorise once); > 0: modal superposition
   bool sudden = false;       // start: false = static equilibrium, true = rail under own weight
   double drop_height = 0.0;  // wheel lifted this much at the start [m]
+  BeamParams beam;           // the rail's beam theory (default Euler-Bernoulli)
 };
 
 // Every model wheel is of options.wheel_model; wheel w acts at X_0 + x_offset_w + v t.
 SimOutput simulate_linear(const Model& model, const SimSettings& settings,
                           const LinearOptions& options, const ProgressFn& progress = nullptr);
+
+// The quasi-static line of the linear track: the rail displacement y(X_i) [m] under the wheel
+// load P [N] resting at X_i, for each X_i, from the track's own statics K q = Q_g - P s(X)
+// (so a linear run starts on it, whatever its contact law: at rest N = P), sleepers condensed at
+// rest. n_modes as in LinearOptions. One band factorisation, then one band solve per position.
+Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam, double load,
+                                   const std::vector<double>& x, int n_modes);
 
 }  // namespace trackwheel

@@ -27,6 +27,7 @@ void check_model(const Model& m) {
   require(std::isfinite(c.stiffness) && c.stiffness > 0, "contact stiffness", "> 0");
   require(std::isfinite(c.damping) && c.damping >= 0, "contact damping", ">= 0 N s/m");
   require(std::isfinite(c.friction) && c.friction >= 0, "friction", ">= 0");
+  check_vehicle(m.vehicle, m.n_wheels());
 }
 
 }  // namespace trackwheel

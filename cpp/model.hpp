@@ -13,6 +13,7 @@
 
 #include "contact.hpp"
 #include "rail.hpp"
+#include "vehicle.hpp"
 
 namespace trackwheel {
 
@@ -44,8 +45,10 @@ struct Model {
   const RailModel& rail;            // mesh, section, supports (immutable, shared)
   std::vector<WheelParams> wheels;  // at least one
   ContactParams contact;            // law, stiffness, damping, friction (radius: per wheel)
+  VehicleParams vehicle;            // bodies and suspensions above the wheels (none: Part I)
 
   int n_wheels() const { return static_cast<int>(wheels.size()); }
+  int n_bodies() const { return vehicle.n_bodies(); }
   // The contact law of wheel w (its own undeformed radius).
   ContactParams contact_of(int w) const {
     ContactParams c = contact;

@@ -62,10 +62,24 @@ class Recording {
   int n_wheels() const { return n_wheels_; }
   std::size_t n_samples() const { return cols_[0].size(); }
   std::vector<double>& column(int f) { return cols_[f]; }
+  // The vehicle's bodies (outside the field table: one (z, phi) pair per body and sample,
+  // sample-major; none without bodies).
+  void start_bodies(int n_bodies) {
+    n_bodies_ = n_bodies;
+    bodies_.clear();
+  }
+  void push_body(double z, double phi) {
+    bodies_.push_back(z);
+    bodies_.push_back(phi);
+  }
+  int n_bodies() const { return n_bodies_; }
+  std::vector<double>& bodies() { return bodies_; }
 
  private:
   std::array<std::vector<double>, kFieldCount> cols_;
   int n_wheels_ = 1;
+  int n_bodies_ = 0;
+  std::vector<double> bodies_;
   bool energy_ = false;
 };
 

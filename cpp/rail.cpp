@@ -14,6 +14,25 @@ namespace {
 void require(bool ok, const std::string& msg) {
   if (!ok) throw std::invalid_argument(msg);
 }
+
+// The sleeper and ballast layer: all three vectors empty (single springs) or one entry each
+// per support.
+void check_layers(const SupportParams& s) {
+  const size_t ns = s.position.size();
+  if (s.sleeper_mass.empty() && s.ballast_stiffness.empty() && s.ballast_damping.empty()) return;
+  require(s.sleeper_mass.size() == ns && s.ballast_stiffness.size() == ns &&
+              s.ballast_damping.size() == ns,
+          "sleeper_mass, ballast_stiffness and ballast_damping must be empty or have one entry "
+          "per support");
+  for (size_t j = 0; j < ns; ++j) {
+    require(std::isfinite(s.sleeper_mass[j]) && s.sleeper_mass[j] > 0,
+            "sleeper_mass must be > 0 kg");
+    require(std::isfinite(s.ballast_stiffness[j]) && s.ballast_stiffness[j] > 0,
+            "ballast_stiffness must be > 0 N/m");
+    require(std::isfinite(s.ballast_damping[j]) && s.ballast_damping[j] >= 0,
+            "ballast_damping must be >= 0 N s/m");
+  }
+}
 }  // namespace
 
 RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Profile profile)
@@ -45,6 +64,7 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
     require(std::isfinite(sup_.damping[j]) && sup_.damping[j] >= 0,
             "support damping must be >= 0 N s/m");
   }
+  check_layers(sup_);
 
   sec_.length = p_.length / p_.n_elements;
   sec_.EA = p_.EA;

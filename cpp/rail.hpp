@@ -42,7 +42,11 @@ struct RailParams {
 struct SupportParams {
   std::vector<double> position;   // X_j along the undeformed rail [m]
   std::vector<double> stiffness;  // k_s per support [N/m]
-  std::vector<double> damping;    // c_s per support [N s/m]
+  std::vector<double> damping;    // c_s per support [N s/m] (layered: the pad's k_p, c_p)
+  // Layered supports (sleepers.hpp): all three per support, or all empty for single springs.
+  std::vector<double> sleeper_mass;       // m_s, the sleeper's share of one rail [kg]
+  std::vector<double> ballast_stiffness;  // k_b [N/m]
+  std::vector<double> ballast_damping;    // c_b [N s/m]
 };
 
 // Where a material point s lies in the mesh.

@@ -43,6 +43,8 @@ struct WheelState {
 struct SimState {
   Eigen::VectorXd e, edot;         // rail coordinates (full, n_dof) [m, m, -, -] and rates
   std::vector<WheelState> wheels;  // one per model wheel
+  Eigen::VectorXd body, bodydot;   // (2 n_bodies,) [z_b, phi_b] per vehicle body [m, rad], rates
+  Eigen::VectorXd z, zdot;         // sleeper heights [m] and rates (layered supports; else empty)
 };
 
 }  // namespace trackwheel

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sleepers.hpp"
+
 namespace trackwheel {
 
 namespace {
@@ -22,39 +24,53 @@ double static_tolerance(const RailModel& rail) {
   return std::max(1e-13, rail.n_free() * eps) * rail.params().length;
 }
 
-// Newton over the free rail coordinates and (optionally) Y_A.
-StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
-                           const ContactParams* contact, double x_wheel, Eigen::VectorXd e,
-                           double y_wheel) {
+// Newton over the free rail coordinates and the heights Y_A of the given wheels (none: the rail
+// alone), each wheel w held at X_A = xs[w] under its load P_w = F_w + M_w g; sleepers (layered
+// supports) are condensed into the rail's band (sleepers.hpp, at rest: (cm, cv, cq) = (0, 0, 1)).
+std::vector<StaticResult> newton_static(const RailModel& rail,
+                                        const std::vector<const WheelParams*>& wheels,
+                                        const std::vector<ContactParams>& contacts,
+                                        const std::vector<double>& xs, Eigen::VectorXd e,
+                                        std::vector<double> ys) {
   const int nf = rail.n_free();
-  const int m = wheel ? 1 : 0;
-  const double P = wheel ? wheel->total_load() : 0.0;
+  const int m = static_cast<int>(wheels.size());
   BandMatrix K(nf, kHalfBandwidth);
   Eigen::MatrixXd B(nf, m), C(m, nf), D(m, m);
   BorderedSolver solver;
   Eigen::VectorXd Q, r1(nf), r2(m), dx1, dx2;
   const Eigen::VectorXd& Qg = rail.gravity_force();
   const auto& f2f = rail.full_to_free();
-  double s_guess = x_wheel;
-  StaticResult res;
+  std::vector<double> s_guess = xs;
+  std::vector<StaticResult> res(std::max(m, 1));
   const double tol = static_tolerance(rail);
+  Sleepers sl(rail);
+  sl.set_coefficients(0.0, 0.0, 1.0);
+  std::vector<int> identity(rail.n_dof());
+  for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+  Eigen::VectorXd z = sl.static_z(e), rs, dz;
   for (int it = 0; it < 60; ++it) {
     rail.internal_force(e, nullptr, Q);
     Eigen::VectorXd R = Q - Qg;  // full residual of the rail
     K.set_zero();
     rail.add_tangent(e, 1.0, K);
+    if (!sl.empty()) {
+      sl.add_rail_force(z, nullptr, identity, R);
+      sl.condense_matrix(f2f, K);
+      sl.forces(e, nullptr, identity, z, nullptr, rs);
+    }
     B.setZero();
     C.setZero();
     D.setZero();
     r2.setZero();
-    if (wheel) {
-      const Eigen::Vector2d RA(x_wheel, y_wheel);
-      const ContactPoint pt = find_contact_point(rail, e, RA, s_guess);
-      s_guess = pt.s;
-      const ContactForce cf = contact_force(*contact, pt, Vec10::Zero(), true);
+    for (int w = 0; w < m; ++w) {
+      const ContactParams& cw = contacts[w];
+      const Eigen::Vector2d RA(xs[w], ys[w]);
+      const ContactPoint pt = find_contact_point(rail, e, RA, s_guess[w]);
+      s_guess[w] = pt.s;
+      const ContactForce cf = contact_force(cw, pt, Vec10::Zero(), true);
       const int d0 = pt.mp.dof0();
       R.segment<8>(d0) -= cf.F.segment<8>(2);
-      r2(0) = -(P - cf.F(1));
+      r2(w) = -(wheels[w]->total_load() - cf.F(1));
       // Jacobian of residual: rail rows += K_c, wheel row: d(P - F_y)/dq = K_c(1, .)
       for (int a = 0; a < 8; ++a) {
         const int i = f2f[d0 + a];
@@ -63,17 +79,18 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
           const int j = f2f[d0 + b];
           if (j >= 0) K.add(i, j, cf.K(2 + a, 2 + b));
         }
-        B(i, 0) = cf.K(2 + a, 1);
-        C(0, i) = cf.K(1, 2 + a);
+        B(i, w) = cf.K(2 + a, 1);
+        C(w, i) = cf.K(1, 2 + a);
       }
-      D(0, 0) = cf.K(1, 1);
+      D(w, w) = cf.K(1, 1);
       if (!cf.active)
         throw std::runtime_error("static solve: the wheel lost contact with the rail");
-      res.contact_s = pt.s;
-      res.normal_force = cf.N;
-      res.horizontal_reaction = -cf.F(0);
+      res[w].contact_s = pt.s;
+      res[w].normal_force = cf.N;
+      res[w].horizontal_reaction = -cf.F(0);
     }
     for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
+    if (!sl.empty()) sl.condense_rhs(rs, f2f, r1);
     if (!r1.allFinite() || !r2.allFinite())
       throw std::runtime_error("static solve: non-finite residual");
     if (!solver.factorize(K, B, C, D))
@@ -81,30 +98,62 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
     solver.solve(r1, r2, dx1, dx2);
     rail.add_from_free(dx1, e);
     double step = dx1.lpNorm<Eigen::Infinity>();
-    if (wheel) {
-      y_wheel += dx2(0);
-      step = std::max(step, std::abs(dx2(0)));
+    if (!sl.empty()) {
+      sl.back_substitute(rs, dx1, f2f, dz);
+      z += dz;
+      step = std::max(step, dz.lpNorm<Eigen::Infinity>());
     }
-    res.iterations = it + 1;
+    for (int w = 0; w < m; ++w) {
+      ys[w] += dx2(w);
+      step = std::max(step, std::abs(dx2(w)));
+    }
+    for (StaticResult& r : res) r.iterations = it + 1;
     if (step <= tol) {
-      res.e = e;
-      res.x_wheel = x_wheel;
-      res.y_wheel = y_wheel;
-      if (wheel) {
+      const Eigen::VectorXd ballast = sl.ballast_force(z);
+      for (int w = 0; w < std::max(m, 1); ++w) {
+        res[w].e = e;
+        res[w].z = z;
+        res[w].ballast_force = ballast;
+      }
+      for (int w = 0; w < m; ++w) {
+        const ContactParams& cw = contacts[w];
+        res[w].x_wheel = xs[w];
+        res[w].y_wheel = ys[w];
         const ContactPoint pt =
-            find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_wheel), s_guess);
-        res.contact_s = pt.s;
-        res.y_contact = pt.r.y();
-        const ContactForce cf = contact_force(*contact, pt, Vec10::Zero(), false);
-        res.normal_force = cf.N;
-        res.horizontal_reaction = -cf.F(0);
+            find_contact_point(rail, e, Eigen::Vector2d(xs[w], ys[w]), s_guess[w]);
+        res[w].contact_s = pt.s;
+        res[w].y_contact = pt.r.y();
+        const ContactForce cf = contact_force(cw, pt, Vec10::Zero(), false);
+        res[w].normal_force = cf.N;
+        res[w].horizontal_reaction = -cf.F(0);
       }
       return res;
     }
   }
   std::ostringstream msg;
-  msg << "static solve did not converge in 60 Newton iterations (x_wheel = " << x_wheel << " m)";
+  msg << "static solve did not converge in 60 Newton iterations (x_wheel = "
+      << (xs.empty() ? 0.0 : xs[0]) << " m)";
   throw std::runtime_error(msg.str());
+}
+
+// Y_A of a wheel just touching the rail below, pressed in by its static load; the contact is
+// sought from a centre one radius above the rail (far above, a corrugated surface can curve
+// more than the distance: the foot of the normal is then a maximum of the distance).
+double touching_height(const RailModel& rail, const Eigen::VectorXd& e, const WheelParams& wheel,
+                       const ContactParams& contact, double x_wheel) {
+  const double y_above = rail.position(e, rail.locate(x_wheel)).y() + wheel.radius;
+  const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_above), x_wheel);
+  const double delta = static_compression(contact.law, contact.stiffness, wheel.total_load());
+  return pt.p.y() + wheel.radius - delta;
+}
+
+void check_on_rail(const RailModel& rail, double x_wheel) {
+  const double L = rail.params().length;
+  if (!(x_wheel >= 0.0 && x_wheel <= L)) {
+    std::ostringstream msg;
+    msg << "x_wheel = " << x_wheel << " m is outside the rail [0, " << L << "] m";
+    throw std::invalid_argument(msg.str());
+  }
 }
 
 }  // namespace
@@ -112,28 +161,35 @@ StaticResult newton_static(const RailModel& rail, const WheelParams* wheel,
 StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
                           const ContactParams& contact, double x_wheel,
                           const Eigen::VectorXd& e_guess, double y_guess) {
-  const double L = rail.params().length;
-  if (!(x_wheel >= 0.0 && x_wheel <= L)) {
-    std::ostringstream msg;
-    msg << "x_wheel = " << x_wheel << " m is outside the rail [0, " << L << "] m";
-    throw std::invalid_argument(msg.str());
-  }
+  check_on_rail(rail, x_wheel);
   Eigen::VectorXd e = e_guess.size() == rail.n_dof() ? e_guess : rail.reference();
   double y = y_guess;
-  if (!std::isfinite(y)) {
-    // just touching the rail below, pressed in by the static load; the contact is sought from
-    // a centre one radius above the rail (far above, a corrugated surface can curve more than
-    // the distance: the foot of the normal is then a maximum of the distance)
-    const double y_above = rail.position(e, rail.locate(x_wheel)).y() + wheel.radius;
-    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_above), x_wheel);
-    const double delta = static_compression(contact.law, contact.stiffness, wheel.total_load());
-    y = pt.p.y() + wheel.radius - delta;
-  }
-  return newton_static(rail, &wheel, &contact, x_wheel, e, y);
+  if (!std::isfinite(y)) y = touching_height(rail, e, wheel, contact, x_wheel);
+  return newton_static(rail, {&wheel}, {contact}, {x_wheel}, e, {y})[0];
 }
 
-Eigen::VectorXd solve_rail_static(const RailModel& rail) {
-  return newton_static(rail, nullptr, nullptr, 0.0, rail.reference(), 0.0).e;
+std::vector<StaticResult> solve_static_wheels(const RailModel& rail,
+                                              const std::vector<WheelParams>& wheels,
+                                              const std::vector<ContactParams>& contacts,
+                                              const std::vector<double>& x_wheels) {
+  if (wheels.empty() || wheels.size() != x_wheels.size() || wheels.size() != contacts.size())
+    throw std::invalid_argument(
+        "static solve: give one position and one contact per wheel (at least one)");
+  const Eigen::VectorXd e = rail.reference();
+  std::vector<const WheelParams*> ptrs;
+  std::vector<double> ys;
+  for (std::size_t w = 0; w < wheels.size(); ++w) {
+    check_on_rail(rail, x_wheels[w]);
+    ptrs.push_back(&wheels[w]);
+    ys.push_back(touching_height(rail, e, wheels[w], contacts[w], x_wheels[w]));
+  }
+  return newton_static(rail, ptrs, contacts, x_wheels, e, ys);
+}
+
+Eigen::VectorXd solve_rail_static(const RailModel& rail) { return solve_track_static(rail).e; }
+
+StaticResult solve_track_static(const RailModel& rail) {
+  return newton_static(rail, {}, {}, {}, rail.reference(), {})[0];
 }
 
 std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,

@@ -24,6 +24,8 @@ struct StaticResult {
   double normal_force = 0.0;         // N [N]
   double horizontal_reaction = 0.0;  // force holding X_A [N]
   int iterations = 0;
+  Eigen::VectorXd z;              // sleeper heights z_j [m] (layered supports; else empty)
+  Eigen::VectorXd ballast_force;  // -k_b z_j, the ballast's compression under sleeper j [N]
 };
 
 // e_guess may be empty (starts from the straight rail).
@@ -31,8 +33,17 @@ StaticResult solve_static(const RailModel& rail, const WheelParams& wheel,
                           const ContactParams& contact, double x_wheel,
                           const Eigen::VectorXd& e_guess = Eigen::VectorXd(), double y_guess = NAN);
 
+// Static equilibrium of several wheels on the rail, wheel w at X_A = x_wheels[w] under its
+// load F_w + M_w g (a vehicle: the loads of its weight distribution) on its contact law
+// contacts[w] (with its radius); one result per wheel (the same rail e in each).
+std::vector<StaticResult> solve_static_wheels(const RailModel& rail,
+                                              const std::vector<WheelParams>& wheels,
+                                              const std::vector<ContactParams>& contacts,
+                                              const std::vector<double>& x_wheels);
 // Static equilibrium of the rail alone under gravity (no wheel).
 Eigen::VectorXd solve_rail_static(const RailModel& rail);
+// The same with the sleepers' heights and ballast forces.
+StaticResult solve_track_static(const RailModel& rail);
 
 // y_qs(X) at each position, warm-starting each solve from the previous one.
 std::vector<StaticResult> solve_quasi_static(const RailModel& rail, const WheelParams& wheel,

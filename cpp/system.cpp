@@ -8,7 +8,15 @@
 namespace trackwheel {
 
 System::System(const Model& model, const SimSettings& set)
-    : model_(model), set_(set), nf_(model.rail.n_free()), nw_(model.n_wheels()) {
+    : model_(model),
+      set_(set),
+      nf_(model.rail.n_free()),
+      nw_(model.n_wheels()),
+      nb_(model.n_bodies()),
+      vm_(vehicle_matrices(model.vehicle, model.n_wheels())),
+      sl_(model.rail),
+      identity_(model.rail.n_dof()) {
+  for (int i = 0; i < model.rail.n_dof(); ++i) identity_[i] = i;
   Mfac_ = model.rail.mass();
   if (!Mfac_.factorize()) throw std::runtime_error("rail mass matrix is singular");
   const int m = n_border();
@@ -17,6 +25,10 @@ System::System(const Model& model, const SimSettings& set)
   Db_.resize(m, m);
   J_.resize(nf_, kHalfBandwidth);
   lam_.resize(nw_);
+  const Eigen::VectorXd fv =
+      nb_ > 0 ? static_wheel_forces(vm_, Eigen::VectorXd::Zero(nw_)) : Eigen::VectorXd();
+  for (int w = 0; w < nw_; ++w)
+    static_load_.push_back(model.wheels[w].total_load() - (nb_ > 0 ? fv(w) : 0.0));
 }
 
 void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
@@ -28,6 +40,7 @@ void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
   }
   contact_terms(st, jac, ev);
   rail().internal_force(st.e, &st.edot, ev.Qint);
+  if (!sl_.empty()) sl_.add_rail_force(st.z, &st.zdot, identity_, ev.Qint);
 }
 
 void System::contact_terms(const SimState& st, bool jac, Eval& ev) const {
@@ -52,8 +65,8 @@ double System::prescribed_lambda(const SimState& st, const Eval& ev, int w) cons
                                        ev.w[w]);
 }
 
-void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
-                    Eigen::VectorXd& fb) const {
+void System::forces(const SimState& st, const Eval& ev, const Eigen::VectorXd& lam,
+                    Eigen::VectorXd& fr, Eigen::VectorXd& fb) const {
   fr = rail().gravity_force() - ev.Qint;
   fb.setZero(n_border());
   for (int w = 0; w < nw_; ++w) {
@@ -65,6 +78,33 @@ void System::forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd&
     // the normal force of an out-of-round wheel has a moment: -dV/dtheta = -N dDelta rho/dpsi
     fb(o + kTheta) = p.torque + lam(w) * we.rk.b(10) - we.cf.N * we.drho.rx;
   }
+  if (nb_ > 0) add_vehicle_forces(st, fb);
+}
+
+void System::add_vehicle_forces(const SimState& st, Eigen::VectorXd& fb) const {
+  u_.resize(nw_ + 2 * nb_);
+  udot_.resize(nw_ + 2 * nb_);
+  for (int w = 0; w < nw_; ++w) {
+    u_(w) = st.wheels[w].y;
+    udot_(w) = st.wheels[w].ydot;
+  }
+  u_.tail(2 * nb_) = st.body;
+  udot_.tail(2 * nb_) = st.bodydot;
+  fu_ = vehicle_forces(vm_, u_, udot_);
+  for (int i = 0; i < fu_.size(); ++i) fb(vehicle_index(i)) += fu_(i);
+}
+
+// The bodies' masses and inertias on the diagonal; the suspensions' dr/du'' = cq K_v + cv C_v
+// (u = u_pred + cq u'', u' = u'_pred + cv u'').
+void System::add_vehicle_block(bool inertia_only, double cq, double cv) {
+  const int nu = nw_ + 2 * nb_, o = kBorderPerWheel * nw_;
+  for (int k = 0; k < 2 * nb_; ++k) Db_(o + k, o + k) += vm_.mass(nw_ + k);
+  if (inertia_only) return;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nu; ++j) {
+      const double v = cq * vm_.K(i, j) + cv * vm_.C(i, j);
+      if (v != 0.0) Db_(vehicle_index(i), vehicle_index(j)) += v;
+    }
 }
 
 void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
@@ -75,7 +115,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     lam_(w) = std::isnan(lam_p(w)) ? 0.0 : lam_p(w);
   }
   Eigen::VectorXd &fr = fr_, &fb = fb_;
-  forces(ev, lam_, fr, fb);
+  forces(st, ev, lam_, fr, fb);
   Bb_.setZero();
   Cb_.setZero();
   Db_.setZero();
@@ -113,17 +153,25 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     qdot.tail<8>() = st.edot.segment<8>(d0);
     r2(o + kLambda) = -we.rk.dg_dq.dot(qdot) - set_.baumgarte * we.rk.g;
   }
-  if (!solver_.factorize_border(Mfac_, Bb_, Cb_, Db_))
+  if (nb_ > 0) {
+    add_vehicle_block(true, 0.0, 0.0);
+    const int o = kBorderPerWheel * nw_;
+    r2.segment(o, 2 * nb_) = fb.segment(o, 2 * nb_);
+  }
+  if (!factorize_bordered(Mfac_, false))
     throw std::runtime_error("acceleration system is singular");
-  solver_.solve(r1, r2, x1_, acc.x);
+  solve_bordered(r1, r2, x1_, acc.x);
   acc.edd.setZero(rail().n_dof());
   rail().add_from_free(x1_, acc.edd);
+  // the sleepers carry no mass coupling: z'' = F / m_s
+  sl_.forces(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd);
+  for (int j = 0; j < sl_.size(); ++j) acc.zdd(j) /= sl_.mass(j);
 }
 
 void System::residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
                       Eigen::VectorXd& r1, Eigen::VectorXd& r2) {
   for (int w = 0; w < nw_; ++w) lam_(w) = acc.x(kBorderPerWheel * w + kLambda);
-  forces(ev, lam_, fr_, fb_);
+  forces(st, ev, lam_, fr_, fb_);
   rail().mass().multiply(rail().to_free(acc.edd), Medd_);
   r1 = rail().to_free(fr_) - Medd_;
   r2.resize(n_border());
@@ -135,6 +183,25 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
     r2(o + kTheta) = -(p.inertia * acc.x(o + kTheta) - fb_(o + kTheta));
     r2(o + kLambda) = std::isnan(lam_p) ? -ev.w[w].rk.g / cv : -(lam_(w) - lam_p);
   }
+  const int o = kBorderPerWheel * nw_;
+  for (int k = 0; k < 2 * nb_; ++k) r2(o + k) = -(vm_.mass(nw_ + k) * acc.x(o + k) - fb_(o + k));
+  sl_.forces(st.e, &st.edot, identity_, st.z, &st.zdot, rs_);
+  for (int j = 0; j < sl_.size(); ++j) rs_(j) -= sl_.mass(j) * acc.zdd(j);
+}
+
+void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                   Eigen::VectorXd& x2, Eigen::VectorXd& dz) {
+  // The sleepers touch only the rail band and the bodies only the border, so the two
+  // condensations are independent: sleepers out of the right-hand side here, bodies inside.
+  if (sl_.empty()) {
+    solve_bordered(r1, r2, x1, x2);
+    dz.resize(0);
+    return;
+  }
+  r1c_ = r1;
+  sl_.condense_rhs(rs_, rail().full_to_free(), r1c_);
+  solve_bordered(r1c_, r2, x1, x2);
+  sl_.back_substitute(rs_, x1, rail().full_to_free(), dz);
 }
 
 void System::add_entry(int i, int j, double v) {
@@ -155,6 +222,8 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Jrail_.resize(nf_, kHalfBandwidth);
     Jrail_.set_linear_combination(1.0, rail().mass(), cv, rail().support_damping());
     rail().add_tangent(st.e, cq, Jrail_);
+    sl_.set_coefficients(1.0, cv, cq);
+    sl_.condense_matrix(rail().full_to_free(), Jrail_);
   }
   J_ = Jrail_;
   Bb_.setZero();
@@ -166,6 +235,7 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Db_(o + kTheta, o + kTheta) = model_.wheels[w].inertia;
   }
   for (int w = 0; w < nw_; ++w) add_wheel_block(st, ev, acc, w, cq, cv);
+  if (nb_ > 0) add_vehicle_block(false, cq, cv);
 }
 
 // Wheel w's contact, rolling and slip terms. Local index 1 -> Y, 2..9 -> rail, 10 -> theta.
@@ -231,13 +301,70 @@ void System::add_out_of_round_block(const WheelEval& we, const int* g, int o, do
   add_entry(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
 }
 
-bool System::factorize_iteration_matrix() { return solver_.factorize(J_, Bb_, Cb_, Db_); }
+bool System::factorize_iteration_matrix() { return factorize_bordered(J_, true); }
+
+bool System::factorize_bordered(BandMatrix& A, bool factor_band) {
+  if (nb_ == 0)
+    return factor_band ? solver_.factorize(A, Bb_, Cb_, Db_)
+                       : solver_.factorize_border(A, Bb_, Cb_, Db_);
+  if (factor_band && !A.factorize()) return false;
+  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
+  body_lu_.compute(Db_.bottomRightCorner(mb, mb));
+  const double det = body_lu_.determinant();
+  if (!std::isfinite(det) || det == 0.0) return false;
+  Dwb_ = Db_.topRightCorner(mw, mb);
+  Dbw_ = Db_.bottomLeftCorner(mb, mw);
+  const Eigen::MatrixXd Dred = Db_.topLeftCorner(mw, mw) - Dwb_ * body_lu_.solve(Dbw_);
+  return solver_.factorize_border(A, Bb_.leftCols(mw), Cb_.topRows(mw), Dred);
+}
+
+void System::solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
+                            Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
+  if (nb_ == 0) {
+    solver_.solve(r1, r2, x1, x2);
+    return;
+  }
+  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
+  r2b_ = r2.tail(mb);
+  r2w_ = r2.head(mw) - Dwb_ * body_lu_.solve(r2b_);
+  solver_.solve(r1, r2w_, x1, x2w_);
+  x2.resize(mw + mb);
+  x2.head(mw) = x2w_;
+  x2.tail(mb) = body_lu_.solve(r2b_ - Dbw_ * x2w_);
+}
 
 Eigen::MatrixXd System::iteration_matrix_dense() const {
-  const int m = n_border();
-  Eigen::MatrixXd A(nf_ + m, nf_ + m);
-  A << J_.dense(), Bb_, Cb_, Db_;
+  const int m = n_border(), ns = sl_.size();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nf_ + m + ns, nf_ + m + ns);
+  Eigen::MatrixXd Jr = J_.dense();
+  if (ns == 0) {
+    A << Jr, Bb_, Cb_, Db_;
+    return A;
+  }
+  sl_.uncondense_dense(rail().full_to_free(), Jr);
+  Eigen::MatrixXd Bs;
+  Eigen::VectorXd Ds;
+  sl_.coupling_blocks(rail().full_to_free(), nf_, Bs, Ds);
+  A.topLeftCorner(nf_, nf_) = Jr;
+  A.block(0, nf_, nf_, m) = Bb_;
+  A.block(nf_, 0, m, nf_) = Cb_;
+  A.block(nf_, nf_, m, m) = Db_;
+  A.block(0, nf_ + m, nf_, ns) = Bs;
+  A.block(nf_ + m, 0, ns, nf_) = Bs.transpose();
+  A.bottomRightCorner(ns, ns) = Ds.asDiagonal();
   return A;
+}
+
+double vehicle_energy_of(const Model& model, const SimState& st) {
+  const int nw = model.n_wheels(), nb = model.n_bodies();
+  Eigen::VectorXd u(nw + 2 * nb), udot(nw + 2 * nb);
+  for (int w = 0; w < nw; ++w) {
+    u(w) = st.wheels[w].y;
+    udot(w) = st.wheels[w].ydot;
+  }
+  u.tail(2 * nb) = st.body;
+  udot.tail(2 * nb) = st.bodydot;
+  return vehicle_energy(vehicle_matrices(model.vehicle, nw), u, udot);
 }
 
 double total_energy(const Model& model, const SimState& st, const Eval& ev) {
@@ -256,6 +383,12 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev) {
     E += 0.5 * p.inertia * s.thetadot * s.thetadot;
   }
   E += U;
+  const Sleepers sl(rail);
+  if (!sl.empty()) {
+    std::vector<int> identity(rail.n_dof());
+    for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+    E += sl.energy(st.e, identity, st.z, st.zdot);
+  }
   for (int w = 0; w < model.n_wheels(); ++w)
     E += contact_potential(model.contact.law, model.contact.stiffness,
                            std::max(ev.w[w].cf.delta, 0.0));
@@ -264,6 +397,7 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev) {
     E += model.wheels[w].total_load() * st.wheels[w].y;
     E -= model.wheels[w].torque * st.wheels[w].theta;
   }
+  if (model.n_bodies() > 0) E += vehicle_energy_of(model, st);
   return E;
 }
 
@@ -274,11 +408,16 @@ double vibration_energy(const Model& model, const SimState& st) {
   double E = 0.5 * v.dot(Mv);
   for (int w = 0; w < model.n_wheels(); ++w)
     E += 0.5 * model.wheels[w].mass * st.wheels[w].ydot * st.wheels[w].ydot;
+  for (int b = 0; b < model.n_bodies(); ++b)
+    E += 0.5 * model.vehicle.bodies[b].mass * st.bodydot(2 * b) * st.bodydot(2 * b);
+  if (st.zdot.size() > 0) E += Sleepers(model.rail).kinetic_energy(st.zdot);
   return E;
 }
 
 bool finite_state(const SimState& st) {
-  if (!st.e.allFinite() || !st.edot.allFinite()) return false;
+  if (!st.e.allFinite() || !st.edot.allFinite() || !st.z.allFinite() || !st.zdot.allFinite())
+    return false;
+  if (!st.body.allFinite() || !st.bodydot.allFinite()) return false;
   for (const WheelState& w : st.wheels)
     if (!std::isfinite(w.y) || !std::isfinite(w.ydot) || !std::isfinite(w.theta) ||
         !std::isfinite(w.thetadot))

@@ -3,20 +3,25 @@
 // iteration matrix and the index-1 acceleration system, all over one bordered banded system.
 //
 // Unknowns: the free rail coordinates (band, half bandwidth 7) and, per wheel w, a 3-wide
-// border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}. Equations:
+// border [Y_A'', theta'', lambda] at border index 3 w + {kY, kTheta, kLambda}, then per vehicle
+// body b [z_b'', phi_b''] at 3 n_w + 2 b + {0, 1} (vehicle.hpp); with layered supports the
+// sleepers' z'' too, condensed exactly into the band (sleepers.hpp). Equations:
 //   rail    M e''   = Q_g - Q_kl - Q_kt - Q_s + sum_w (Q_contact,w + lambda_w b_rail,w)
 //   wheel w M Y_A'' = -(F + M g) + N n_y + lambda t_y,   J th'' = T - rho lambda
-//   lambda_w: rolling constraint g_w = 0 (stick), sigma mu N (slide) or 0 (no contact).
+//   lambda_w: rolling constraint g_w = 0 (stick), sigma mu N (slide) or 0 (no contact),
+//   vehicle  M_v u'' = -K_v u - C_v u' - G_v (the suspensions also act on each Y_A row).
 // The model is const; every buffer lives here, so a step allocates nothing new.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <vector>
 
 #include "banded.hpp"
 #include "contact.hpp"
 #include "model.hpp"
 #include "rolling.hpp"
+#include "sleepers.hpp"
 #include "state.hpp"
 
 namespace trackwheel {
@@ -43,6 +48,7 @@ struct Eval {
 struct Accel {
   Eigen::VectorXd edd;
   Eigen::VectorXd x;
+  Eigen::VectorXd zdd;  // sleepers (layered supports; else empty)
 };
 
 class System {
@@ -54,7 +60,15 @@ class System {
   const SimSettings& settings() const { return set_; }
   int n_wheels() const { return nw_; }
   int n_free() const { return nf_; }
-  int n_border() const { return kBorderPerWheel * nw_; }
+  int n_bodies() const { return nb_; }
+  // Wheel w's static load [N]: F + M g, plus the vehicle's static force on it (the scale of
+  // its contact forces, e.g. for Newton's tolerance on lambda).
+  double static_load(int w) const { return static_load_[w]; }
+  int n_border() const { return kBorderPerWheel * nw_ + 2 * nb_; }
+  // The border index of vehicle coordinate i (vehicle.hpp: wheel heights, then bodies).
+  int vehicle_index(int i) const {
+    return i < nw_ ? kBorderPerWheel * i + kY : kBorderPerWheel * nw_ + i - nw_;
+  }
   double x_at(int w, double t) const {
     return set_.x_start + model_.wheels[w].x_offset + set_.speed * t;
   }
@@ -74,7 +88,7 @@ class System {
   void accelerations(const SimState& st, const Eval& ev, Accel& acc);
 
   // Generalized-alpha residual (right-hand side -r of J dx = -r) at an iterate; cv = gamma' h
-  // scales the velocity-level constraint rows.
+  // scales the velocity-level constraint rows. The sleepers' part is kept for solve().
   void residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
                 Eigen::VectorXd& r1, Eigen::VectorXd& r2);
 
@@ -85,19 +99,34 @@ class System {
   void assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
                                  double cv, bool refresh_rail);
   bool factorize_iteration_matrix();
-  // The assembled (unfactorised) matrix as a dense (n_free + n_border) square (tests).
+  // The assembled (unfactorised) matrix as a dense (n_free + n_border + n_sleepers) square,
+  // the sleepers' block uncondensed (tests).
   Eigen::MatrixXd iteration_matrix_dense() const;
+  // The sleepers' negated residual of the last residual() call (tests).
+  const Eigen::VectorXd& sleeper_residual() const { return rs_; }
 
+  // Newton correction from the last residual(): rail, border and (layered) sleepers dz.
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
-             Eigen::VectorXd& x2) const {
-    solver_.solve(r1, r2, x1, x2);
-  }
+             Eigen::VectorXd& x2, Eigen::VectorXd& dz);
+  const Sleepers& sleepers() const { return sl_; }
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the
   // border forces fb = [F_Y, F_theta, 0]_w.
-  void forces(const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
+  void forces(const SimState& st, const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
               Eigen::VectorXd& fb) const;
+  // The suspensions' and bodies' weights added to the border forces fb; the bodies' inertia
+  // (diagonal) and, with cq and cv, the suspensions' cq K_v + cv C_v added to Db_.
+  void add_vehicle_forces(const SimState& st, Eigen::VectorXd& fb) const;
+  void add_vehicle_block(bool inertia_only, double cq, double cv);
+  // The bordered factorisation of [A B; C D] (A factorised here if factor_band). The vehicle's
+  // bodies touch no rail coordinate (their B columns and C rows are zero), so they are
+  // condensed out of the border exactly: D_ww - D_wb D_bb^-1 D_bw on the wheels' 3 n_w
+  // unknowns; the solve recovers them by back-substitution. Without bodies: the plain solver.
+  bool factorize_bordered(BandMatrix& A, bool factor_band);
+  // Solve with the factorisation of factorize_bordered (bodies back-substituted).
+  void solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                      Eigen::VectorXd& x2) const;
   void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
                        double cv);
   void add_entry(int i, int j, double v);
@@ -106,16 +135,28 @@ class System {
 
   const Model& model_;
   const SimSettings& set_;
-  int nf_, nw_;
+  int nf_, nw_, nb_;
+  VehicleMatrices vm_;
+  std::vector<double> static_load_;
+  mutable Eigen::VectorXd u_, udot_, fu_;  // vehicle coordinates, rates, forces (buffers)
   BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
   Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
   BorderedSolver solver_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
+  Eigen::MatrixXd Dwb_, Dbw_;
+  mutable Eigen::VectorXd r2w_, x2w_, r2b_;
+  Sleepers sl_;
+  std::vector<int> identity_;  // full index -> itself
+  Eigen::VectorXd rs_, r1c_;
 };
 
 // Total mechanical energy [J]: kinetic + elastic + support springs + contact potentials
-// + potentials of gravity on the rail, of the wheel loads P Y_A and of the torques -T theta.
+// + potentials of gravity on the rail, of the wheel loads P Y_A and of the torques -T theta
+// + the vehicle's bodies and suspensions.
 double total_energy(const Model& model, const SimState& st, const Eval& ev);
+// Energy of the vehicle's bodies and suspensions (vehicle_energy over the state) [J].
+double vehicle_energy_of(const Model& model, const SimState& st);
 // Kinetic energy of the rail and the wheels' vertical motion [J] (the runaway watchdog's).
 double vibration_energy(const Model& model, const SimState& st);
 bool finite_state(const SimState& st);

@@ -89,7 +89,7 @@ RK4 = "cpp/explicit_rk4.cpp"
 FULL = "cpp/full_path.cpp"
 LOOP = "cpp/time_loop.cpp"
 OUT = "cpp/output.cpp"
-LRAIL = "cpp/linear_rail.hpp"
+LBEAM = "cpp/linear_beam.cpp"
 LIN = "cpp/linear_track.cpp"
 ANCF = "cpp/ancf_cable.cpp"
 CON = "cpp/contact.cpp"
@@ -106,7 +106,7 @@ MUTANTS: list[Mutant] = [
     M("slip-threshold", SLIP, "std::abs(lambda) > friction * ev.cf.N",
       "std::abs(lambda) > 1.1 * friction * ev.cf.N",
       "stick -> slide only when |lambda| > 1.1 mu N (Coulomb bound violated in stick)"),
-    M("linear-support-damping", LRAIL, "Cy.at(a, b) = r.support_damping().at(i, j);",
+    M("linear-support-damping", LBEAM, "Cy.at(a, b) = r.support_damping().at(i, j);",
       "Cy.at(a, b) = 0.0 * r.support_damping().at(i, j);",
       "linear path drops the support damping from its damping matrix"),
     # --- ANCF element: forces and Jacobians
@@ -130,7 +130,7 @@ MUTANTS: list[Mutant] = [
       "rail weight 10 % low"),
     M("rail-gravity-moments", RAIL, "l * l / 12.0, 0.5 * l, -l * l / 12.0",
       "0.0, 0.5 * l, 0.0", "consistent gravity load lumped (nodal moments dropped)"),
-    M("linear-rail-gravity", LRAIL, "Qgy(a) = r.gravity_force()(full_of_y[a]);", "Qgy(a) = 0.0;",
+    M("linear-rail-gravity", LBEAM, "Qgy(a) = r.gravity_force()(full_of_y[a]);", "Qgy(a) = 0.0;",
       "linear path without the rail's weight"),
     M("linear-iteration-damping", LIN, "1.0, tr_.M, cv, tr_.C", "1.0, tr_.M, 0.0, tr_.C",
       "linear path's iteration matrix M + cq K without cv C (its Newton stops after one "
@@ -211,8 +211,8 @@ MUTANTS: list[Mutant] = [
     # --- analysis
     M("main-frequency-window", ANA, "w = np.hanning(x.size)", "w = np.ones(x.size)",
       "spectrum without the Hann window"),
-    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x)",
-      "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005)",
+    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x, linear)",
+      "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005, linear)",
       "quasi-static line taken 5 mm ahead of the wheel"),
     M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(positions[p]);",
       "const MeshPoint mp = rail.locate(positions[p] + 0.05);",

@@ -438,3 +438,172 @@ def test_sweep_over_seeds(tmp_path, capsys):
     line = [ln for ln in printed.splitlines() if ln.strip().startswith("300 km/h")][0]
     assert (f"max N {p[('max_contact_force', 'p5')] / 1e3:.4g} / "
             f"{p[('max_contact_force', 'p50')] / 1e3:.4g}") in line and "(3 seeds)" in line
+
+
+# --------------------------------------------------------------------------------------------
+# the track: beam theory, receptance and decay rate (issue 12)
+def _timoshenko(scene, kappa=0.4):
+    return dataclasses.replace(scene, rail=dataclasses.replace(
+        scene.rail, beam="timoshenko", shear_coefficient=kappa))
+
+
+@pytest.mark.parametrize("argv", [
+    ["run", "--speed-kmh", "100", "--beam", "timoshenko"],
+    ["run", "--speed-kmh", "100", "--beam", "timoshenko", "--fidelity", "ancf/sprung"],
+    ["sweep", "--speeds-kmh", "100", "--store", "{tmp}", "--beam", "timoshenko"],
+    ["sweep", "--speeds-kmh", "100", "--store", "{tmp}", "--beam", "timoshenko", "--fidelity",
+     "auto"],
+])
+def test_timoshenko_with_the_ancf_rail_is_a_one_line_error(argv, tmp_path, capsys, monkeypatch):
+    """The full and ancf/* levels run the Euler-Bernoulli ANCF rail: a Timoshenko rail there is
+    refused before anything runs, naming the linear levels to pick."""
+    calls = []
+    monkeypatch.setattr(cli, "simulate", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(cli, "sweep", lambda *a, **k: calls.append(a))
+    assert cli.main([a.replace("{tmp}", str(tmp_path)) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "--beam timoshenko needs a linear model level" in err
+    assert "linear/hertz" in err and "Euler-Bernoulli" in err
+    assert calls == []
+
+
+def test_run_with_a_timoshenko_rail_simulates_that_scene(capsys):
+    """`run --beam timoshenko --shear-coefficient 0.3 --fidelity linear/hertz` is the API's run
+    of the scene with that rail (amplitude to the printed 1e-3 µm), and it differs from the
+    Euler-Bernoulli run by more than the print resolution (the options reach the kernel)."""
+    argv = ["run", "--speed-kmh", "300", "--fidelity", "linear/hertz", *CHEAP]
+    assert cli.main([*argv, "--beam", "timoshenko", "--shear-coefficient", "0.3"]) == 0
+    printed = capsys.readouterr().out
+    assert "Scene.kato2005() with a Timoshenko rail (kappa = 0.3)" in printed
+    kw = dict(n_elements=20, dt=1e-5, x_end=0.75, fidelity="linear/hertz")
+    scene = _timoshenko(tw.Scene.kato2005(), 0.3)
+    a = tw.analyse(tw.simulate(scene, tw.kmh(300), **kw))
+    assert _value(printed, "amplitude") == pytest.approx(a.amplitude * 1e6, abs=5e-4)
+    e = tw.analyse(tw.simulate(tw.Scene.kato2005(), tw.kmh(300), **kw))
+    assert abs(e.amplitude - a.amplitude) * 1e6 > 2e-3
+
+
+def test_sweep_with_a_timoshenko_rail_runs_that_scene(tmp_path, capsys):
+    """`sweep --beam timoshenko --fidelity linear/hertz`: the case is the API's run of the
+    Timoshenko scene, exactly (same inputs, bit-identical outputs)."""
+    csv = tmp_path / "t.csv"
+    assert cli.main(["sweep", "--speeds-kmh", "300", "--beam", "timoshenko", "--fidelity",
+                     "linear/hertz", "--store", str(tmp_path / "s"), "--out", str(csv),
+                     "--workers", "1", "--no-progress", *CHEAP]) == 0
+    row = _csv(csv).iloc[0]
+    a = tw.analyse(tw.simulate(_timoshenko(tw.Scene.kato2005()), tw.kmh(300), n_elements=20,
+                               dt=1e-5, x_end=0.75, fidelity="linear/hertz"))
+    assert row.amplitude == a.amplitude and row.main_frequency == a.main_frequency
+
+
+def test_eigen_with_a_timoshenko_rail(capsys):
+    assert cli.main(["eigen", "--beam", "timoshenko", "--shear-coefficient", "0.3",
+                     "--n-modes", "4"]) == 0
+    printed = capsys.readouterr().out
+    f = tw.eigen(_timoshenko(tw.Scene.kato2005(), 0.3), [2.5], 4).frequencies[0]
+    for k, fk in enumerate(f, start=1):
+        assert f"  {k:>3}  {fk:10.2f} Hz\n" in printed
+
+
+def test_receptance_command_writes_the_api_receptance(tmp_path, capsys):
+    """The CSV holds trackwheel.receptance at the mid-span of the bay right of the middle
+    support (15.3 m on the 30 m ballasted track) on --n log-spaced frequencies; abs and phase are
+    those of re + i im; the printed peak lies within 1 % of the Timoshenko pinned-pinned
+    frequency of a 0.6 m bay when the search starts above the track resonances."""
+    out, png = tmp_path / "r.csv", tmp_path / "r.png"
+    assert cli.main(["receptance", "--track", "ballasted", "--beam", "timoshenko", "--fmin",
+                     "700", "--fmax", "2000", "--n", "300", "--n-elements", "400", "--out",
+                     str(out), "--plot", str(png)]) == 0
+    printed = capsys.readouterr().out
+    t = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert t.shape == (300, 5)
+    np.testing.assert_allclose(t[:, 0], np.geomspace(700.0, 2000.0, 300), rtol=1e-9)
+    scene = _timoshenko(tw.Scene.ballasted_track())
+    a = tw.receptance(scene, 15.3, t[:, 0], n_elements=400)
+    np.testing.assert_allclose(t[:, 1] + 1j * t[:, 2], a, rtol=1e-9)
+    np.testing.assert_allclose(t[:, 3], np.abs(a), rtol=1e-9)
+    np.testing.assert_allclose(t[:, 4], np.degrees(np.angle(a)), rtol=1e-9, atol=1e-9)
+    assert "X = 15.3 m (mid-span)" in printed
+    f_peak = float(printed.split("largest |alpha|:")[1].split(" at ")[1].split()[0])
+    f_t = tw.fidelity.pinned_pinned_frequencies(scene)[1]
+    assert f_peak == pytest.approx(f_t, rel=0.01)
+    assert png.read_bytes()[:8] == PNG_MAGIC
+
+
+def test_receptance_above_a_support_and_from_zero(tmp_path, capsys):
+    """--at support is the support nearest the middle (15 m); --fmin 0 spaces linearly and the
+    0 Hz receptance is the static flexibility, real and positive."""
+    out = tmp_path / "r.csv"
+    assert cli.main(["receptance", "--at", "support", "--track", "ballasted", "--fmin", "0",
+                     "--fmax", "100", "--n", "11", "--out", str(out)]) == 0
+    assert "X = 15 m (above a support)" in capsys.readouterr().out
+    t = np.loadtxt(out, delimiter=",", skiprows=1)
+    np.testing.assert_allclose(t[:, 0], np.linspace(0.0, 100.0, 11))
+    assert t[0, 1] > 0.0 and t[0, 2] == 0.0
+
+
+def test_band_decay_rate_with_one_frequency_is_the_centre_value():
+    """With one frequency per band, the band's geometric centre, the band rate is the EN 15461
+    rate of trackwheel.decay_rate there (sqrt(lo hi) is the exact base-2 centre)."""
+    from trackwheel.frequency import iso3095_band_edges
+
+    scene = tw.Scene.ballasted_track(60.0)
+    e = iso3095_band_edges()
+    centres = np.sqrt(e[:-1] * e[1:])
+    np.testing.assert_allclose(cli.band_decay_rates(scene, 1), tw.decay_rate(scene, centres),
+                               rtol=1e-12)
+
+
+def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
+    out, png = tmp_path / "d.csv", tmp_path / "d.png"
+    assert cli.main(["decay-rate", "--track", "ballasted", "--per-band", "3", "--n-elements",
+                     "400", "--out", str(out), "--plot", str(png)]) == 0
+    printed = capsys.readouterr().out
+    t = np.loadtxt(out, delimiter=",", skiprows=1)
+    np.testing.assert_array_equal(t[:, 0], tw.frequency.ISO3095_BANDS)
+    np.testing.assert_array_equal(t[:, 2], tw.frequency.ISO3095_VERTICAL_LIMIT)
+    dr = cli.band_decay_rates(tw.Scene.ballasted_track(60.0), 3, 400)
+    np.testing.assert_allclose(t[:, 1], dr, rtol=1e-9)
+    n_ok = int(np.sum(dr >= t[:, 2]))
+    assert f"{n_ok} of 14 bands at or above the limit" in printed
+    assert printed.count("below the limit") == 14 - n_ok
+    assert "60 m" in printed and png.read_bytes()[:8] == PNG_MAGIC
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["receptance", "--at", "top"], "expected midspan, support or a position"),
+    (["receptance", "--at", "7"], "allowed range [0, 5] m"),
+    (["receptance", "--fmin", "100", "--fmax", "50"], "0 <= fmin < fmax"),
+    (["receptance", "--fmin", "-1"], "0 <= fmin < fmax"),
+    (["receptance", "--n", "0"], "positive integer"),
+    (["receptance", "--length", "60"], "--length is only for --track ballasted"),
+    (["receptance", "--track", "ballasted", "--length", "31"], "--length 31"),
+    (["decay-rate", "--track", "ballasted", "--length", f"{0.6 * (cli.MAX_ELEMENTS + 1):g}"],
+     "is too long; allowed: at most"),
+    (["receptance", "--shear-coefficient", "0.3"], "only used with --beam timoshenko"),
+    (["receptance", "--beam", "timoshenko", "--shear-coefficient", "2"],
+     "--shear-coefficient = 2.0 is outside the allowed range (0.0, 1.0]"),
+    (["receptance", "--beam", "bernoulli"], "invalid choice"),
+    (["receptance", "--out", "/proc/r.csv"], "cannot write in this folder"),
+    (["decay-rate"], "need a rail longer than 33.5 m"),
+    (["decay-rate", "--track", "ballasted", "--length", "39.6"], "longer than 40.2 m"),
+    (["decay-rate", "--track", "ballasted", "--plot", "d.xyz"], "unknown file format"),
+    (["eigen", "--beam", "timoshenko", "--shear-coefficient", "0"], "positive number"),
+])
+def test_bad_track_arguments_are_one_line(argv, words, capsys, monkeypatch):
+    calls = []
+    monkeypatch.setattr(cli, "band_decay_rates", lambda *a, **k: calls.append(a))
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and words in err, err
+    assert calls == []
+
+
+@pytest.mark.parametrize("command", ["receptance", "decay-rate"])
+def test_track_commands_have_help_without_timings(command, capsys):
+    import re
+
+    assert cli.main([command, "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "usage: trackwheel" in text and "--beam" in text
+    assert not re.search(r"\b(minutes?|hours?|seconds)\b|about \d+ ?s\b|µs", text), text

@@ -31,7 +31,7 @@ FILES = {
 UNIT_SUFFIXES = ("_m", "_s", "_hz", "_N", "_N_m", "_m_s", "_m_s2", "_kmh", "_percent", "_1_s")
 UNITLESS = {"run", "reference", "integrator", "n_elements", "steps", "term", "lost_contact",
             "error", "output_every", "rho_inf", "rolling", "start", "fidelity", "n_modes",
-            "version", "case", "seed", "dynamic_factor"}
+            "version", "case", "seed", "dynamic_factor", "wheel", "worst"}
 
 
 @pytest.fixture(scope="module")

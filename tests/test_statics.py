@@ -189,3 +189,58 @@ def test_quasi_static_line_is_symmetric():
     on_support = tw.static(KATO, 1.5).y_contact
     mid_bay = tw.static(KATO, 1.75).y_contact
     assert mid_bay < on_support < 0
+
+
+def test_linear_quasi_static_is_the_point_load_deflection_of_a_simply_supported_beam():
+    """Bare simply supported rail, no rail weight: y(a) = -P a^2 b^2 / (3 EI L) under the load
+    at a, b = L - a (beam tables). Hermite cubics reproduce a beam under nodal point loads
+    exactly, so at nodes only round-off remains (a band solve of ~80 unknowns whose stiffness
+    entries span l_e^-3 .. l_e^-1: relative error ~1e-12; tolerance 1e-9)."""
+    scene = dataclasses.replace(tw.Scene.kato2005(), supports=tw.Supports(positions=()),
+                                rail_gravity=False)
+    ne, L, ei, P = 40, scene.rail.length, scene.rail.bending_stiffness, scene.static_load
+    a = L / ne * np.arange(3, ne - 2, 4)
+    y = tw.linear_quasi_static(scene, a, n_elements=ne)
+    exact = -P * a**2 * (L - a) ** 2 / (3.0 * ei * L)
+    np.testing.assert_allclose(y, exact, rtol=1e-9)
+
+
+def test_linear_quasi_static_is_the_ancf_line_linearised():
+    """The linear track is the ANCF rail linearised about the straight rail, loaded at X_A
+    instead of at the contact point. The ANCF contact point sits rho0 theta behind or ahead of
+    X_A on a rail of slope theta, which moves y_B by ~rho0 theta^2: with theta up to 6e-4 under
+    the paper's wheel (deflection 0.16 mm over a quarter bay), rho0 theta^2 ~ 4e-8 m, 2e-4 of
+    the deflection; the geometric nonlinearity ((y/l)^2 ~ 1e-7) is far smaller. Tolerance 3e-4
+    of the largest deflection (measured: 3e-5)."""
+    scene = tw.Scene.kato2005()
+    x = np.linspace(0.3, 4.7, 23)
+    ancf = tw.quasi_static(scene, x, n_elements=80).y_contact
+    lin = tw.linear_quasi_static(scene, x, n_elements=80)
+    assert np.max(np.abs(lin - ancf)) < 3e-4 * np.max(np.abs(ancf))
+
+
+@pytest.mark.parametrize("fidelity, layered", [("linear/hertz", False),
+                                               ("linear/moving_force", False),
+                                               ("linear/hertz", True)])
+def test_linear_runs_start_on_their_quasi_static_line(fidelity, layered):
+    """analyse measures a linear run against the linear track's own static line, on which the
+    run starts (static equilibrium, N = P): d(0) is round-off, ~1e-16 m against a deflection
+    of ~1e-4 m, also on an irregular rail (the profile lifts the wheel, not the rail) and on
+    pad-sleeper-ballast supports (the sleepers condensed at rest, with their weight)."""
+    scene = dataclasses.replace(tw.Scene.kato2005(),
+                                irregularity=tw.Irregularity.sine(1.0, 1e-4))
+    if layered:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(
+            scene.supports, sleeper_mass=150.0, ballast_stiffness=105e6))
+    r = tw.simulate(scene, tw.kmh(200), fidelity=fidelity, x_end=1.2, progress=False)
+    a = tw.analyse(r)
+    assert abs(a.dynamic[0]) < 1e-12 * np.max(np.abs(a.y_qs))
+    assert a.amplitude > 1e-8  # and the run does move off it
+
+
+def test_linear_quasi_static_rejects_bad_input():
+    scene = tw.Scene.kato2005()
+    with pytest.raises(ValueError, match="positions"):
+        tw.linear_quasi_static(scene, [6.0])
+    with pytest.raises(ValueError, match="n_modes"):
+        tw.linear_quasi_static(scene, [1.0], n_modes=0)

@@ -15,6 +15,7 @@ import pytest
 from scipy.interpolate import CubicSpline
 from test_contact import K_LIN, RHO0, X_WHEEL, ContactFunction, bent_rail, params
 
+import trackwheel as tw
 from trackwheel import _core
 
 AMP, WAVELENGTH = 3e-4, 0.1  # a 0.3 mm, 0.1 m corrugation: R'' up to 1.2 1/m [m, m]
@@ -162,3 +163,34 @@ def test_rolling_jacobians_on_lifted_surface_match_central_differences(lifted, f
     # g is linear in the velocities: dg/dqdot = b exactly (theta' coefficient b[10] = -rho)
     J = fd(lambda v: [at(q0, v)["g"]], qdot, 1e-3)[0]
     np.testing.assert_allclose(np.asarray(base["b"])[:10], J, rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("law, slide", [("linear", False), ("hertz", True)])
+def test_iteration_matrix_with_a_rail_profile_matches_central_differences(law, slide):
+    """The generalized-alpha iteration matrix on an irregular rail (a 0.5 m sine of 50 um:
+    curvature 8e-3 1/m, slope 6e-4) against central differences of the residual, as
+    tests/test_system.py does on the smooth rail (same steps, same 1e-6 tolerance; measured
+    6e-9 and 1e-8): the profile's slope and curvature enter the contact geometry's Jacobian."""
+    from test_system import DT, _probe_case
+
+    model, wheels, contact, s, st = _probe_case(law, slide, 1,
+                                                irregularity=tw.Irregularity.sine(0.5, 5e-5))
+    smooth = _probe_case(law, slide, 1)
+    assert not np.allclose(_core.ga_probe(*smooth, DT)["residual"],
+                           _core.ga_probe(model, wheels, contact, s, st, DT)["residual"])
+
+    def R(x=None):
+        return _core.ga_probe(model, wheels, contact, s, st, DT, x)
+
+    p0 = R()
+    x0, J = p0["start"], p0["matrix"]
+    h = np.full(len(x0), 1e3)
+    h[model.n_free + 2] = 1.0  # the multiplier lambda [N]
+    cols = []
+    for i in range(len(x0)):
+        xp, xm = x0.copy(), x0.copy()
+        xp[i] += h[i]
+        xm[i] -= h[i]
+        cols.append(-(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h[i]))
+    err = np.max(np.abs(J - np.stack(cols, axis=1)), axis=0) / np.max(np.abs(J), axis=0)
+    assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))

@@ -34,8 +34,12 @@ V = tw.kmh(300)
 DT = 1e-5
 
 
-def _probe_case(law, slide, n_wheels, polygon=False):
-    scene = tw.Scene.kato2005()
+def _probe_case(law, slide, n_wheels, polygon=False, layered=False, irregularity=None):
+    scene = dc.replace(tw.Scene.kato2005(), irregularity=irregularity)
+    if layered:  # damped pad-sleeper-ballast supports (the sleepers' z'' join the unknowns)
+        scene = dc.replace(scene, supports=dc.replace(
+            scene.supports, damping=2e4, sleeper_mass=150.0, ballast_stiffness=105e6,
+            ballast_damping=5e4))
     if law == "hertz":
         scene = dc.replace(scene, contact=dc.replace(scene.contact, law="hertz"))
     if polygon:
@@ -68,11 +72,13 @@ def _probe_case(law, slide, n_wheels, polygon=False):
     return model, wheels, contact, s, st
 
 
-@pytest.mark.parametrize("law, slide, n_wheels, polygon", [
-    ("linear", False, 1, False), ("linear", True, 1, False), ("hertz", False, 2, False),
-    ("hertz", True, 2, False), ("linear", False, 1, True), ("hertz", True, 2, True)])
-def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, polygon):
-    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, polygon)
+@pytest.mark.parametrize("law, slide, n_wheels, polygon, layered", [
+    ("linear", False, 1, False, False), ("linear", True, 1, False, False),
+    ("hertz", False, 2, False, False), ("hertz", True, 2, False, False),
+    ("linear", False, 1, True, False), ("hertz", True, 2, True, False),
+    ("linear", False, 1, False, True), ("hertz", True, 2, False, True)])
+def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, polygon, layered):
+    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, polygon, layered)
 
     def R(x=None):
         return _core.ga_probe(model, wheels, contact, s, st, DT, x)
@@ -80,9 +86,10 @@ def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, poly
     p0 = R()
     x0, J = p0["start"], p0["matrix"]
     nb = 3 * n_wheels
-    assert J.shape == (len(x0), len(x0)) and len(x0) == model.n_free + nb
+    ns = 9 if layered else 0  # the paper's nine supports
+    assert J.shape == (len(x0), len(x0)) and len(x0) == model.n_free + nb + ns
     h = np.full(len(x0), 1e3)
-    h[model.n_free + 2::3] = 1.0  # the multipliers lambda [N]
+    h[model.n_free + 2:model.n_free + nb:3] = 1.0  # the multipliers lambda [N]
     cols = []
     for i in range(len(x0)):
         xp, xm = x0.copy(), x0.copy()
@@ -120,3 +127,20 @@ def test_newton_on_the_probe_matrix_reaches_the_round_off_floor(law, slide, n_wh
         x = x + np.linalg.solve(p["matrix"], p["residual"])
     r = _core.ga_probe(model, wheels, contact, s, st, DT, x)["residual"]
     assert np.linalg.norm(r) < 1e-4
+
+
+@pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("hertz", True, 2)])
+def test_condensed_sleepers_solve_equals_the_dense_solve(law, slide, n_wheels):
+    """The kernel condenses the sleepers' diagonal block into the rail band (a Schur
+    complement, exact) and back-substitutes their z''. Its Newton correction must equal the
+    dense solve of the uncondensed matrix J dx = -r to round-off: cond(J) = 7e4 here, so
+    1e-10 of max |dx| (measured 2e-15)."""
+    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, layered=True)
+    p = _core.ga_probe(model, wheels, contact, s, st, DT)
+    dense = np.linalg.solve(p["matrix"], p["residual"])
+    assert np.max(np.abs(dense)) > 0.0
+    np.testing.assert_allclose(p["solution"], dense, rtol=0,
+                               atol=1e-10 * np.max(np.abs(dense)))
+    # the sleepers are coupled: their columns reach the rail rows
+    nf, nb = model.n_free, 3 * n_wheels
+    assert np.count_nonzero(p["matrix"][:nf, nf + nb:]) >= 9

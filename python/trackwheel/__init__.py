@@ -16,13 +16,16 @@ from .defaults import MeshWarning, StabilityWarning, default_settings, stability
 from .eigen import EigenResult, eigen
 from .fidelity import adequacy, recommend
 from .force_statistics import ForceStatistics, force_statistics
+from .frequency import decay_rate, receptance
 from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
 from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, kmh
 from .simulate import FIDELITY_LEVELS, simulate
-from .statics import QuasiStatic, StaticResult, quasi_static, static
+from .vehicle import Bogie, CarBody, Vehicle
+from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
+from . import frequency as frequency  # the module (trackwheel.frequency.decay_rate_limit, ...)
 
 __all__ = [
     "FIDELITY_LEVELS",
@@ -51,6 +54,7 @@ __all__ = [
     "default_settings",
     "eigen",
     "kmh",
+    "linear_quasi_static",
     "load_sweep",
     "main_frequency",
     "quasi_static",
@@ -65,4 +69,9 @@ __all__ = [
     "WheelFlat",
     "ForceStatistics",
     "force_statistics",
+    "Vehicle",
+    "Bogie",
+    "CarBody",
+    "receptance",
+    "decay_rate",
 ]

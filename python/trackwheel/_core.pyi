@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'WheelModel', 'WheelParams', 'WheelState', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'quasi_static', 'rail_static', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'time_band_factor_solve', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -116,6 +116,18 @@ class SupportParams:
     def __init__(self) -> None:
         ...
     @property
+    def ballast_damping(self) -> list[float]:
+        ...
+    @ballast_damping.setter
+    def ballast_damping(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def ballast_stiffness(self) -> list[float]:
+        ...
+    @ballast_stiffness.setter
+    def ballast_stiffness(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
     def damping(self) -> list[float]:
         ...
     @damping.setter
@@ -126,6 +138,12 @@ class SupportParams:
         ...
     @position.setter
     def position(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def sleeper_mass(self) -> list[float]:
+        ...
+    @sleeper_mass.setter
+    def sleeper_mass(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     @property
     def stiffness(self) -> list[float]:
@@ -250,6 +268,119 @@ class ContactLaw:
     @property
     def value(self) -> int:
         ...
+class BodyParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def gravity(self) -> float:
+        """
+        [m/s^2]
+        """
+    @gravity.setter
+    def gravity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def inertia(self) -> float:
+        """
+        pitch inertia [kg m^2]
+        """
+    @inertia.setter
+    def inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load(self) -> float:
+        """
+        constant downward force on the centre [N]
+        """
+    @load.setter
+    def load(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mass(self) -> float:
+        """
+        [kg]
+        """
+    @mass.setter
+    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SuspensionParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def damping(self) -> float:
+        """
+        c [N s/m]
+        """
+    @damping.setter
+    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_arm(self) -> float:
+        """
+        [m]
+        """
+    @lower_arm.setter
+    def lower_arm(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_body(self) -> int:
+        """
+        body index or -1
+        """
+    @lower_body.setter
+    def lower_body(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_wheel(self) -> int:
+        """
+        wheel index or -1
+        """
+    @lower_wheel.setter
+    def lower_wheel(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stiffness(self) -> float:
+        """
+        k [N/m]
+        """
+    @stiffness.setter
+    def stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def upper_arm(self) -> float:
+        """
+        [m]
+        """
+    @upper_arm.setter
+    def upper_arm(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def upper_body(self) -> int:
+        """
+        body index
+        """
+    @upper_body.setter
+    def upper_body(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class VehicleParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def bodies(self) -> list[BodyParams]:
+        """
+        a copy: assign the whole list
+        """
+    @bodies.setter
+    def bodies(self, arg0: collections.abc.Sequence[BodyParams]) -> None:
+        ...
+    @property
+    def suspensions(self) -> list[SuspensionParams]:
+        """
+        a copy: assign the whole list
+        """
+    @suspensions.setter
+    def suspensions(self, arg0: collections.abc.Sequence[SuspensionParams]) -> None:
+        ...
 class ContactParams:
     law: ContactLaw
     def __init__(self) -> None:
@@ -320,6 +451,25 @@ class RailModel:
         ...
     @property
     def total_mass(self) -> float:
+        ...
+class BeamParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def rotary_inertia(self) -> float:
+        """
+        rho I [kg m]
+        """
+    @rotary_inertia.setter
+    def rotary_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shear_stiffness(self) -> float:
+        """
+        kappa G A [N]; 0: Euler-Bernoulli
+        """
+    @shear_stiffness.setter
+    def shear_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class Integrator:
     """
@@ -537,6 +687,22 @@ class SimState:
     def __init__(self) -> None:
         ...
     @property
+    def body(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (2 n_bodies,) [z, phi] per vehicle body
+        """
+    @body.setter
+    def body(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def bodydot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (2 n_bodies,) rates
+        """
+    @bodydot.setter
+    def bodydot(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
     def e(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         rail coordinates (n_dof,)
@@ -559,6 +725,22 @@ class SimState:
         """
     @wheels.setter
     def wheels(self, arg0: collections.abc.Sequence[WheelState]) -> None:
+        ...
+    @property
+    def z(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        sleeper heights (n_sleepers,) [m]; empty: at rest under the initial rail
+        """
+    @z.setter
+    def z(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def zdot(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        sleeper velocities (n_sleepers,) [m/s]
+        """
+    @zdot.setter
+    def zdot(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
         ...
 class WheelModel:
     """
@@ -612,6 +794,7 @@ class WheelModel:
     def value(self) -> int:
         ...
 class LinearOptions:
+    beam: BeamParams
     sudden: bool
     wheel_model: WheelModel
     def __init__(self) -> None:
@@ -660,9 +843,9 @@ def direction_pencil(rail: RailModel, component: typing.SupportsInt | typing.Sup
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
-def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None) -> dict:
+def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense)}
+    Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, z'' per sleeper] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}
     """
 def gauss_points(arg0: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
     ...
@@ -672,31 +855,67 @@ def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, a
     """
     omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
     """
+def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.
+    """
 def quasi_static(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
     ...
 def rail_static(arg0: RailModel) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     ...
+def receptance(rail: RailModel, beam: BeamParams, x: typing.SupportsFloat | typing.SupportsIndex, x_response: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], freqs: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.complex128], "[m, n]"]:
+    """
+    Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x
+    """
 def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"], arg6: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     """
     Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
     """
-def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None) -> dict:
+def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
+    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
     """
-def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None) -> dict:
+def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Linear vertical track fast path (Euler-Bernoulli rail, constant matrices)
+    Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)
     """
 def static_solve(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     ...
+def static_solve_wheels(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contacts: collections.abc.Sequence[ContactParams], x_wheels: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list:
+    """
+    Static equilibrium of several wheels on the rail, wheel w at x_wheels[w] under its load F + M g: one static_solve dict per wheel (the same rail e in each)
+    """
 def time_band_factor_solve(rail: RailModel, cq: typing.SupportsFloat | typing.SupportsIndex, cv: typing.SupportsFloat | typing.SupportsIndex, repeats: typing.SupportsInt | typing.SupportsIndex, bordered: bool = False) -> float:
     """
     Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)
     """
+def timoshenko_energy(EI: typing.SupportsFloat | typing.SupportsIndex, kGA: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"]) -> float:
+    """
+    IIE element strain energy [J]
+    """
+def timoshenko_mass(rhoA: typing.SupportsFloat | typing.SupportsIndex, rhoI: typing.SupportsFloat | typing.SupportsIndex, EI: typing.SupportsFloat | typing.SupportsIndex, kGA: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
+    """
+    Consistent IIE element mass (4x4) with rotary inertia
+    """
+def timoshenko_shapes(xi: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, phi: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[5, 4]"]:
+    """
+    IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]
+    """
+def timoshenko_stiffness(EI: typing.SupportsFloat | typing.SupportsIndex, kGA: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
+    """
+    Exact IIE Timoshenko element stiffness (4x4) over [w1, psi1, w2, psi2]
+    """
+def track_modes(rail: RailModel, beam: BeamParams, wheel_mass: typing.SupportsFloat | typing.SupportsIndex, contact_stiffness: typing.SupportsFloat | typing.SupportsIndex, positions: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], list[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]]:
+    """
+    Linear-track modes: (frequencies (n_pos, n_modes) [Hz], shapes per position (ny + 1, n_modes) over the y coordinates then the wheel)
+    """
+def track_static(arg0: RailModel) -> dict:
+    """
+    Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}
+    """
 def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.SupportsIndex, arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], arg4: typing.SupportsInt | typing.SupportsIndex) -> tuple:
     """
-    Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1, n_modes))
+    Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
     """
 GAUSS_RANGE: tuple = (2, 10)
 MAX_DENSE_EIGEN_DOF: int = 4000

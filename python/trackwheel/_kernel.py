@@ -46,7 +46,30 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
     s.position = list(pos)
     s.stiffness = [scene.supports.stiffness] * len(pos)
     s.damping = [scene.supports.damping] * len(pos)
+    if scene.supports.layered:
+        s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
+        s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
+        s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
     return _core.RailModel(p, s, profile(scene))
+
+
+def beam_params(scene: Scene) -> _core.BeamParams:
+    """The linear track's beam theory: Euler-Bernoulli (shear stiffness 0) or Timoshenko."""
+    b = _core.BeamParams()
+    if scene.rail.beam == "timoshenko":
+        b.shear_stiffness = scene.rail.shear_stiffness
+        b.rotary_inertia = scene.rail.rotary_inertia
+    return b
+
+
+def require_euler(scene: Scene, what: str) -> None:
+    """Raise ValueError if the scene asks for a Timoshenko rail where the nonlinear ANCF rail
+    (Euler-Bernoulli) runs."""
+    if scene.rail.beam != "euler":
+        raise ValueError(
+            f"Rail.beam='{scene.rail.beam}' is supported by the linear levels, receptance and "
+            f"eigen of the linear track; the full ANCF model ({what}) is Euler-Bernoulli: use "
+            "Rail.beam='euler' or a 'linear/...' fidelity level")
 
 
 def profile(scene: Scene) -> _core.Profile:
@@ -92,6 +115,74 @@ def wheel_params(scene: Scene) -> _core.WheelParams:
     p.gravity = scene.gravity
     p.out_of_round = out_of_round(scene)
     return p
+
+
+def wheels_params(scene: Scene) -> list:
+    """One kernel WheelParams per wheel of the scene's vehicle, at its x_offset; a wheel under
+    a bogie has no constant load (the suspension carries it). The single-wheel scene gives
+    exactly ``[wheel_params(scene)]``."""
+    veh = scene.active_vehicle
+    if scene.vehicle is None:
+        return [wheel_params(scene)]
+    out = []
+    for i, (w, x) in enumerate(zip(veh.wheels, veh.positions)):
+        p = _core.WheelParams()
+        p.mass = w.mass
+        p.inertia = w.polar_inertia
+        p.radius = w.radius
+        p.load = 0.0 if veh.bogie_of(i) is not None else w.load
+        p.torque = w.torque
+        p.gravity = scene.gravity
+        p.x_offset = x
+        p.out_of_round = _out_of_round(w.defects, w.radius)
+        out.append(p)
+    return out
+
+
+def static_wheels_params(scene: Scene) -> list:
+    """The kernel wheels for the static solve: each carrying its static load of the weight
+    distribution as a constant force (F = P_w - M_w g)."""
+    veh = scene.active_vehicle
+    out = wheels_params(scene)
+    for p, P, w in zip(out, veh.static_loads(scene.gravity), veh.wheels):
+        p.load = P - w.mass * scene.gravity
+    return out
+
+
+def vehicle_params(scene: Scene) -> _core.VehicleParams:
+    """The kernel's bodies (the bogies, then the car body) and suspensions (the primary ones in
+    bogie and wheel order, then the secondary ones); empty for a vehicle without bodies."""
+    veh = scene.active_vehicle
+    vp = _core.VehicleParams()
+    bodies, springs = [], []
+    for j, b in enumerate(veh.bogies):
+        bodies.append(_body(b.mass, b.pitch_inertia, scene.gravity, b.load))
+        for w in b.wheels:
+            springs.append(_spring(b.primary_stiffness, b.primary_damping, j,
+                                   veh.positions[w] - b.centre, lower_wheel=w))
+    if veh.car is not None:
+        c, jc = veh.car, len(veh.bogies)
+        bodies.append(_body(c.mass, c.pitch_inertia, scene.gravity, 0.0))
+        for j, b in enumerate(veh.bogies):
+            springs.append(_spring(c.secondary_stiffness, c.secondary_damping, jc,
+                                   b.centre - c.centre, lower_body=j))
+    vp.bodies = bodies
+    vp.suspensions = springs
+    return vp
+
+
+def _body(mass, inertia, gravity, load):
+    b = _core.BodyParams()
+    b.mass, b.inertia, b.gravity, b.load = mass, inertia, gravity, load
+    return b
+
+
+def _spring(k, c, upper, upper_arm, *, lower_wheel=-1, lower_body=-1):
+    s = _core.SuspensionParams()
+    s.stiffness, s.damping = k, c
+    s.upper_body, s.upper_arm = upper, upper_arm
+    s.lower_wheel, s.lower_body, s.lower_arm = lower_wheel, lower_body, 0.0
+    return s
 
 
 def out_of_round(scene: Scene) -> _core.Profile:

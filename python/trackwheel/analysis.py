@@ -32,7 +32,7 @@ from . import _validate as v
 from .force_statistics import P1_PERIOD, P2_PERIOD, ForceStatistics, result_statistics
 from .results import Result
 from .scene import Scene
-from .statics import quasi_static
+from .statics import linear_quasi_static, quasi_static
 
 __all__ = [
     "QS_DEGREE",
@@ -151,8 +151,9 @@ def main_frequency(signal, dt: float, *, n_fft: int | None = None, f_min: float 
 # --------------------------------------------------------------------------------------------
 # quasi-static line
 @lru_cache(maxsize=128)
-def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int):
-    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh.
+def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
+    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh: of the ANCF model or
+    (``linear``) of the linear track in all its coordinates.
 
     Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
     mesh, element range): the same range is always solved the same way (one warm-started
@@ -164,19 +165,22 @@ def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int):
     n_el = e1 - e0
     x = ((np.arange(e0, e1)[:, None] + 0.5 * (t[None, :-1] + 1.0)) * le).ravel()
     x = np.minimum(np.append(x, e1 * le), scene.rail.length)
-    y = quasi_static(scene, x, n_elements=n_elements).y_contact
+    if linear:
+        y = linear_quasi_static(scene, x, n_elements=n_elements)
+    else:
+        y = quasi_static(scene, x, n_elements=n_elements).y_contact
     values = y[np.arange(n_el)[:, None] * n + np.arange(n + 1)[None, :]]  # (n_el, n + 1)
     coef = np.linalg.solve(chebyshev.chebvander(t, n), values.T)  # (n + 1, n_el)
     coef.setflags(write=False)
     return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
 
 
-def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray):
+def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
     """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
     le = scene.rail.length / n_elements
     e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
     e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
-    coef, err = _qs_series(scene, n_elements, e0, e1)
+    coef, err = _qs_series(scene, n_elements, e0, e1, linear)
     k = np.clip(np.floor(x / le).astype(np.int64) - e0, 0, e1 - e0 - 1)
     t = np.clip(2.0 * (x / le - (k + e0)) - 1.0, -1.0, 1.0)
     return chebyshev.chebval(t, coef[:, k], tensor=False), err
@@ -246,13 +250,18 @@ class Analysis:
 
 
 def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
-            p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD) -> Analysis:
+            p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD,
+            wheel: int | None = None) -> Analysis:
     """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model §
     Outputs).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
-    .n_elements``) at 8 Chebyshev points per element crossed (cached per scene, mesh and
-    range) and interpolated by each element's degree-8 Chebyshev series (see
+    .n_elements``) and the run's model: the ANCF statics (:func:`trackwheel.quasi_static`) for
+    the full and ``ancf/*`` levels, the linear track's own statics in all its coordinates
+    (:func:`trackwheel.linear_quasi_static`) for the ``linear/*`` levels, so that every
+    run starts at d = 0 (a modal run with its truncation error of the static deflection: that
+    error is the modal level's, and d shows it). It is solved at 8 Chebyshev points
+    per element crossed (cached per scene, mesh, model and range) and interpolated by each element's degree-8 Chebyshev series (see
     :data:`QS_DEGREE`): the error (< 2e-13 m for the paper's scene, ``Analysis.y_qs_error``
     estimates it for any scene) is negligible against the dynamic part. The spectrum and main
     frequency are those of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling
@@ -266,11 +275,21 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     of N in [t_d, t_d + T_1/2], and P2, the maximum in (t_d + T_1/2, t_d + (T_1 + T_2)/2], with
     t_d the time the wheel centre reaches X_d and T_1 = ``p1_period``, T_2 = ``p2_period`` [s].
 
-    Raises ValueError if the run kept fewer than 4 samples, or if ``defect_at`` is not passed
-    in the run.
+    A vehicle with several wheels is measured one wheel at a time: ``wheel`` = i analyses
+    ``result.wheel(i)``, wheel i alone under its static load of the weight distribution
+    (its quasi-static line is that wheel's alone; the neighbours' static deflection is part
+    of its dynamic part d).
+
+    Raises ValueError if the run kept fewer than 4 samples, if ``defect_at`` is not passed
+    in the run, or if the run has several wheels and ``wheel`` is not given.
     """
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
+    if wheel is not None:
+        result = result.wheel(wheel)
+    elif result.n_wheels > 1:
+        raise ValueError(f"result has {result.n_wheels} wheels: give wheel = 0 .. "
+                         f"{result.n_wheels - 1} (one Analysis per wheel)")
     n = result.t.size
     if n < 4:
         raise ValueError(f"result has {n} samples; the analysis needs at least 4 "
@@ -278,7 +297,8 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     s = result.settings
     dt = float(s.dt) * int(s.output_every)
     x = np.asarray(result.x_wheel, dtype=float)
-    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), x)
+    linear = s.fidelity.startswith("linear/")
+    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), x, linear)
     d = result.y_contact - y_qs
     i_max = int(np.argmax(np.abs(d)))
     nf = _n_fft(n_fft, n)

@@ -20,6 +20,18 @@ spectra, ``--joint DEPTH,LENGTH,AT`` (a Kabo dipped joint; turns the contact fil
 ``--wheel-flat LENGTH`` (a new flat, half a revolution from the start), ``--patch-filter``.
 ``trackwheel eigen [--position X] [--n-modes N]``
     Print the lowest vertical natural frequencies with the wheel at X [m].
+``trackwheel receptance [--at midspan|support|X] [--fmin F] [--fmax F] [--n N] [--out CSV]``
+    The track's point receptance [m/N] (magnitude and phase) at a mid-span, above a support or
+    at X [m], from --fmin to --fmax [Hz] (trackwheel.receptance); ``--plot`` adds both points.
+``trackwheel decay-rate [--per-band N] [--out CSV] [--plot PNG]``
+    The vertical track decay rate [dB/m] per one-third-octave band (EN 15461, trackwheel.
+    decay_rate) beside the ISO 3095 lower limit.
+
+Track (every command but reproduce; docs: Model § Layered supports and the section
+"Shear-deformable rail (Timoshenko)"):
+``--track kato2005|ballasted`` (``--length L`` [m] for the ballasted preset), ``--beam
+euler|timoshenko`` and ``--shear-coefficient K``. The full ANCF model is Euler-Bernoulli: a
+Timoshenko rail in ``run``/``sweep`` needs a ``--fidelity linear/...`` level.
 
 ``main(argv)`` returns the exit code: 0 on success, 2 for bad arguments (argparse, or a value
 the library rejects), 1 when a computation fails (a diverging run, failed sweep cases). Every
@@ -49,8 +61,9 @@ from .eigen import eigen as _eigen
 from .force_statistics import defect_position
 from .irregularity import Irregularity, WheelFlat
 from .reproduce import REPRODUCE_STEPS, STORE_NAME, X_REPORT, reproduce
-from .scene import Scene, kmh
+from .scene import MAX_ELEMENTS, Scene, kmh
 from .simulate import FIDELITY_LEVELS, simulate
+from .vehicle import Vehicle
 from .sweep import sweep
 
 #: the paper's scene, whose derived defaults the help texts quote
@@ -180,6 +193,74 @@ def _excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None
                    help="average the profile over the Hertz contact patch")
 
 
+#: rail length [m] of ``decay-rate --track ballasted``: the EN 15461 line (66 bays, 39.6 m)
+#: with about ten metres of damped rail beyond it at each end
+_DECAY_LENGTH = 60.0
+
+#: sleeper spacing of Scene.ballasted_track [m]
+_BALLASTED_SPACING = Scene.ballasted_track().supports.spacing
+
+#: --track: the scene presets by name
+_TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
+
+
+def _track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None:
+    g = p.add_argument_group("track (docs: Model § Layered supports and section "
+                             "\"Shear-deformable rail (Timoshenko)\")")
+    g.add_argument("--track", choices=tuple(_TRACKS), default="kato2005",
+                   help="the scene: kato2005 (the paper's 5 m rail on single springs, default) "
+                        "or ballasted (Scene.ballasted_track(): UIC60 on rail pads, "
+                        "sleepers and ballast every 0.6 m, a high-speed wheel)")
+    g.add_argument("--length", type=_positive_float, metavar="L",
+                   help=f"rail length [m] of --track ballasted, a multiple of 0.6 m (default "
+                        f"{length_default})")
+    g.add_argument("--beam", choices=("euler", "timoshenko"), default="euler",
+                   help="rail beam theory (default euler: Euler-Bernoulli, the paper's); "
+                        "timoshenko adds shear deformation and rotary inertia and needs a "
+                        "linear model level (the full ANCF model is Euler-Bernoulli)")
+    g.add_argument("--shear-coefficient", type=_positive_float, metavar="K",
+                   help="shear coefficient kappa of the rail section, 0 < K <= 1 (default 0.4; "
+                        "with --beam timoshenko)")
+
+
+def _track_scene(args: argparse.Namespace, stiffness: float | None = None,
+                 length: float | None = None) -> Scene:
+    """The --track preset with --length (or ``length`` [m] if not given), the support (pad)
+    stiffness ``stiffness`` [N/m] and the beam options applied. Raises _OptionError."""
+    if args.shear_coefficient is not None and args.beam != "timoshenko":
+        raise _OptionError("--shear-coefficient is only used with --beam timoshenko")
+    if args.length is not None and args.track != "ballasted":
+        raise _OptionError(f"--length is only for --track ballasted (--track {args.track} "
+                           "has its fixed length)")
+    try:
+        scene = _preset(args.track, stiffness, args.length or length)
+        rail = dataclasses.replace(scene.rail, beam=args.beam)
+        if args.shear_coefficient is not None:
+            rail = dataclasses.replace(rail, shear_coefficient=args.shear_coefficient)
+    except ValueError as exc:
+        raise _OptionError(_option_error(exc)) from None
+    return dataclasses.replace(scene, rail=rail)
+
+
+def _scene_name(scene: Scene, args: argparse.Namespace) -> str:
+    """The preset's name, with the length and beam theory if not the defaults."""
+    name = "Scene.kato2005()" if args.track == "kato2005" else (
+        "Scene.ballasted_track()" if args.length is None
+        else f"Scene.ballasted_track(length={args.length:g})")
+    if scene.rail.beam == "timoshenko":
+        name += f" with a Timoshenko rail (kappa = {scene.rail.shear_coefficient:g})"
+    return name
+
+
+def _check_beam_fidelity(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """Error unless a Timoshenko rail goes with a linear model level."""
+    if args.beam == "timoshenko" and not (args.fidelity or "full").startswith("linear/"):
+        linear = ", ".join(f for f in FIDELITY_LEVELS if f.startswith("linear/"))
+        parser.error(f"--beam timoshenko needs a linear model level: --fidelity "
+                     f"{args.fidelity or 'full'} runs the ANCF rail, which is Euler-Bernoulli; "
+                     f"pick --fidelity {linear}")
+
+
 def _simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
     """Options passed to trackwheel.simulate (left out: simulate's defaults); ``auto`` offers
     ``--fidelity auto`` (sweep only: the cheapest level adequate on the sweep's hardest case)."""
@@ -247,7 +328,13 @@ def _add_run(sub) -> None:
     p.add_argument("--speed-kmh", type=_finite_float, required=True, metavar="V",
                    help=f"forward speed [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, metavar="K",
-                   help="support stiffness k_s [N/m] (default 140e6)")
+                   help="support stiffness k_s [N/m] (default 140e6; with --track ballasted "
+                        "the rail pad's, default 180e6)")
+    _track_option(p)
+    p.add_argument("--vehicle", choices=VEHICLES, default="single",
+                   help="single: the paper's wheel under its constant load; bogie: "
+                        "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
+                        "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
     _excitation_options(p)
     _simulate_options(p)
     p.add_argument("--plot", type=Path, metavar="PNG",
@@ -268,7 +355,9 @@ def _add_sweep(sub) -> None:
     p.add_argument("--speeds-kmh", type=_finite_float, nargs="+", required=True, metavar="V",
                    help=f"forward speeds [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=_finite_float, nargs="+", metavar="K",
-                   help="support stiffnesses k_s [N/m] (default 140e6)")
+                   help="support stiffnesses k_s [N/m] (default 140e6; with --track ballasted "
+                        "the rail pad's, default 180e6)")
+    _track_option(p)
     p.add_argument("--store", type=Path, required=True, metavar="DIR",
                    help="folder keeping one record per finished case (created if missing)")
     p.add_argument("--out", type=Path, metavar="CSV", help="also write the table to this file")
@@ -290,7 +379,64 @@ def _add_eigen(sub) -> None:
                    help=f"wheel position X [m], 0 <= X <= L (default {X_REPORT})")
     p.add_argument("--n-modes", type=_positive_int, default=6, metavar="N",
                    help="number of vertical modes (default 6)")
+    _track_option(p)
     p.set_defaults(run=_cmd_eigen, parser=p)
+
+
+def _mesh_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--n-elements", type=_positive_int, metavar="N",
+                   help="rail elements (default: whole elements per support bay, at least ten "
+                        "per Euler-Bernoulli bending wavelength at the highest frequency, and "
+                        "no fewer than the preset's)")
+
+
+def _add_receptance(sub) -> None:
+    p = sub.add_parser(
+        "receptance", help="print the track's point receptance over frequency",
+        description="Point receptance alpha = y / F [m/N] of the linear track (the rail on its "
+                    "supports with their damping, no wheel) at one point, from --fmin to "
+                    "--fmax [Hz] (trackwheel.receptance; "
+                    "docs: Model § Receptance and decay rate): its largest magnitude, a table "
+                    "of magnitude and phase, and the pinned-pinned frequencies of one support "
+                    "bay by both beam theories.")
+    p.add_argument("--at", default="midspan", metavar="midspan|support|X",
+                   help="excitation and response point: the mid-span or the support nearest "
+                        "the rail's middle (default midspan), or X [m]")
+    p.add_argument("--fmin", type=_finite_float, default=20.0, metavar="F",
+                   help="lowest frequency [Hz], >= 0 (default 20)")
+    p.add_argument("--fmax", type=_finite_float, default=5000.0, metavar="F",
+                   help="highest frequency [Hz] (default 5000)")
+    p.add_argument("--n", type=_positive_int, default=400, metavar="N",
+                   help="frequencies, log-spaced (linear from 0 Hz; default 400)")
+    _mesh_option(p)
+    _track_option(p)
+    p.add_argument("--out", type=Path, metavar="CSV",
+                   help="write f_hz, re_m_per_n, im_m_per_n, abs_m_per_n, phase_deg to this file")
+    p.add_argument("--plot", type=Path, metavar="PNG",
+                   help="save magnitude and phase at the mid-span and above the support "
+                        "(plots.receptance) to this file")
+    p.set_defaults(run=_cmd_receptance, parser=p)
+
+
+def _add_decay_rate(sub) -> None:
+    p = sub.add_parser(
+        "decay-rate", help="print the track decay rate per one-third-octave band",
+        description="Vertical track decay rate [dB/m] of the linear track by the EN 15461 method "
+                    "(trackwheel.decay_rate) in the one-third-octave bands 250 Hz - 5 kHz, each "
+                    "from the band average of |transfer receptance|^2 over --per-band "
+                    "frequencies, beside the ISO 3095:2013 lower limit for a test track. "
+                    "The rail must be longer than 66 support spacings: --track ballasted, "
+                    f"whose length here defaults to {_DECAY_LENGTH:g} m.")
+    p.add_argument("--per-band", type=_positive_int, default=8, metavar="N",
+                   help="frequencies per band, log-spaced inside it (default 8)")
+    _mesh_option(p)
+    _track_option(p, length_default=f"{_DECAY_LENGTH:g} here")
+    p.add_argument("--out", type=Path, metavar="CSV",
+                   help="write band_hz, decay_rate_db_per_m, iso3095_limit_db_per_m to this file")
+    p.add_argument("--plot", type=Path, metavar="PNG",
+                   help="save the decay rate over the bands against the ISO 3095 limit "
+                        "(plots.decay_rate) to this file")
+    p.set_defaults(run=_cmd_decay_rate, parser=p)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -301,7 +447,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "command line.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for add in (_add_reproduce, _add_run, _add_sweep, _add_eigen):
+    for add in (_add_reproduce, _add_run, _add_sweep, _add_eigen, _add_receptance,
+                _add_decay_rate):
         add(sub)
     return parser
 
@@ -365,6 +512,9 @@ def _option_error(exc: Exception) -> str:
     """A library message with its parameter names spelled as the command's options."""
     text = str(exc)
     text = text.replace("Supports.stiffness", "--support-stiffness")
+    text = text.replace("Rail.shear_coefficient", "--shear-coefficient")
+    if text.startswith("length = "):  # Scene.ballasted_track's length
+        text = "--length " + text[len("length = "):]
     for name in ("n_elements", "x_start", "x_end", "speed_kmh", "support_stiffness"):
         text = text.replace(name, "--" + name.replace("_", "-"))
     return text
@@ -387,6 +537,64 @@ def _cmd_reproduce(args: argparse.Namespace, parser: argparse.ArgumentParser) ->
         print(f"trackwheel reproduce: failed: {type(exc).__name__}: {exc}", file=sys.stderr)
         return 1
     return 0
+
+
+#: --vehicle choices of ``trackwheel run``
+VEHICLES = ("single", "bogie", "half-car")
+#: rail length for --vehicle half-car [m]: the half car's 20 m of wheels plus the paper's 5 m
+HALF_CAR_RAIL = 25.0
+
+
+def _vehicle_scene(scene: Scene, vehicle: str) -> Scene:
+    """``scene`` carrying the --vehicle choice (the rail lengthened for a half car, the
+    paper's element length kept)."""
+    if vehicle == "single":
+        return scene
+    if vehicle == "bogie":
+        return dataclasses.replace(scene, vehicle=Vehicle.bogie())
+    ne = round(scene.rail.n_elements * HALF_CAR_RAIL / scene.rail.length)
+    rail = dataclasses.replace(scene.rail, length=HALF_CAR_RAIL, n_elements=ne)
+    return dataclasses.replace(scene, rail=rail, vehicle=Vehicle.half_car())
+
+
+def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
+    """Headline outputs of a vehicle run, one line per wheel (analyse(r, wheel=i))."""
+    st = r.settings
+    veh = scene.active_vehicle
+    k_name = "k_p" if scene.supports.layered else "k_s"
+    print(f"{veh.n_wheels} wheels, {len(veh.bogies)} bogie(s), car body: "
+          f"{'yes' if veh.car else 'no'}; {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
+          f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
+    print(f"  settings : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} elements, "
+          f"fidelity {st.fidelity}, excitation: {_describe(scene)}")
+    loads = veh.static_loads(scene.gravity)
+    for i in range(veh.n_wheels):
+        a = analyse(r, wheel=i, defect_at=x_d)
+        print(f"  wheel {i} (x = {veh.positions[i]:g} m): max|d| = {a.amplitude * 1e6:.3f} µm, "
+              f"N = {a.min_contact_force / 1e3:.2f} .. {a.max_contact_force / 1e3:.2f} kN "
+              f"(static {loads[i] / 1e3:.2f} kN), dynamic factor {a.dynamic_factor:.4f}, "
+              f"lost contact: {'yes' if a.lost_contact else 'no'}")
+    print(f"  wall time: {r.wall_time:.3f} s ({r.steps} steps)")
+
+
+def _preset(track: str, stiffness: float | None = None, length: float | None = None) -> Scene:
+    """The --track preset, with the support (pad) stiffness [N/m] and the ballasted track's
+    length [m] replaced if given."""
+    if track == "kato2005":
+        return _scene(stiffness)
+    if length is None:
+        scene = _TRACKS[track]()
+    else:  # the preset's 4 elements per bay, fewer on a long rail (the CLI re-meshes anyway)
+        n_bays = max(round(length / _BALLASTED_SPACING), 1)
+        if n_bays > MAX_ELEMENTS:
+            raise ValueError(f"length = {length:g} m is too long; allowed: at most "
+                             f"{MAX_ELEMENTS * _BALLASTED_SPACING:g} m ({MAX_ELEMENTS} "
+                             f"elements, one per {_BALLASTED_SPACING:g} m sleeper bay)")
+        scene = _TRACKS[track](length, elements_per_bay=min(4, MAX_ELEMENTS // n_bays))
+    if stiffness is not None:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
+    return scene
 
 
 def _scene(stiffness: float | None = None) -> Scene:
@@ -522,11 +730,12 @@ def _print_forces(scene: Scene, a) -> None:
               f"{f.defect_time * 1e3:.3f} ms)")
 
 
-def _print_run(scene: Scene, speed_kmh: float, r, a) -> None:
+def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005()") -> None:
     st = r.settings
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
     i_max = int(np.argmax(np.abs(a.dynamic)))
-    print(f"Scene.kato2005(), k_s = {scene.supports.stiffness / 1e6:g} MN/m, "
+    k_name = "k_p" if scene.supports.layered else "k_s"
+    print(f"{name}, {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings       : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} "
           f"elements, X = {x0:.4g} -> {x1:.4g} m, fidelity {st.fidelity}")
@@ -555,12 +764,33 @@ def _print_notes(notes: list[str], command: str) -> None:
             print(f"note: {note}")
 
 
+def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
+    try:
+        _print_vehicle_run(scene, args.speed_kmh, r, x_d)
+    except (RuntimeError, ValueError) as exc:  # a quasi-static solve, or the joint not reached
+        print(f"trackwheel run: the analysis failed: {exc}", file=sys.stderr)
+        return 1
+    if args.plot is not None:
+        from . import plots
+
+        try:
+            plots.dynamic(r).savefig(args.plot, dpi=150)
+        except (OSError, ValueError) as exc:
+            print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
+            return 1
+    return 0
+
+
 def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     _speeds_kmh([args.speed_kmh], "--speed-kmh", parser)
     if args.plot is not None:
         _output_file(args.plot, "--plot", parser, formats=_figure_formats())
+    _check_beam_fidelity(args, parser)
+    if args.vehicle != "single" and args.wheel_flat is not None:
+        parser.error("--wheel-flat is only available with --vehicle single")
     try:
-        scene, notes = _excited_scene(_scene(args.support_stiffness), args)
+        scene = _vehicle_scene(_track_scene(args, args.support_stiffness), args.vehicle)
+        scene, notes = _excited_scene(scene, args)
     except _OptionError as exc:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
@@ -584,12 +814,14 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     x_d = defect_position(scene)
     if x_d is not None and not r.x_wheel[0] <= x_d <= r.x_wheel[-1]:
         x_d = None  # the run does not reach the joint's middle
+    if scene.vehicle is not None:
+        return _finish_vehicle_run(scene, args, r, x_d)
     try:
         a = analyse(r, defect_at=x_d)
     except RuntimeError as exc:  # a static solve of the quasi-static line failed
         print(f"trackwheel run: the analysis failed: {exc}", file=sys.stderr)
         return 1
-    _print_run(scene, args.speed_kmh, r, a)
+    _print_run(scene, args.speed_kmh, r, a, _scene_name(scene, args))
     if args.plot is not None:
         from . import plots
 
@@ -661,8 +893,9 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
             parser.error(f"--seeds: a seed is given twice ({', '.join(map(str, seeds))})")
         if args.seed is not None:
             parser.error("give --seed (one realisation) or --seeds (several), not both")
+    _check_beam_fidelity(args, parser)
     try:
-        scene, notes = _excited_scene(Scene.kato2005(), args)
+        scene, notes = _excited_scene(_track_scene(args), args)
     except _OptionError as exc:
         parser.error(str(exc))
     _print_notes(notes, "sweep")
@@ -689,7 +922,10 @@ def _cmd_sweep(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
 
 
 def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    scene = Scene.kato2005()
+    try:
+        scene = _track_scene(args)
+    except _OptionError as exc:
+        parser.error(str(exc))
     length = scene.rail.length
     if not 0.0 <= args.position <= length:
         parser.error(f"--position {args.position:g} m is outside the rail; "
@@ -698,7 +934,8 @@ def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         res = _eigen(scene, [args.position], n_modes=args.n_modes)
     except ValueError as exc:  # e.g. more modes than the mesh has
         parser.error(str(exc).replace("n_modes", "--n-modes"))
-    print(f"Scene.kato2005(), wheel at X = {args.position:g} m ({res.n_elements} elements)")
+    name = _scene_name(scene, args)
+    print(f"{name}, wheel at X = {args.position:g} m ({res.n_elements} elements)")
     print("vertical modes:")
     for k, f in enumerate(res.frequencies[0], 1):
         print(f"  {k:>3}  {f:10.2f} Hz")
@@ -706,6 +943,192 @@ def _cmd_eigen(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int
         print("axial (x) modes of the rail: "
               + ", ".join(f"{f:.1f}" for f in res.axial_frequencies) + " Hz")
     return 0
+
+
+def _frequency_mesh(scene: Scene, f_max: float, n_elements: int | None) -> tuple[int, str]:
+    """Elements for the track up to ``f_max`` [Hz] (``n_elements`` if given): whole elements
+    per support bay, at least ten per Euler-Bernoulli bending wavelength
+    2 pi (EI / (m w^2))^(1/4) (shear shortens the wavelength a little; ten leave room), no fewer
+    than the preset's. A note (empty if none) when MAX_ELEMENTS caps the count."""
+    if n_elements is not None:
+        return n_elements, ""
+    r, d = scene.rail, scene.supports.spacing
+    w = 2.0 * math.pi * max(f_max, 1.0)
+    wavelength = 2.0 * math.pi * (r.bending_stiffness / (r.mass_per_length * w * w)) ** 0.25
+    n_bays = max(round(r.length / d), 1)
+    n = max(n_bays * math.ceil(10.0 * d / wavelength), r.n_elements)
+    if n <= MAX_ELEMENTS:
+        return n, ""
+    n = max(MAX_ELEMENTS // n_bays, 1) * n_bays
+    return n, (f"warning: {n} elements ({MAX_ELEMENTS} at most) give fewer than ten per bending "
+               f"wavelength ({wavelength:.3g} m) at {f_max:g} Hz")
+
+
+def _receptance_point(scene: Scene, at: str) -> tuple[float, str]:
+    """--at: the point [m] and its description. Raises _OptionError."""
+    from .plots import _receptance_points  # the points plots.receptance draws
+
+    points = _receptance_points(scene)
+    key = at.strip().lower().replace("-", "")
+    if key in ("midspan", "support"):
+        label = "mid-span" if key == "midspan" else "above a support"
+        if label not in points:
+            raise _OptionError(f"--at {at}: the rail has no supports")
+        return points[label], label
+    try:
+        x = float(at)
+    except ValueError:
+        raise _OptionError(f"--at {at!r}: expected midspan, support or a position X [m]"
+                           ) from None
+    length = scene.rail.length
+    if not 0.0 <= x <= length:
+        raise _OptionError(f"--at {x:g} m is outside the rail; allowed range [0, {length:g}] m")
+    return x, f"X = {x:g} m"
+
+
+def _receptance_freqs(args: argparse.Namespace) -> np.ndarray:
+    """--fmin/--fmax/--n [Hz]: log-spaced, or linear when --fmin is 0. Raises _OptionError."""
+    if not 0.0 <= args.fmin < args.fmax:
+        raise _OptionError(f"--fmin {args.fmin:g} / --fmax {args.fmax:g} Hz: allowed "
+                           "0 <= fmin < fmax")
+    if args.fmin == 0.0:
+        return np.linspace(0.0, args.fmax, args.n)
+    return np.geomspace(args.fmin, args.fmax, args.n)
+
+
+def _print_receptance(scene: Scene, name: str, x: float, label: str, f: np.ndarray,
+                      a: np.ndarray, n_elements: int) -> None:
+    from .fidelity import pinned_pinned_frequencies
+
+    print(f"{name}, {n_elements} elements")
+    print(f"point receptance at X = {x:.4g} m ({label}), {f.size} frequencies "
+          f"{f[0]:g} .. {f[-1]:g} Hz")
+    k = int(np.argmax(np.abs(a)))
+    print(f"  largest |alpha|: {abs(a[k]):.4g} m/N at {f[k]:.5g} Hz")
+    f_e, f_t = pinned_pinned_frequencies(scene)
+    print(f"  pinned-pinned frequency of one {scene.supports.spacing:g} m bay (closed form): "
+          f"{f_e:.5g} Hz Euler-Bernoulli, {f_t:.5g} Hz Timoshenko")
+    print(f"  {'f [Hz]':>10}  {'|alpha| [m/N]':>13}  {'phase [deg]':>11}")
+    for i in np.unique(np.linspace(0, f.size - 1, min(f.size, 13)).round().astype(int)):
+        print(f"  {f[i]:>10.5g}  {abs(a[i]):>13.4e}  {math.degrees(np.angle(a[i])):>11.1f}")
+
+
+def _cmd_receptance(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    from .frequency import receptance
+
+    if args.out is not None:
+        _output_file(args.out, "--out", parser)
+    if args.plot is not None:
+        _output_file(args.plot, "--plot", parser, formats=_figure_formats())
+    try:
+        scene = _track_scene(args)
+        f = _receptance_freqs(args)
+        x, label = _receptance_point(scene, args.at)
+    except _OptionError as exc:
+        parser.error(str(exc))
+    n_el, note = _frequency_mesh(scene, args.fmax, args.n_elements)
+    _print_notes([note] if note else [], "receptance")
+    try:
+        a = receptance(scene, x, f, n_elements=n_el)
+    except ValueError as exc:
+        parser.error(_option_error(exc))
+    _print_receptance(scene, _scene_name(scene, args), x, label, f, a, n_el)
+    if args.out is not None:
+        table = np.column_stack([f, a.real, a.imag, np.abs(a), np.degrees(np.angle(a))])
+        if not _write_csv(args.out, table, "f_hz,re_m_per_n,im_m_per_n,abs_m_per_n,phase_deg",
+                          "receptance"):
+            return 1
+    if args.plot is not None:
+        from . import plots
+
+        if not _save_figure(plots.receptance(scene, f, n_elements=n_el), args.plot,
+                            "receptance"):
+            return 1
+    return 0
+
+
+def band_decay_rates(scene: Scene, per_band: int = 8, n_elements: int | None = None
+                     ) -> np.ndarray:
+    """Decay rate [dB/m] per ``ISO3095_BANDS`` one-third-octave band: the EN 15461 sum of the
+    band averages of |A(x_n)|^2 over ``per_band`` log-spaced frequencies inside each band (the
+    standard filters the measured transfer functions in bands, not at the centre frequency)."""
+    from .frequency import decay_rate_positions, en15461_decay, iso3095_band_edges, receptance
+
+    x = decay_rate_positions(scene)
+    edges = iso3095_band_edges()
+    out = np.empty(edges.size - 1)
+    for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
+        f = np.geomspace(lo, hi, per_band + 2)[1:-1]
+        a = receptance(scene, float(x[0]), f, x, n_elements=n_elements)
+        power = np.mean(np.abs(a) ** 2, axis=0)
+        out[k] = en15461_decay(x, np.sqrt(power)[None, :])[0]
+    return out
+
+
+def _cmd_decay_rate(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    from .frequency import (EN15461_SPANS, ISO3095_BANDS, ISO3095_VERTICAL_LIMIT,
+                            iso3095_band_edges)
+
+    if args.out is not None:
+        _output_file(args.out, "--out", parser)
+    if args.plot is not None:
+        _output_file(args.plot, "--plot", parser, formats=_figure_formats())
+    try:
+        scene = _track_scene(args, length=_DECAY_LENGTH)
+    except _OptionError as exc:
+        parser.error(str(exc))
+    span = (EN15461_SPANS[-1] + 1.0) * scene.supports.spacing
+    if scene.rail.length <= span:
+        parser.error(f"the EN 15461 positions need a rail longer than {span:g} m (67 support "
+                     f"spacings); {_scene_name(scene, args)} is {scene.rail.length:g} m: use "
+                     f"--track ballasted (default {_DECAY_LENGTH:g} m)")
+    n_el, note = _frequency_mesh(scene, iso3095_band_edges()[-1], args.n_elements)
+    _print_notes([note] if note else [], "decay-rate")
+    dr = band_decay_rates(scene, args.per_band, n_el)
+    limit = np.asarray(ISO3095_VERTICAL_LIMIT)
+    print(f"{_scene_name(scene, args)}, {scene.rail.length:g} m, {n_el} elements")
+    print(f"vertical track decay rate (EN 15461, {args.per_band} frequencies per band) and the "
+          "ISO 3095:2013 lower limit")
+    print(f"  {'band [Hz]':>9}  {'DR [dB/m]':>9}  {'limit':>6}")
+    for fc, d, lim in zip(ISO3095_BANDS, dr, limit):
+        print(f"  {fc:>9g}  {d:>9.3g}  {lim:>6g}  {'' if d >= lim else 'below the limit'}")
+    print(f"  {int(np.sum(dr >= limit))} of {dr.size} bands at or above the limit")
+    if args.out is not None:
+        table = np.column_stack([ISO3095_BANDS, dr, limit])
+        if not _write_csv(args.out, table, "band_hz,decay_rate_db_per_m,iso3095_limit_db_per_m",
+                          "decay-rate"):
+            return 1
+    if args.plot is not None:
+        from . import plots
+
+        edges = iso3095_band_edges()
+        f = np.geomspace(edges[0], edges[-1], 8 * edges.size)
+        if not _save_figure(plots.decay_rate(scene, f, n_elements=n_el), args.plot,
+                            "decay-rate"):
+            return 1
+    return 0
+
+
+def _write_csv(path: Path, table: np.ndarray, header: str, command: str) -> bool:
+    """Write ``table`` as CSV (17 digits: the values read back bit-identical); False on error."""
+    try:
+        np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.17g")
+    except OSError as exc:
+        print(f"trackwheel {command}: cannot write --out {path}: {exc}", file=sys.stderr)
+        return False
+    print(f"  table          : {path}")
+    return True
+
+
+def _save_figure(fig, path: Path, command: str) -> bool:
+    """Save ``fig`` to ``path`` (150 dpi); False, with a one-line error, if it cannot."""
+    try:
+        fig.savefig(path, dpi=150)
+    except (OSError, ValueError) as exc:
+        print(f"trackwheel {command}: cannot write --plot {path}: {exc}", file=sys.stderr)
+        return False
+    print(f"  plot           : {path}")
+    return True
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -2,17 +2,22 @@
 
 The rail is the ANCF rail linearised about the straight reference, which is exactly an
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
-``axial_frequencies``). The wheel is the mass M on the contact spring k (linearised Hertz),
+``axial_frequencies``); with ``Rail(beam="timoshenko")`` it is the linear track's Timoshenko
+beam (docs: Model, section "Shear-deformable rail (Timoshenko)"), whose mode shapes carry the section rotation psi in
+the slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
-be a node. ``K x = omega^2 M x`` is solved for each position by one of two methods:
+be a node. Layered supports add one DOF per sleeper (mass m_s between the pad and the ballast
+springs). ``K x = omega^2 M x`` is solved for each position by one of two methods:
 
-- ``"dense"``: the symmetric-definite generalised eigensolver (Eigen, in the C++ kernel), all
-  modes, O(n^2) memory and O(n^3) time, at most ``MAX_DENSE_EIGEN_DOF`` coordinates;
+- ``"dense"``: the symmetric-definite generalised eigensolver (Eigen, in the C++ kernel; scipy's
+  ``eigh`` with a vehicle), all modes, O(n^2) memory and O(n^3) time, at most
+  ``MAX_DENSE_EIGEN_DOF`` coordinates;
 - ``"sparse"``: the lowest modes only, by shift-invert Lanczos (ARPACK through
-  :func:`scipy.sparse.linalg.eigsh`, shift 0: K is positive definite, the rail being pinned at
-  both ends) on the banded K and M the kernel exports, O(n) memory and time per mode;
+  :func:`scipy.sparse.linalg.eigsh`) on the banded K and M the kernel exports (rail, wheel,
+  sleepers), O(n) memory and time per mode; the Euler-Bernoulli rail with one wheel only (a
+  vehicle and the Timoshenko rail take the dense method);
 
-``"auto"`` takes the sparse method above ``AUTO_SPARSE_DOF`` coordinates.
+``"auto"`` takes the sparse method above ``AUTO_SPARSE_DOF`` coordinates where it can.
 """
 
 from __future__ import annotations
@@ -46,9 +51,16 @@ class EigenResult:
     scene: Scene
     positions: np.ndarray  #: wheel positions X, (n_pos,) [m]
     frequencies: np.ndarray  #: (n_pos, n_modes) [Hz], ascending in each row
-    shapes: np.ndarray  #: (n_pos, n_dof + 1, n_modes): rail ANCF coords then wheel Y [-]
+    #: (n_pos, n_dof + n_vehicle + n_sleepers, n_modes): rail ANCF coords, then the wheel Y
+    #: (one wheel) or the vehicle's coordinates u = [Y_A per wheel, (z, phi) per body], then
+    #: the sleepers' z_j (layered supports) [-]
+    shapes: np.ndarray
     axial_frequencies: np.ndarray  #: lowest axial (x) modes, (min(n_axial, axial dofs),) [Hz]
     n_elements: int  #: mesh used
+    n_vehicle: int = 1  #: vehicle coordinates after the rail's n_dof in each shape [-]
+    #: share of each mode's kinetic energy in the vehicle's bodies, (n_pos, n_modes) [-]: near 1
+    #: for the suspension (rigid-body) modes, near 0 for the track modes; None for one wheel
+    body_fraction: np.ndarray | None = None
 
     def __repr__(self) -> str:
         n_pos, n_modes = self.frequencies.shape
@@ -73,8 +85,9 @@ class EigenResult:
         model = _kernel.rail_model(self.scene, self.n_elements)
         vec = np.asarray(self.shapes[i_pos, :, mode])
         s = np.linspace(0.0, self.scene.rail.length, n_points)
-        y = model.positions(vec[:-1], s)[:, 1]
-        wheel = vec[-1]
+        n_dof = model.n_dof
+        y = model.positions(vec[:n_dof], s)[:, 1]
+        wheel = vec[n_dof]
         scale = max(np.max(np.abs(y)), abs(wheel))
         ref = wheel if abs(wheel) > 1e-3 * scale else y[np.argmax(np.abs(y))]
         scale *= np.sign(ref) or 1.0
@@ -87,6 +100,12 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     ``positions`` [m] (0 <= X <= L); ``method`` is "auto", "dense" or "sparse" (module
     docstring).
 
+    With a ``scene.vehicle`` the positions place the vehicle's reference point (x = 0; every
+    wheel must be on the rail) and the modes are those of the rail, the wheels on their
+    linearised contact springs and the bodies on their suspensions together (undamped): the
+    lowest are the suspension's rigid-body modes (car body ~1 Hz, bogies 5-10 Hz),
+    ``body_fraction`` tells them from the track modes.
+
     >>> r = eigen(Scene.kato2005(), [2.5])
     >>> r.frequencies.shape
     (1, 6)
@@ -95,11 +114,17 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
     model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    if scene.vehicle is not None or scene.rail.beam != "euler":
+        _dense_only(method, scene)
+    if scene.vehicle is not None:
+        return _vehicle_eigen(scene, x, n_modes, model.n_nodes - 1, n_axial)
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
+    n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
-    sparse = _sparse(method, n_y + 1)
+    n = n_y + 1 + n_sleepers
+    sparse = scene.rail.beam == "euler" and _sparse(method, n)
     # ARPACK finds at most n - 1 modes of an n x n problem
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y if sparse else n_y + 1)
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n - 1 if sparse else n)
     # at most the n_x axial modes the mesh has (one element has only one or two)
     n_axial = min(v.integer("n_axial", n_axial, low=0), n_x - 1 if _sparse(method, n_x) else n_x)
     if sparse:
@@ -107,10 +132,13 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
                for xi in x]
         freqs = np.array([f for f, _ in res])
         shapes = np.array([s for _, s in res])
-    else:
-        _check_dense(n_y + 1)
+    elif scene.rail.beam == "euler":
+        _check_dense(n)
         freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
                                              x.tolist(), n_modes)
+    else:
+        _check_dense(n)
+        freqs, shapes = _timoshenko_modes(scene, model, x, n_modes)
     axial = np.empty(0)
     if n_axial and _sparse(method, n_x):
         axial = _sparse_modes(model, 0, n_axial)[0]
@@ -130,11 +158,18 @@ def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None =
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     model = _kernel.rail_model(scene, _mesh(scene, n_elements))
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
-    sparse = _sparse(method, n_y)
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y - 1 if sparse else n_y)
+    n = n_y + (len(scene.support_positions) if scene.supports.layered else 0)
+    if scene.rail.beam != "euler":
+        _dense_only(method, scene)
+        _check_dense(n)
+        n_modes = v.integer("n_modes", n_modes, low=1, high=n)
+        freqs, _ = _core.track_modes(model, _kernel.beam_params(scene), 0.0, 0.0, [0.0], n_modes)
+        return np.asarray(freqs).ravel()
+    sparse = _sparse(method, n)
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n - 1 if sparse else n)
     if sparse:
         return _sparse_modes(model, 1, n_modes)[0]
-    _check_dense(n_y)
+    _check_dense(n)
     freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], n_modes)
     return np.asarray(freqs).ravel()
 
@@ -162,6 +197,14 @@ def _sparse(method: str, n: int) -> bool:
     return method == "sparse" or (method == "auto" and n > AUTO_SPARSE_DOF)
 
 
+def _dense_only(method: str, scene: Scene) -> None:
+    v.choice("method", method, set(METHODS))
+    if method == "sparse":
+        what = "a vehicle" if scene.vehicle is not None else "Rail(beam='timoshenko')"
+        raise ValueError(f"method='sparse' is not available with {what}; allowed: "
+                         "method='dense' or 'auto'")
+
+
 def _check_dense(n: int) -> None:
     if n > MAX_DENSE_EIGEN_DOF:
         raise ValueError(f"method='dense' takes at most MAX_DENSE_EIGEN_DOF = "
@@ -180,7 +223,8 @@ def _csr(d: dict, key: str):
 def _sparse_modes(model, component: int, n_modes: int, wheel_mass: float = 0.0,
                   contact_stiffness: float = 0.0, position: float = 0.0):
     """(frequencies (n_modes,) [Hz], mass-normalised shapes over the full rail coordinates then
-    the wheel's Y (vertical) or over the rail's (axial)) of the lowest ``n_modes`` modes by
+    the wheel's Y and the sleepers' z (vertical) or over the rail's (axial)) of the lowest
+    ``n_modes`` modes by
     shift-invert Lanczos about 0. The start vector is fixed, so the result is reproducible."""
     from scipy.sparse.linalg import eigsh
 
@@ -202,8 +246,136 @@ def _sparse_modes(model, component: int, n_modes: int, wheel_mass: float = 0.0,
     w2, vec = w2[order], vec[:, order]
     vec = vec / np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
     dofs = np.asarray(d["dofs"])
-    shapes = np.zeros((model.n_dof + (1 if component == 1 else 0), n_modes))
-    shapes[dofs] = vec[:dofs.size]
+    # local order: rail coordinates, the wheel's Y (with a wheel), the sleepers' z
+    nr, wheel = dofs.size, int(wheel_mass > 0.0)
+    shapes = np.zeros((model.n_dof + (d["n"] - nr + 1 - wheel if component == 1 else 0), n_modes))
+    shapes[dofs] = vec[:nr]
     if component == 1:
-        shapes[-1] = vec[-1] if wheel_mass > 0.0 else 0.0
+        shapes[model.n_dof] = vec[nr] if wheel else 0.0
+        shapes[model.n_dof + 1:] = vec[nr + wheel:]
     return np.sqrt(np.maximum(w2, 0.0)) / (2.0 * np.pi), shapes
+
+
+def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: int
+                   ) -> EigenResult:
+    """:func:`eigen` for a vehicle: K q = omega^2 M q over [rail vertical coords, u, sleepers'
+    z_j (layered supports)]."""
+    from scipy.linalg import eigh
+
+    if scene.rail.beam != "euler":
+        raise ValueError(f"eigen with a vehicle takes Rail(beam='euler') (the ANCF rail "
+                         f"linearised), got beam = {scene.rail.beam!r}")
+
+    veh = scene.active_vehicle
+    model = _kernel.rail_model(scene, ne)
+    rear, front = veh.span
+    if x.min() + rear < 0.0 or x.max() + front > scene.rail.length:
+        raise ValueError(f"positions: the vehicle's wheels span x = {rear}..{front} m, so its "
+                         f"reference must lie in [{-rear:.4g}, {scene.rail.length - front:.4g}] m")
+    free = np.asarray(model.free_to_full)
+    n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
+    _check_dense(int(np.sum(free % 2 == 1)) + veh.n_wheels + 2 * veh.n_bodies + n_sleepers)
+    e0 = model.reference()
+    Kr = np.asarray(model.tangent_dense(e0))
+    Mr = np.asarray(model.mass_dense())
+    vert = free[free % 2 == 1]  # y and dy/ds: the straight rail's vertical coordinates
+    nr, nw, nb = vert.size, veh.n_wheels, veh.n_bodies
+    vm = _vehicle_matrices(scene)
+    Ks, Ms, Ss = _sleeper_blocks(scene, model, e0, vert)
+    ns = Ms.shape[0]
+    n_modes = v.integer("n_modes", n_modes, low=1, high=nr + nw + 2 * nb + ns)
+    kc = scene.contact_stiffness
+    nu = nw + 2 * nb
+    n = nr + nu + ns
+    freqs, shapes, frac = [], [], []
+    for x0 in x:
+        S = _couplings(model, e0, vert, [x0 + p for p in veh.positions])  # (nw, nr)
+        K = np.zeros((n, n))
+        M = np.zeros((n, n))
+        K[:nr, :nr] = Kr[np.ix_(vert, vert)] + kc * S.T @ S
+        M[:nr, :nr] = Mr[np.ix_(vert, vert)]
+        K[:nr, nr:nr + nw] = -kc * S.T
+        K[nr:nr + nw, :nr] = -kc * S
+        K[nr:nr + nu, nr:nr + nu] += vm[0]
+        K[nr:nr + nw, nr:nr + nw] += kc * np.eye(nw)
+        M[nr:nr + nu, nr:nr + nu] = np.diag(vm[1])
+        K[nr + nu:, nr + nu:] = Ks
+        M[nr + nu:, nr + nu:] = Ms
+        K[:nr, nr + nu:] = Ss.T
+        K[nr + nu:, :nr] = Ss
+        w2, vec = eigh(K, M, subset_by_index=(0, n_modes - 1))
+        freqs.append(np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi))
+        kin = vec * (M @ vec)
+        frac.append(kin[nr + nw:nr + nu].sum(axis=0) / kin.sum(axis=0))
+        full = np.zeros((model.n_dof + n - nr, n_modes))
+        full[vert] = vec[:nr]
+        full[model.n_dof:] = vec[nr:]
+        shapes.append(full)
+    axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial
+             else np.empty(0))
+    return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
+                       shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne,
+                       n_vehicle=nw + 2 * nb, body_fraction=np.asarray(frac))
+
+
+def _sleeper_blocks(scene: Scene, model, e0, vert) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The layered supports' blocks over the sleepers' z_j (docs: Model § Layered supports):
+    K_zz = (k_p + k_b) I, M_zz = m_s I and the coupling K_zr = -k_p s(x_j) to the rail's
+    vertical coordinates (the pads' k_p s s^T to ground is already in the rail's tangent).
+    Empty without sleepers."""
+    sp = scene.supports
+    if not sp.layered:
+        return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, vert.size))
+    xs = scene.support_positions
+    ns = len(xs)
+    Ks = (sp.stiffness + sp.ballast_stiffness) * np.eye(ns)
+    return Ks, sp.sleeper_mass * np.eye(ns), -sp.stiffness * _couplings(model, e0, vert, xs)
+
+
+def _vehicle_matrices(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """(K_v, mass diagonal over u) of the scene's vehicle, u = [Y per wheel, (z, phi) per
+    body]: K_v = sum k g g^T over the suspensions (docs: Model § The vehicle); the wheels'
+    masses on the wheels' entries."""
+    veh = scene.active_vehicle
+    vp = _kernel.vehicle_params(scene)
+    nw = veh.n_wheels
+    n = nw + 2 * len(vp.bodies)
+    K = np.zeros((n, n))
+    for sp in vp.suspensions:
+        g = np.zeros(n)
+        g[nw + 2 * sp.upper_body] += 1.0
+        g[nw + 2 * sp.upper_body + 1] += sp.upper_arm
+        if sp.lower_wheel >= 0:
+            g[sp.lower_wheel] -= 1.0
+        else:
+            g[nw + 2 * sp.lower_body] -= 1.0
+            g[nw + 2 * sp.lower_body + 1] -= sp.lower_arm
+        K += sp.stiffness * np.outer(g, g)
+    mass = [w.mass for w in veh.wheels]
+    for b in vp.bodies:
+        mass += [b.mass, b.inertia]
+    return K, np.asarray(mass)
+
+
+def _couplings(model, e0, vert, xs) -> np.ndarray:
+    """s(X) over the rail's vertical coordinates at each X in xs: y(X) = s(X) . e (the
+    positions are linear in e; each column from a unit vector)."""
+    S = np.zeros((len(xs), vert.size))
+    for j, i in enumerate(vert):
+        unit = np.zeros_like(e0)
+        unit[i] = 1.0
+        S[:, j] = np.asarray(model.positions(unit, list(xs)))[:, 1]
+    return S
+
+
+def _timoshenko_modes(scene: Scene, model, x: np.ndarray, n_modes: int):
+    """The linear track's modes with the Timoshenko rail, shapes scattered into the ANCF
+    numbering: the deflection w in the y slot, the section rotation psi in the slope slot."""
+    freqs, per_pos = _core.track_modes(model, _kernel.beam_params(scene), scene.wheel.mass,
+                                       scene.contact_stiffness, x.tolist(), n_modes)
+    y_dofs = [i for i in model.free_to_full if i % 2 == 1]
+    shapes = np.zeros((len(per_pos), model.n_dof + 1, n_modes))
+    for p, s in enumerate(per_pos):
+        shapes[p, y_dofs, :] = np.asarray(s)[:-1]
+        shapes[p, -1, :] = np.asarray(s)[-1]
+    return freqs, shapes

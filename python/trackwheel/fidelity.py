@@ -8,6 +8,7 @@ the cheapest level whose outputs stay within ``tol`` of it at every speed.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import TYPE_CHECKING
 
@@ -23,14 +24,15 @@ from .simulate import FIDELITY_LEVELS, simulate
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
     import pandas as pd
 
-__all__ = ["adequacy", "recommend"]
+__all__ = ["VEHICLE_LEVELS", "adequacy", "pinned_pinned_frequencies", "recommend",
+           "shear_judgement", "vehicle_adequacy", "vehicle_levels"]
 
 _HEADLINE = ("amplitude", "main_frequency", "peak_contact_force")
 
 
 def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
              levels=FIDELITY_LEVELS, reference: str = "full", n_modes: int | None = None,
-             **simulate_kwargs) -> pd.DataFrame:
+             shear: bool = True, **simulate_kwargs) -> pd.DataFrame:
     """Run the fidelity ``levels`` side by side at each of ``speeds`` [m/s].
 
     Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude``
@@ -52,6 +54,14 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     "attenuation_db": [dB], "matters": bool}``, where it matters when the patch average takes
     more than 1 dB off the profile's shortest wavelength
     (:func:`trackwheel.irregularity.filter_matters`).
+
+    The levels run on the Euler-Bernoulli rail (the full ANCF model's). With ``shear`` (default),
+    ``df.attrs["shear"]`` says whether the rail's shear deformation matters for the scene
+    (:func:`shear_judgement`): the pinned-pinned frequencies of both beam theories and the
+    largest relative differences of the headline outputs between the "linear/hertz" level run
+    with the Timoshenko and with the Euler-Bernoulli rail at ``speeds``; it matters where one
+    exceeds ``tol`` (typically when the wheel/rail force has content near the pinned-pinned
+    frequency).
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
@@ -65,6 +75,9 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     for lv in levels:
         v.choice("levels", lv, set(FIDELITY_LEVELS))
     v.choice("reference", reference, set(FIDELITY_LEVELS))
+    v.boolean("shear", shear)
+    judged_scene = scene
+    scene = dataclasses.replace(scene, rail=dataclasses.replace(scene.rail, beam="euler"))
     run_levels = (reference,) + tuple(lv for lv in levels if lv != reference)
     # every level on the same mesh and step: the derived defaults unless given
     defaults = default_settings(scene)
@@ -83,10 +96,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
             row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "level": lv, "error": ""}
             try:
                 r = simulate(scene, float(speed), fidelity=lv, **kw)
-                a = analyse(r)
-                row.update(amplitude=a.amplitude, main_frequency=a.main_frequency,
-                           peak_contact_force=a.max_contact_force, wall_time=r.wall_time,
-                           lost_contact=a.lost_contact)
+                row.update(_headline(r), wall_time=r.wall_time)
             except (ValueError, RuntimeError) as exc:  # DivergenceError is a RuntimeError
                 row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
                            wall_time=np.nan, lost_contact=False, error=str(exc))
@@ -102,7 +112,127 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     df.attrs["recommended"] = recommend(df)
     if scene.irregularity is not None and scene.irregularity.parts:
         df.attrs["contact_filter"] = contact_filter_judgement(scene)
+    if scene.vehicle is not None and scene.vehicle.n_bodies:
+        veh = vehicle_adequacy(scene, speeds, tol=tol, fidelity=reference, **simulate_kwargs)
+        df.attrs["vehicle"] = veh
+        df.attrs["vehicle_recommended"] = veh.attrs["recommended"]
+    if shear:
+        df.attrs["shear"] = shear_judgement(judged_scene, speeds, tol=tol, **simulate_kwargs)
     return df
+
+
+def _headline(r) -> dict:
+    """Headline outputs of a run; with several wheels those of the worst wheel (largest
+    amplitude max|d|; the peak force is the largest of any wheel)."""
+    analyses = [analyse(r, wheel=i) for i in range(r.n_wheels)]
+    worst = max(analyses, key=lambda a: a.amplitude)
+    return dict(amplitude=worst.amplitude, main_frequency=worst.main_frequency,
+                peak_contact_force=max(a.max_contact_force for a in analyses),
+                lost_contact=any(a.lost_contact for a in analyses))
+
+
+#: vehicle levels of :func:`vehicle_adequacy`, least detailed first
+VEHICLE_LEVELS = ("unsprung masses", "bogie", "half car")
+
+
+def vehicle_levels(scene: Scene) -> dict:
+    """The scene's vehicle at each level it can be cut down to: "unsprung masses" (the wheels
+    alone, each under its constant static load of the weight distribution), "bogie" (the
+    bogie frames on their primary suspensions, the car body replaced by its constant pivot
+    loads; only with a car body) and the vehicle as given ("half car" with a car body, else
+    "bogie")."""
+    from dataclasses import replace
+
+    from .vehicle import Vehicle
+
+    veh = scene.active_vehicle
+    g = scene.gravity
+    loads = veh.static_loads(g)
+    wheels = tuple(replace(w, load=P - w.mass * g) for w, P in zip(veh.wheels, loads))
+    out = {"unsprung masses": replace(scene, vehicle=Vehicle(wheels=wheels,
+                                                             positions=veh.positions))}
+    if veh.car is not None:
+        bogies = tuple(replace(b, load=F) for b, F in zip(veh.bogies, veh.pivot_loads(g)))
+        out["bogie"] = replace(scene, vehicle=replace(veh, bogies=bogies, car=None))
+        out["half car"] = scene
+    else:
+        out["bogie"] = scene
+    return out
+
+
+def vehicle_adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
+                     **simulate_kwargs) -> pd.DataFrame:
+    """Whether the bogies and the car body matter for ``scene`` (a scene with a vehicle):
+    runs each of :func:`vehicle_levels` at each speed [m/s] and compares the worst wheel's
+    headline outputs (``amplitude``, ``main_frequency``, ``peak_contact_force``) with the
+    vehicle as given. One row per (speed, vehicle level) with the relative differences
+    ``d_*`` and ``adequate`` (all <= tol); ``df.attrs["recommended"]`` is the least detailed
+    level adequate at every speed. The suspension isolates the bodies above ~20 Hz, so for
+    the wheel/rail force they rarely matter; the neighbouring wheels' waves through the rail
+    are in every level."""
+    if not isinstance(scene, Scene) or scene.vehicle is None:
+        raise ValueError("vehicle_adequacy needs a Scene with a vehicle (Scene(vehicle=...))")
+    import pandas as pd
+
+    scenes = vehicle_levels(scene)
+    full = list(scenes)[-1]
+    rows = []
+    for speed in np.atleast_1d(np.asarray(speeds, dtype=float)):
+        ref = None
+        for name in [full] + [n for n in scenes if n != full]:
+            row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "vehicle": name,
+                   "error": ""}
+            try:
+                r = simulate(scenes[name], float(speed), **simulate_kwargs)
+                row.update(_headline(r), wall_time=r.wall_time)
+            except (ValueError, RuntimeError) as exc:
+                row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
+                           wall_time=np.nan, lost_contact=False, error=str(exc))
+            ref = row if ref is None else ref
+            for key in _HEADLINE:
+                row["d_" + key] = abs(row[key] / ref[key] - 1.0) if ref[key] else np.nan
+            rows.append(row)
+    df = pd.DataFrame(rows)
+    df["adequate"] = (df[["d_" + k for k in _HEADLINE]] <= tol).all(axis=1) & (df.error == "")
+    ok = df.groupby("vehicle", sort=False)["adequate"].all()
+    df.attrs["tol"] = tol
+    df.attrs["recommended"] = next((n for n in VEHICLE_LEVELS if ok.get(n, False)), full)
+    return df
+
+
+def pinned_pinned_frequencies(scene: Scene) -> tuple[float, float]:
+    """(Euler-Bernoulli, Timoshenko) pinned-pinned frequency [Hz] of one support span d_s:
+    (pi/(2 d_s^2)) sqrt(EI/m), and the lower root of the Timoshenko frequency equation with
+    k = pi/d_s (docs: Model, section "Shear-deformable rail (Timoshenko)")."""
+    r, d = scene.rail, scene.supports.spacing
+    k = math.pi / d
+    kg = r.shear_coefficient * r.shear_modulus
+    a = r.rotary_inertia * r.density / kg
+    b = r.mass_per_length + r.rotary_inertia * k**2 + r.bending_stiffness * k**2 * r.density / kg
+    c = r.bending_stiffness * k**4
+    f_t = math.sqrt((b - math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)) / (2.0 * math.pi)
+    f_e = math.pi / (2.0 * d * d) * math.sqrt(r.bending_stiffness / r.mass_per_length)
+    return f_e, f_t
+
+
+def shear_judgement(scene: Scene, speeds, *, tol: float = 0.005, **simulate_kwargs) -> dict:
+    """Whether shear matters for ``scene`` at ``speeds`` [m/s]: ``{"pinned_pinned_euler": [Hz],
+    "pinned_pinned_timoshenko": [Hz], "d_amplitude", "d_main_frequency",
+    "d_peak_contact_force": largest relative difference Timoshenko vs Euler-Bernoulli of the
+    linear/hertz level over the speeds, "matters": any of them > tol}``."""
+    f_e, f_t = pinned_pinned_frequencies(scene)
+    out = {"pinned_pinned_euler": f_e, "pinned_pinned_timoshenko": f_t}
+    out.update({"d_" + k: 0.0 for k in _HEADLINE})
+    for speed in np.atleast_1d(speeds):
+        heads = []
+        for beam in ("euler", "timoshenko"):
+            sc = dataclasses.replace(scene, rail=dataclasses.replace(scene.rail, beam=beam))
+            a = analyse(simulate(sc, float(speed), fidelity="linear/hertz", **simulate_kwargs))
+            heads.append((a.amplitude, a.main_frequency, a.max_contact_force))
+        for key, e, t in zip(_HEADLINE, *heads):
+            out["d_" + key] = max(out["d_" + key], abs(t / e - 1.0) if e else 0.0)
+    out["matters"] = any(out["d_" + k] > tol for k in _HEADLINE)
+    return out
 
 
 def contact_filter_judgement(scene: Scene) -> dict:

@@ -486,6 +486,11 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result (from trackwheel.simulate), "
                         f"got {type(result).__name__}")
+    if result.n_wheels > 1:
+        if analysis is not None:
+            raise ValueError("analysis: leave it None for a run with several wheels (each "
+                             "wheel is analysed here)")
+        return _dynamic_wheels(result, f_max)
     if analysis is None:
         analysis = analyse(result)
     elif not isinstance(analysis, Analysis):
@@ -535,6 +540,38 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
         ax.grid(True, alpha=0.3)
     fig.suptitle(f"{_speed_kmh(result):g} km/h, k_s = {result.scene.supports.stiffness / 1e6:g}"
                  f" MN/m, {_run_label(result, dt=True, n_elements=True)}")
+    return fig
+
+
+def _dynamic_wheels(result, f_max) -> Figure:
+    """:func:`dynamic` for a vehicle: every wheel's contact force N and dynamic part d against
+    time, and the spectra of d, one colour per wheel (wheel i: ``analyse(result, wheel=i)``)."""
+    from .analysis import analyse
+
+    fig = Figure(figsize=(8.0, 8.5), layout="constrained")
+    ax_n, ax_d, ax_f = fig.subplots(3, 1)
+    f_max = 1000.0 if f_max is None else v.positive("f_max", f_max, "Hz")
+    for i in range(result.n_wheels):
+        a = analyse(result, wheel=i)
+        ax_n.plot(a.t, a.normal_force * 1e-3, color=f"C{i}", linewidth=0.9, label=f"wheel {i}")
+        ax_d.plot(a.t, a.dynamic * 1e6, color=f"C{i}", linewidth=0.9,
+                  label=f"wheel {i}: max|d| = {a.amplitude * 1e6:.3g} µm")
+        freqs, amps = a.spectrum
+        keep = freqs <= f_max
+        ax_f.plot(freqs[keep], amps[keep] * 1e6, color=f"C{i}", linewidth=0.9,
+                  label=f"wheel {i}: {a.main_frequency:.1f} Hz")
+    ax_n.set_ylabel("contact force N [kN]")
+    ax_d.set_ylabel("dynamic part d = y_B - y_qs [µm]")
+    for ax in (ax_n, ax_d):
+        ax.set_xlabel("time t [s]")
+    ax_f.set_xlim(0.0, f_max)
+    ax_f.set_xlabel("frequency [Hz]")
+    ax_f.set_ylabel("amplitude spectrum of d [µm]")
+    for ax in (ax_n, ax_d, ax_f):
+        ax.grid(True, alpha=0.3)
+        _legend_outside(ax)
+    fig.suptitle(f"{_speed_kmh(result):g} km/h, {result.n_wheels} wheels, "
+                 f"{_run_label(result, dt=True, n_elements=True)}")
     return fig
 
 
@@ -783,4 +820,57 @@ def force_bands(stats, *, ax: Axes | None = None) -> Figure:
     ax.set_xlabel("one-third-octave band centre [Hz]")
     ax.set_ylabel("band RMS of N - mean(N) [N]")
     ax.grid(True, which="both", alpha=0.3)
+    return fig
+
+
+def _receptance_points(scene) -> dict[str, float]:
+    """Mid-span and above-support excitation points near the rail's middle [m]."""
+    pos = np.asarray(scene.support_positions)
+    if pos.size == 0:
+        return {"mid-span": 0.5 * scene.rail.length}
+    j = int(np.argmin(np.abs(pos - 0.5 * scene.rail.length)))
+    nxt = pos[j + 1] if j + 1 < pos.size else scene.rail.length
+    return {"mid-span": 0.5 * (pos[j] + nxt), "above a support": float(pos[j])}
+
+
+def receptance(scene, freqs, *, n_elements: int | None = None) -> Figure:
+    """Point receptance of the track (:func:`trackwheel.receptance`) at mid-span and above the
+    support nearest the rail's middle: magnitude [m/N] (log-log, gid "magnitude: <point>") and
+    phase [deg] against frequency [Hz]."""
+    from .frequency import receptance as _receptance
+
+    f = np.asarray(freqs, dtype=float)
+    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
+    ax_m, ax_p = fig.subplots(2, 1, sharex=True, height_ratios=(2, 1))
+    for label, x in _receptance_points(scene).items():
+        a = _receptance(scene, x, f, n_elements=n_elements)
+        ax_m.loglog(f, np.abs(a), label=f"{label} (X = {x:.3g} m)", gid=f"magnitude: {label}")
+        ax_p.semilogx(f, np.degrees(np.angle(a)), gid=f"phase: {label}")
+    ax_m.set_ylabel("|receptance| [m/N]")
+    ax_p.set_ylabel("phase [deg]")
+    ax_p.set_xlabel("frequency [Hz]")
+    for ax in (ax_m, ax_p):
+        ax.grid(True, which="both", alpha=0.3)
+    _legend_outside(ax_m)
+    return fig
+
+
+def decay_rate(scene, freqs, *, n_elements: int | None = None, ax: Axes | None = None
+               ) -> Figure:
+    """Vertical track decay rate [dB/m] (EN 15461, :func:`trackwheel.decay_rate`, gid
+    "decay rate") against frequency [Hz], with the ISO 3095:2013 lower limit per
+    one-third-octave band (steps, gid "ISO 3095 limit")."""
+    from .frequency import ISO3095_VERTICAL_LIMIT, iso3095_band_edges
+    from .frequency import decay_rate as _decay_rate
+
+    f = np.asarray(freqs, dtype=float)
+    fig, ax = _figure_and_axes(ax, (6.0, 3.5))
+    ax.semilogx(f, _decay_rate(scene, f, n_elements=n_elements), marker="o", ms=3,
+                label="track (EN 15461)", gid="decay rate")
+    ax.stairs(ISO3095_VERTICAL_LIMIT, iso3095_band_edges(), color="k", ls="--",
+              label="ISO 3095 lower limit (vertical)", gid="ISO 3095 limit")
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("decay rate [dB/m]")
+    ax.grid(True, which="both", alpha=0.3)
+    _legend_outside(ax)
     return fig

@@ -84,6 +84,33 @@ class _ResultMethods:
         edges = np.flatnonzero(np.diff(free.astype(np.int8)))
         return [(float(self.t[i]), float(self.t[j - 1])) for i, j in zip(edges[::2], edges[1::2])]
 
+    @property
+    def n_wheels(self) -> int:
+        """Wheels in the run (per-wheel arrays are 2-D when there are several)."""
+        return 1 if self.x_wheel.ndim == 1 else self.x_wheel.shape[1]
+
+    def wheel(self, i: int):
+        """Wheel ``i``'s view as a one-wheel run: every per-wheel array reduced to that wheel's
+        (n_samples,) column, ``scene`` the single-wheel scene of that wheel under its static
+        load of the vehicle's weight distribution (so :func:`trackwheel.analyse` measures its
+        quasi-static line and force statistics against that wheel alone under that load), and
+        ``settings.x_start`` that wheel's start."""
+        n = self.n_wheels
+        if not (isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 0 <= i < n):
+            raise ValueError(f"wheel = {i!r} must be an integer in [0, {n - 1}]")
+        if n == 1:
+            return self
+        cols = {name: getattr(self, name)[:, i]
+                for name, _u, _d, per_wheel, _t in OUTPUT_FIELDS if per_wheel}
+        sc = self.scene
+        veh = sc.active_vehicle
+        w = veh.wheels[i]
+        load = veh.static_loads(sc.gravity)[i] - w.mass * sc.gravity
+        scene = dataclasses.replace(sc, vehicle=None, wheel=dataclasses.replace(w, load=load))
+        settings = dataclasses.replace(self.settings,
+                                       x_start=self.settings.x_start + veh.positions[i])
+        return dataclasses.replace(self, scene=scene, settings=settings, **cols)
+
     def __repr__(self) -> str:
         s = self.settings
         n = self.t.size
@@ -103,7 +130,9 @@ def _result_doc() -> str:
     lines = ["Output of :func:`trackwheel.simulate`, one entry per kept sample (every",
              "``output_every`` steps).", "",
              "Array fields (from the kernel's output table :data:`OUTPUT_FIELDS`), each of shape",
-             "(n_samples,), in SI units:", ""]
+             "(n_samples,) for one wheel, the per-wheel ones (n_samples, n_wheels) for a vehicle",
+             "with several wheels (``result.wheel(i)`` is wheel i's one-wheel view), in SI units:",
+             ""]
     for name, unit, doc, _per_wheel, dtype in OUTPUT_FIELDS:
         kind = "int" if dtype.startswith("int") else (f"[{unit}]" if unit else "[-]")
         lines.append(f"- ``{name}`` {kind}: {doc}")
@@ -115,7 +144,9 @@ def _result_doc() -> str:
               "Other fields: ``scene``, ``settings`` (:class:`RunSettings`), ``steps``,",
               "``newton_iterations`` (generalized-alpha), ``state_changes`` (slip/contact",
               "switches), ``stability_limit`` (predicted explicit RK4 limit at the start) [s],",
-              "``wall_time`` [s], ``final_state`` (kernel state at the end, for restarts)."]
+              "``wall_time`` [s], ``final_state`` (kernel state at the end, for restarts),",
+              "``body_z`` [m] and ``body_phi`` [rad] (n_samples, n_bodies): the vehicle's bogies",
+              "then car body (None without bodies; z = 0 where every spring is unstretched)."]
     return "\n".join(lines)
 
 
@@ -125,7 +156,9 @@ Result = dataclasses.make_dataclass(
      *[(f[0], "np.ndarray | None" if f[0] == "energy" else "np.ndarray") for f in OUTPUT_FIELDS],
      ("steps", int), ("newton_iterations", int), ("state_changes", int),
      ("stability_limit", float), ("wall_time", float),
-     ("final_state", object, field(repr=False))],
+     ("final_state", object, field(repr=False)),
+     ("body_z", "np.ndarray | None", field(default=None, repr=False)),
+     ("body_phi", "np.ndarray | None", field(default=None, repr=False))],
     bases=(_ResultMethods,), frozen=True, repr=False,
     namespace={"__doc__": _result_doc(), "__module__": __name__})
 
@@ -140,9 +173,15 @@ def result_from_kernel(out: dict, scene: Scene, settings: RunSettings, wall_time
                        energy: bool) -> Result:
     """Wrap the kernel's output dict ``out`` (one array per row of :data:`OUTPUT_FIELDS`, plus
     the counters and ``final_state``) as a :class:`Result`; ``energy`` keeps the energy array.
-    One wheel: the per-wheel (n_samples, 1) columns become (n_samples,)."""
-    arrays = {name: (out[name][:, 0] if per_wheel else out[name])
+    One wheel: the per-wheel (n_samples, 1) columns become (n_samples,); several wheels keep
+    (n_samples, n_wheels). The vehicle's bodies: ``body_z``, ``body_phi`` (n_samples, n_bodies),
+    None without bodies."""
+    one = out["x_wheel"].shape[1] == 1
+    arrays = {name: (out[name][:, 0] if per_wheel and one else out[name])
               for name, _unit, _doc, per_wheel, _dtype in OUTPUT_FIELDS}
+    nb = out["body_z"].shape[1] if "body_z" in out else 0
+    arrays["body_z"] = out["body_z"] if nb else None
+    arrays["body_phi"] = out["body_phi"] if nb else None
     if not energy:
         arrays["energy"] = None
     return Result(scene=scene, settings=settings, **arrays, steps=out["steps"],

@@ -78,6 +78,13 @@ class Rail:
     #: singular, zero-frequency modes)
     #: graded viscous end zones that absorb waves leaving the rail, or None (the paper's rail)
     absorbing_ends: AbsorbingEnds | None = None
+    #: "euler" (Euler-Bernoulli) or "timoshenko" (shear deformation and rotary inertia: the
+    #: linear levels, receptance and eigen analysis of the linear track; the full ANCF model is
+    #: Euler-Bernoulli and refuses "timoshenko")
+    beam: str = "euler"
+    #: kappa, shear coefficient of the section [-], in (0, 1] (about 0.4 for a rail's vertical
+    #: bending; used with beam="timoshenko")
+    shear_coefficient: float = 0.4
 
     def __post_init__(self):
         v.positive("Rail.length", self.length, "m")
@@ -90,6 +97,9 @@ class Rail:
         v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
         v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
         v.integer("Rail.n_gauss", self.n_gauss, low=v.GAUSS_RANGE[0], high=v.GAUSS_RANGE[1])
+        v.choice("Rail.beam", self.beam, {"euler", "timoshenko"})
+        v.number("Rail.shear_coefficient", self.shear_coefficient, low=0.0, high=1.0,
+                 low_open=True)
         z = self.absorbing_ends
         if z is not None:
             if not isinstance(z, AbsorbingEnds):
@@ -135,6 +145,21 @@ class Rail:
         """EA [N]."""
         return self.youngs_modulus * self.area
 
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2 (1 + nu)) [Pa]."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+    @property
+    def shear_stiffness(self) -> float:
+        """kappa G A [N] (Timoshenko beam)."""
+        return self.shear_coefficient * self.shear_modulus * self.area
+
+    @property
+    def rotary_inertia(self) -> float:
+        """rho I, mass moment of inertia per length [kg m] (Timoshenko beam)."""
+        return self.density * self.second_moment
+
 
 @dataclass(frozen=True)
 class Supports:
@@ -144,23 +169,62 @@ class Supports:
     L - spacing`` (nine for the paper's scene), between the two rigid end supports. Give
     ``positions`` to place them anywhere inside the rail, on or between nodes;
     ``positions=()`` leaves the rail simply supported at its ends only (a bare beam).
+
+    Layered supports (docs: Model § Layered supports): give ``sleeper_mass`` and
+    ``ballast_stiffness`` and each support becomes a rail pad (``stiffness``, ``damping``)
+    between the rail and a sleeper of mass m_s, which rests on the ballast (k_b, c_b) on rigid
+    ground; gravity pre-loads every layer. Without them (the default) each support is one
+    spring and damper from the rail to the ground.
     """
 
-    stiffness: float = 140e6  #: k_s, vertical stiffness of each support [N/m]
+    stiffness: float = 140e6  #: k_s, vertical stiffness of each support [N/m] (layered: pad k_p)
     spacing: float = 0.5  #: d_s, support interval [m]
-    damping: float = 0.0  #: c_s, viscous damping of each support [N s/m]
+    damping: float = 0.0  #: c_s, viscous damping of each support [N s/m] (layered: pad c_p)
     positions: tuple[float, ...] | None = None  #: explicit positions X_j [m], or None
+    #: m_s, the sleeper's share of one rail (half a sleeper) [kg]; None: single springs
+    sleeper_mass: float | None = None
+    ballast_stiffness: float | None = None  #: k_b, ballast under each sleeper [N/m]
+    ballast_damping: float = 0.0  #: c_b, ballast damping under each sleeper [N s/m]
 
     def __post_init__(self):
         v.positive("Supports.stiffness", self.stiffness, "N/m")
         v.positive("Supports.spacing", self.spacing, "m")
         v.number("Supports.damping", self.damping, low=0.0, unit="N s/m")
+        self._check_layers()
         if self.positions is not None:
             empty = isinstance(self.positions, (tuple, list)) and len(self.positions) == 0
             pos = () if empty else tuple(
                 float(x) for x in v.positions("Supports.positions", self.positions,
                                               -math.inf, math.inf))
             object.__setattr__(self, "positions", pos)
+
+    def _check_layers(self):
+        if self.sleeper_mass is None and self.ballast_stiffness is None:
+            if self.ballast_damping != 0.0:
+                raise ValueError(f"Supports.ballast_damping = {self.ballast_damping} N s/m needs "
+                                 "a sleeper layer: give sleeper_mass and ballast_stiffness too")
+            return
+        if self.sleeper_mass is None or self.ballast_stiffness is None:
+            raise ValueError("Supports.sleeper_mass and Supports.ballast_stiffness must be given "
+                             "together (layered supports) or both be None (single springs); "
+                             f"got sleeper_mass = {self.sleeper_mass}, ballast_stiffness = "
+                             f"{self.ballast_stiffness}")
+        v.positive("Supports.sleeper_mass", self.sleeper_mass, "kg")
+        v.positive("Supports.ballast_stiffness", self.ballast_stiffness, "N/m")
+        v.number("Supports.ballast_damping", self.ballast_damping, low=0.0, unit="N s/m")
+
+    @property
+    def layered(self) -> bool:
+        """True for pad-sleeper-ballast supports (``sleeper_mass`` given)."""
+        return self.sleeper_mass is not None
+
+    @property
+    def static_stiffness(self) -> float:
+        """Static stiffness of one support [N/m]: k_s, or the pad and ballast in series,
+        k_p k_b / (k_p + k_b)."""
+        if not self.layered:
+            return self.stiffness
+        return self.stiffness * self.ballast_stiffness / (self.stiffness + self.ballast_stiffness)
 
     def resolve(self, length: float) -> tuple[float, ...]:
         """Support positions [m] on a rail of ``length`` [m]; checks they lie inside it."""
@@ -257,7 +321,17 @@ class Contact:
 
 @dataclass(frozen=True)
 class Scene:
-    """A wheel on a rail on supports: everything the kernel needs, in SI units."""
+    """A wheel (or a vehicle) on a rail on supports: everything the kernel needs, in SI units.
+
+    ``vehicle=None`` (the default) is the single wheel ``Scene.wheel`` under its constant load,
+    the paper's model. With a :class:`~trackwheel.Vehicle` the wheels, their places and their
+    loads come from the vehicle, and ``Scene.wheel`` is derived from it, whatever was given:
+    the vehicle's first wheel carrying the mean static wheel load (it sets the contact
+    stiffness and the default mesh and step). Give the wheels in the Vehicle; so
+    ``dataclasses.replace(scene, vehicle=other)`` works, and ``vehicle=None`` turns the scene
+    back into the single (derived) wheel. All wheels of a vehicle share one contact law, so they
+    need the same radius and elastic constants.
+    """
 
     rail: Rail = field(default_factory=Rail)
     supports: Supports = field(default_factory=Supports)
@@ -267,6 +341,9 @@ class Scene:
     rail_gravity: bool = True  #: apply the rail's own weight
     #: rail profile r(X) [m] (positive = bump, docs: Model § Irregularities), or None for a smooth rail
     irregularity: Irregularity | None = None
+    #: the vehicle (trackwheel.Vehicle), or None: the single wheel ``wheel``
+    #: (docs: Model § The vehicle)
+    vehicle: object = None
 
     def __post_init__(self):
         for f in fields(self)[:4]:
@@ -279,17 +356,92 @@ class Scene:
         if self.irregularity is not None and not isinstance(self.irregularity, Irregularity):
             raise TypeError(f"Scene.irregularity must be a trackwheel.Irregularity or None, "
                             f"got {type(self.irregularity).__name__}")
+        if self.vehicle is not None:
+            self._derive_wheel()
         if self.wheel.load == 0.0 and self.gravity == 0.0:  # P = F + M g = 0
             raise ValueError("Wheel.load = 0 N with Scene.gravity = 0 m/s^2 leaves the wheel "
                              "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
                              "Scene.gravity > 0")
         self.supports.resolve(self.rail.length)  # supports must lie on the rail
 
+    def _derive_wheel(self):
+        from dataclasses import replace
+
+        from .vehicle import Vehicle
+
+        veh = self.vehicle
+        if not isinstance(veh, Vehicle):
+            raise TypeError(f"Scene.vehicle must be a trackwheel.Vehicle or None, "
+                            f"got {type(veh).__name__}")
+        w0 = veh.wheels[0]
+        for i, w in enumerate(veh.wheels):
+            if (w.radius, w.youngs_modulus, w.poisson_ratio) != (
+                    w0.radius, w0.youngs_modulus, w0.poisson_ratio):
+                raise ValueError(f"Vehicle.wheels[{i}] differs from wheel 0 in radius or elastic "
+                                 "constants; the wheels share one contact law")
+        loads = veh.static_loads(self.gravity)
+        derived = replace(w0, load=max(sum(loads) / len(loads) - w0.mass * self.gravity, 0.0))
+        object.__setattr__(self, "wheel", derived)
+
+    @property
+    def active_vehicle(self):
+        """The vehicle that runs: ``vehicle``, or ``Vehicle.single_wheel(wheel)`` if None."""
+        from .vehicle import Vehicle
+
+        return Vehicle.single_wheel(self.wheel) if self.vehicle is None else self.vehicle
+
     @classmethod
     def kato2005(cls) -> "Scene":
         """The paper's scene exactly as docs: Model § Scene fixes it (L = 5 m, nine supports of
         140 MN/m every 0.5 m, 10 kg wheel of radius 0.1 m under 47040 N, 20 elements)."""
         return cls()
+
+    @classmethod
+    def ballasted_track(cls, length: float = 30.0, *, elements_per_bay: int = 4) -> "Scene":
+        """A high-speed wheel on UIC60 rail on ballasted track with concrete monobloc sleepers
+        (docs: Model § Layered supports).
+
+        Track (the parameter set of docs: Model § Layered supports): UIC60 rail,
+        E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3, A = 7.69e-3 m^2, I = 3.055e-5 m^4 (the
+        section values of EN 13674-1); sleepers every 0.6 m, rail pad k_p = 180 MN/m and
+        c_p = 18 kN s/m, half a monobloc sleeper m_s = 150 kg, ballast k_b = 105 MN/m and
+        c_b = 48 kN s/m per half sleeper. Sets of this size for such a track are tabulated in
+        Thompson, *Railway Noise and Vibration* (2009), ch. 3, and in Zhai, Wang & Cai,
+        "Fundamentals of vehicle-track coupled dynamics", Vehicle System Dynamics 47 (2009);
+        the numbers here are the specification's, not copied from either table.
+
+        Wheel: a high-speed wheel of 0.92 m nominal diameter (rho0 = 0.46 m), half of an
+        unsprung wheelset of about 1800 kg (M = 900 kg), static wheel load P = F + M g = 70 kN
+        (a 14 t axle), contact stiffness the linearised Hertz of docs: Model § Contact.
+        g = 9.81 m/s^2.
+
+        length [m]: the rail between its rigid end supports (default 30 m: room for a passage
+        of several metres away from the ends); supports every 0.6 m between them. Elements:
+        ``elements_per_bay`` per 0.6 m bay (default 4: 0.15 m elements, sleepers on nodes).
+        The rail's ends rest on rigid supports, so the track stiffens within a few metres of
+        them: run passages well inside, e.g. ``simulate(scene, v, x_start=10.0, x_end=20.0)``.
+        """
+        spacing = 0.6
+        length = v.number("length", length, low=3 * spacing, unit="m")
+        epb = v.integer("elements_per_bay", elements_per_bay, low=1, high=64)
+        n_bays = round(length / spacing)
+        if abs(n_bays * spacing - length) > 1e-9 * length:
+            raise ValueError(f"length = {length} m must be a whole number of 0.6 m sleeper bays; "
+                             f"allowed: k x 0.6 m with k >= 3 (e.g. {n_bays * spacing:.4g} m)")
+        n_el = n_bays * epb
+        if n_el > MAX_ELEMENTS:
+            raise ValueError(f"length = {length} m with elements_per_bay = {epb} needs {n_el} "
+                             f"elements; allowed at most {MAX_ELEMENTS}")
+        g = 9.81
+        mass, load = 900.0, 70e3
+        return cls(
+            rail=Rail(length=length, youngs_modulus=210e9, poisson_ratio=0.3, density=7850.0,
+                      area=7.69e-3, second_moment=3.055e-5, n_elements=n_el),
+            supports=Supports(stiffness=180e6, damping=18e3, spacing=spacing, sleeper_mass=150.0,
+                              ballast_stiffness=105e6, ballast_damping=48e3),
+            wheel=Wheel(mass=mass, radius=0.46, load=load - mass * g, youngs_modulus=210e9,
+                        poisson_ratio=0.3),
+            gravity=g)
 
     # derived quantities -------------------------------------------------------------------
     @property
@@ -326,5 +478,6 @@ class Scene:
 
     @property
     def winkler_modulus(self) -> float:
-        """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (docs: Model § Validation)."""
-        return self.supports.stiffness / self.supports.spacing
+        """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (docs: Model § Validation);
+        layered supports: their static series stiffness per spacing."""
+        return self.supports.static_stiffness / self.supports.spacing

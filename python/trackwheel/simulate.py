@@ -22,6 +22,7 @@ from ._errors import DivergenceError
 from .defaults import (
     check_speed,
     default_end,
+    default_start,
     derived_dt,
     derived_mesh,
     explicit_limit,
@@ -31,6 +32,7 @@ from .defaults import (
 )
 from .results import Result, RunSettings, result_from_kernel, sample_bytes
 from .scene import MAX_ELEMENTS, Scene
+from .vehicle import static_bodies
 
 __all__ = [
     "FIDELITY_LEVELS",
@@ -44,7 +46,7 @@ __all__ = [
 #: Model fidelity levels, most to least detailed (issue 7). "full" is the paper's model: the
 #: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
 #: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
-#: levels use the linear Euler-Bernoulli rail with constant matrices (factorised once, or modal
+#: levels use the linear rail (Euler-Bernoulli, or Timoshenko with ``Rail(beam="timoshenko")``) with constant matrices (factorised once, or modal
 #: with ``n_modes``) and a vertical contact at X_A: a moving force P, a moving mass (rigid
 #: contact), a sprung wheel (linear bilateral contact spring k) or a Hertzian wheel (unilateral).
 FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
@@ -106,7 +108,51 @@ def _scene_for(scene: Scene, fidelity: str) -> Scene:
     return scene
 
 
+def _vehicle_initial_state(scene, model, speed, x_start, start, drop_height):
+    """The start of a vehicle run: "static" solves the rail under every wheel's static load of
+    the weight distribution at once, then sets each body where its springs carry those loads;
+    "sudden" puts every wheel just touching the rail under its own weight and the bodies with
+    every spring unstretched (the vehicle falls onto the track)."""
+    veh = scene.active_vehicle
+    contact = _kernel.contact_params(scene)
+    xs = [x_start + x for x in veh.positions]
+    if start == "static":
+        contacts = []
+        for w in veh.wheels:
+            c = _kernel.contact_params(scene)
+            c.radius = w.radius + sum(d.delta_rho(0.0, w.radius) for d in w.defects)
+            contacts.append(c)
+        sols = _core.static_solve_wheels(model, _kernel.static_wheels_params(scene), contacts, xs)
+        e = np.asarray(sols[0]["e"])
+        ys = [d["y_wheel"] + drop_height for d in sols]
+        body = static_bodies(veh, scene.gravity, ys)  # lifted with the wheels by drop_height
+    else:
+        e = np.asarray(_core.rail_static(model))
+        y_rail = model.positions(e, xs)[:, 1]
+        ys = [y + w.radius + drop_height for y, w in zip(y_rail, veh.wheels)]
+        body = static_bodies(veh, 0.0, ys)
+    states = []
+    for x, y, w in zip(xs, ys, veh.wheels):
+        contact.radius = w.radius
+        c = _core.contact_eval(model, e, x, y, x, contact, np.zeros(10))
+        ws = _core.WheelState()
+        ws.y, ws.ydot, ws.theta = y, 0.0, 0.0
+        ws.thetadot = float(c["tangent"][0]) * speed / c["rho"]  # pure rolling at the start
+        ws.s = c["s"]
+        ws.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
+        states.append(ws)
+    st = _core.SimState()
+    st.e = e
+    st.edot = np.zeros_like(e)
+    st.wheels = states
+    st.body = np.asarray(body, dtype=float)
+    st.bodydot = np.zeros(len(body))
+    return st
+
+
 def _initial_state(scene, model, speed, x_start, start, drop_height):
+    if scene.vehicle is not None:
+        return _vehicle_initial_state(scene, model, speed, x_start, start, drop_height)
     wheel = _kernel.wheel_params(scene)
     contact = _kernel.contact_params(scene)
     # an out-of-round wheel starts at theta = 0, touching with its radius rho0 + Delta rho(0)
@@ -166,7 +212,11 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     x_start, x_end : wheel-centre start and end [m]; default the middle of the first support bay
         and the middle of the last (``trackwheel.defaults.default_start`` / ``default_end``:
         0.25 m and 4.75 m for the paper's scene). With ``speed = 0``
-        give ``duration`` instead of ``x_end``.
+        give ``duration`` instead of ``x_end``. With a ``scene.vehicle`` they place the
+        vehicle's reference point (x = 0 of ``Vehicle.positions``; every wheel must stay on the
+        rail): by default its rear wheel starts in the middle of the first support bay and its
+        leading wheel ends in the middle of the last. Its start ("static") is the whole
+        vehicle's static state (docs: Model § The vehicle).
     duration : simulated time [s] (overrides ``x_end``).
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
         beyond.
@@ -223,6 +273,9 @@ def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
 def _passage(scene: Scene, speed: float, x_start, x_end, duration) -> tuple[float, float]:
     """(X_0 [m], simulated time [s]) from the start and either the end or the duration."""
     L = scene.rail.length
+    rear, front = scene.active_vehicle.span
+    if scene.vehicle is not None:
+        return _vehicle_passage(scene, speed, x_start, x_end, duration, rear, front)
     x0 = start_position(scene, x_start)
     if duration is not None:
         t_end = v.number("duration", duration, low=0.0, low_open=True, unit="s")
@@ -236,6 +289,35 @@ def _passage(scene: Scene, speed: float, x_start, x_end, duration) -> tuple[floa
         "x_end", x_end, low=0.0, high=L, unit="m")
     if x1 <= x0:
         raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m")
+    return x0, (x1 - x0) / speed
+
+
+def _vehicle_passage(scene: Scene, speed: float, x_start, x_end, duration, rear: float,
+                     front: float) -> tuple[float, float]:
+    """(X_0, time) for a vehicle: X_0 places its reference point (x = 0); every wheel must stay
+    on the rail. Defaults: the rear wheel starts in the middle of the first support bay, the
+    leading wheel ends in the middle of the last."""
+    L = scene.rail.length
+    lo, hi = -rear, L - front
+    if hi < lo:
+        raise ValueError(f"the vehicle's wheels span {front - rear:.4g} m, longer than the "
+                         f"rail ({L} m): lengthen Scene.rail.length")
+    x0 = default_start(scene) - rear if x_start is None else v.number(
+        "x_start", x_start, low=lo, high=hi, unit="m")
+    if duration is not None:
+        t_end = v.number("duration", duration, low=0.0, low_open=True, unit="s")
+        if x0 + speed * t_end > hi:
+            raise ValueError(f"duration = {duration} s takes the leading wheel to X = "
+                             f"{x0 + front + speed * t_end:.4g} m, beyond the rail end {L} m")
+        return x0, t_end
+    if speed == 0.0:
+        raise ValueError("speed = 0: give duration [s] (x_end cannot be reached)")
+    x1 = max(default_end(scene, x0 + front) - front, x0) if x_end is None else v.number(
+        "x_end", x_end, low=lo, high=hi, unit="m")
+    if x1 <= x0:
+        raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m (the rail "
+                         f"leaves the vehicle no room to move; allowed x range [{lo:.4g}, "
+                         f"{hi:.4g}] m)")
     return x0, (x1 - x0) / speed
 
 
@@ -308,7 +390,14 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     if not isinstance(rolling, bool):
         raise TypeError("rolling must be True or False")
     fidelity, n_modes = _check_fidelity(fidelity, integrator, n_modes, ne)
+    if fidelity == "linear/moving_force" and scene.active_vehicle.n_bodies:
+        raise ValueError("fidelity = 'linear/moving_force' has no wheel dynamics, so no "
+                         "suspension; a vehicle with bogies or a car body needs one of "
+                         "'linear/moving_mass', 'linear/sprung', 'linear/hertz', 'ancf/...', "
+                         "'full'")
     linear = fidelity.startswith("linear/")
+    if not linear:
+        _kernel.require_euler(scene, f"fidelity={fidelity!r}")
     energy = v.boolean("energy", energy)
     warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
     scene = _scene_for(scene, fidelity)
@@ -369,7 +458,8 @@ def _progress(plan: RunPlan, s, show: bool | None):
 def _run(plan: RunPlan, s, show: bool | None) -> tuple[dict, float]:
     """Run the kernel on ``plan`` with settings ``s``: (its output dict, wall time [s])."""
     callback, bar = _progress(plan, s, show)
-    wheel, contact = _kernel.wheel_params(plan.scene), _kernel.contact_params(plan.scene)
+    wheels, contact = _kernel.wheels_params(plan.scene), _kernel.contact_params(plan.scene)
+    vehicle = _kernel.vehicle_params(plan.scene)
     t0 = _time.perf_counter()
     try:
         if plan.linear:
@@ -378,9 +468,10 @@ def _run(plan: RunPlan, s, show: bool | None) -> tuple[dict, float]:
             opt.n_modes = plan.settings.n_modes or 0
             opt.sudden = plan.settings.start == "sudden"
             opt.drop_height = plan.settings.drop_height
-            out = _core.simulate_linear(plan.model, [wheel], contact, s, opt, callback)
+            opt.beam = _kernel.beam_params(plan.scene)
+            out = _core.simulate_linear(plan.model, wheels, contact, s, opt, callback, vehicle)
         else:
-            out = _core.simulate(plan.model, [wheel], contact, s, plan.init, callback)
+            out = _core.simulate(plan.model, wheels, contact, s, plan.init, callback, vehicle)
     finally:
         if bar is not None:
             bar.close()

@@ -3,7 +3,9 @@ resumable (issues 5, 13).
 
 ``sweep(scene, speed=[...], support_stiffness=[...], seeds=[...], **simulate_kwargs)`` runs
 ``simulate(case_scene, v, **simulate_kwargs)`` and :func:`trackwheel.analyse` for every
-(speed, support stiffness, seed) case and returns one table row per case;
+(speed, support stiffness, seed) case and returns one table row per case and wheel (long
+format: a vehicle's case has one row per wheel, ``wheel`` its index, ``worst`` True on the wheel
+with the largest amplitude, so ``df[df.worst]`` is one row per case; a single wheel is wheel 0);
 :func:`summarise_seeds` turns the rows of a Monte Carlo sweep into percentiles per speed.
 
 Seeds (the realisation axis): with ``seeds=[s, ...]`` the case scene's irregularity is
@@ -23,7 +25,7 @@ written with ``repr`` so they round-trip exactly) of ::
      "simulate": {the simulate keyword arguments given to sweep},
      "version": trackwheel.__version__}
 
-The file holds ``{"format": "trackwheel.sweep.case", "format_version": 2, "inputs_hash": <full
+The file holds ``{"format": "trackwheel.sweep.case", "format_version": 3, "inputs_hash": <full
 hash>, "inputs": {...}, "row": {column: value}, "checksum": <SHA-256 of the canonical JSON of
 everything but the checksum>}``; NaN and inf are written as ``null``. Each record is written to
 a temporary file in the same directory, flushed to disk and renamed over the final name
@@ -87,8 +89,9 @@ if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import tra
 __all__ = ["COLUMNS", "load_sweep", "summarise_seeds", "sweep"]
 
 FORMAT = "trackwheel.sweep.case"
-#: 2: the seed axis and the contact-force columns (issue 13); version-1 records are recomputed
-FORMAT_VERSION = 2
+#: 2: the seed axis and the contact-force columns (issue 13); 3: the vehicle's ``wheel``
+#: column and per-wheel ``wheels`` outputs (issue 15). Older records are recomputed.
+FORMAT_VERSION = 3
 
 #: Table columns, in order. Outputs are NaN (and ``lost_contact`` <NA>) for failed cases.
 COLUMNS = (
@@ -96,6 +99,8 @@ COLUMNS = (
     "speed_kmh",  # v [km/h]
     "support_stiffness",  # k_s [N/m]
     "seed",  # realisation of the random irregularity (<NA> without a seeds axis)
+    "wheel",  # the wheel this row measures (0 for a single wheel; <NA> for failed cases)
+    "worst",  # True on the case's worst wheel (largest amplitude): one such row per case
     "amplitude",  # max |d| [m] (analyse)
     "main_frequency",  # [Hz]
     "frequency_resolution",  # 1/(N dt) [Hz]
@@ -142,8 +147,8 @@ def _case_scene(scene: Scene, stiffness: float, seed: int | None = None) -> Scen
 
 def _error_row(scene: Scene, speed: float, kwargs: dict, message: str, wall: float) -> dict:
     row = {c: math.nan for c in _FLOAT}
-    row.update(lost_contact=None, n_elements=scene.rail.n_elements, output_every=None,
-               steps=None, integrator=None, rolling=None, start=None, fidelity=None,
+    row.update(lost_contact=None, wheel=None, n_elements=scene.rail.n_elements,
+               output_every=None, steps=None, integrator=None, rolling=None, start=None, fidelity=None,
                n_modes=None)
     for name in _SETTINGS:  # what was asked for; None/NaN where simulate resolves it
         given = kwargs.get(name, _SIMULATE_PARAMS.get(name))
@@ -155,16 +160,34 @@ def _error_row(scene: Scene, speed: float, kwargs: dict, message: str, wall: flo
     return row
 
 
+def _wheel_outputs(r, scene: Scene) -> list[dict]:
+    """The analysed outputs of each wheel of run ``r`` (P1/P2 for a wheel that passes the
+    scene's dipped joint)."""
+    out = []
+    for i in range(r.n_wheels):
+        ri = r.wheel(i)
+        x_d = defect_position(scene)
+        if x_d is not None and not ri.x_wheel[0] <= x_d <= ri.x_wheel[-1]:
+            x_d = None  # this wheel does not reach the joint: no P1/P2
+        a = analyse(ri, defect_at=x_d)
+        out.append(dict(
+            amplitude=a.amplitude, main_frequency=a.main_frequency,
+            frequency_resolution=a.frequency_resolution, min_contact_force=a.min_contact_force,
+            max_contact_force=a.max_contact_force, lost_contact=a.lost_contact,
+            dynamic_factor=a.dynamic_factor, loss_duration=a.loss_duration,
+            force_rms=float(np.std(ri.normal_force)), p1=a.forces.p1, p1_time=a.forces.p1_time,
+            p2=a.forces.p2, p2_time=a.forces.p2_time))
+    return out
+
+
 def _run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
     """Simulate and analyse one case; DivergenceError, ValueError and the kernel's RuntimeError
-    (a failed static solve) become an error row."""
+    (a failed static solve) become an error row. A vehicle's case row holds its worst wheel's
+    outputs and, under ``wheels``, every wheel's (the table has one row per wheel)."""
     t0 = time.perf_counter()
     try:
         r = simulate(scene, speed, progress=False, **kwargs)
-        x_d = defect_position(scene)
-        if x_d is not None and not r.x_wheel[0] <= x_d <= r.x_wheel[-1]:
-            x_d = None  # the run does not reach the joint: no P1/P2
-        a = analyse(r, defect_at=x_d)
+        wheels = _wheel_outputs(r, scene)
     except (DivergenceError, ValueError, RuntimeError) as exc:
         # RuntimeError: the kernel's static solve at the start failed (e.g. a load that pushes
         # the rail off its supports) -- a property of the case, like a divergence
@@ -172,14 +195,11 @@ def _run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
                           time.perf_counter() - t0)
     s = r.settings
     row = {name: getattr(s, name) for name in _SETTINGS}
-    row.update(
-        amplitude=a.amplitude, main_frequency=a.main_frequency,
-        frequency_resolution=a.frequency_resolution, min_contact_force=a.min_contact_force,
-        max_contact_force=a.max_contact_force, lost_contact=a.lost_contact, error="",
-        dynamic_factor=a.dynamic_factor, loss_duration=a.loss_duration,
-        force_rms=float(np.std(r.normal_force)), p1=a.forces.p1, p1_time=a.forces.p1_time,
-        p2=a.forces.p2, p2_time=a.forces.p2_time,
-        wall_time=r.wall_time, x_end=s.x_end, steps=r.steps)
+    worst = int(np.argmax([w["amplitude"] for w in wheels]))
+    row.update(wheels[worst], wheel=worst, error="", wall_time=r.wall_time, x_end=s.x_end,
+               steps=r.steps)
+    if len(wheels) > 1:
+        row["wheels"] = wheels
     return row
 
 
@@ -253,7 +273,7 @@ def _read_record(path: Path) -> tuple[dict | None, str]:
         return None, "missing inputs or row"
     if payload.get("inputs_hash") != hashlib.sha256(_canonical(inputs)).hexdigest():
         return None, "inputs hash mismatch"
-    if set(row) != set(COLUMNS):
+    if set(row) - {"wheels"} != set(COLUMNS) - {"worst"}:
         return None, "wrong columns"
     return payload, ""
 
@@ -263,17 +283,37 @@ def _decode_row(row: dict) -> dict:
     for c in _FLOAT:
         if out[c] is None:
             out[c] = math.nan
+    if out.get("wheels"):
+        out["wheels"] = [{c: (math.nan if c in _FLOAT and val is None else val)
+                          for c, val in w.items()} for w in out["wheels"]]
+    return out
+
+
+def _long(rows: list[dict]) -> list[dict]:
+    """One row per wheel: a vehicle case's row repeated with each wheel's outputs, ``wheel``
+    its index and ``worst`` on the worst one (a single wheel: wheel 0, worst)."""
+    out = []
+    for row in rows:
+        per_wheel = row.get("wheels")
+        base = {k: val for k, val in row.items() if k != "wheels"}
+        worst = base.get("wheel")
+        if not per_wheel:
+            out.append(dict(base, worst=None if worst is None else True))
+            continue
+        for i, w in enumerate(per_wheel):
+            out.append(dict(base, **w, wheel=i, worst=i == worst))
     return out
 
 
 def _frame(rows: list[dict]):
     import pandas as pd
 
-    df = pd.DataFrame.from_records(rows, columns=list(COLUMNS))
+    df = pd.DataFrame.from_records(_long(rows), columns=list(COLUMNS))
     for c in _FLOAT:
         df[c] = df[c].astype("float64")
     df["lost_contact"] = df["lost_contact"].astype("boolean")
-    for c in ("seed", "n_elements", "output_every", "steps"):
+    df["worst"] = df["worst"].astype("boolean")
+    for c in ("seed", "wheel", "n_elements", "output_every", "steps"):
         df[c] = df[c].astype("Int64")
     df["error"] = df["error"].astype(str)
     return df
@@ -297,7 +337,8 @@ def load_sweep(path) -> pd.DataFrame:
             continue
         rows.append(_decode_row(payload["row"]))
     df = _frame(rows)
-    return df.sort_values(["speed", "support_stiffness", "seed", "case"], ignore_index=True)
+    return df.sort_values(["speed", "support_stiffness", "seed", "case", "wheel"],
+                          ignore_index=True)
 
 
 # --------------------------------------------------------------------------------------------

@@ -1,0 +1,159 @@
+#include "sleepers.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace trackwheel {
+
+bool is_layered(const SupportParams& s) { return !s.sleeper_mass.empty(); }
+
+Sleepers::Sleepers(const RailModel& rail) {
+  const SupportParams& s = rail.supports();
+  if (!is_layered(s)) return;
+  for (size_t j = 0; j < s.position.size(); ++j) pt_.push_back(rail.locate(s.position[j]));
+  m_ = s.sleeper_mass;
+  kp_ = s.stiffness;
+  cp_ = s.damping;
+  kb_ = s.ballast_stiffness;
+  cb_ = s.ballast_damping;
+  g_ = rail.params().gravity;  // the track's weight: switched with the rail's
+}
+
+double Sleepers::rail_y(int j, const Eigen::VectorXd& u, const std::vector<int>& map) const {
+  double y = 0.0;
+  for (int a = 0; a < 4; ++a) {
+    const int i = map[index(j, a)];
+    if (i >= 0) y += weight(j, a) * u(i);
+  }
+  return y;
+}
+
+double Sleepers::force(int j, double y, double ydot, double z, double zdot) const {
+  return kp_[j] * (y - z) + cp_[j] * (ydot - zdot) - kb_[j] * z - cb_[j] * zdot - m_[j] * g_;
+}
+
+void Sleepers::forces(const Eigen::VectorXd& u, const Eigen::VectorXd* udot,
+                      const std::vector<int>& map, const Eigen::VectorXd& z,
+                      const Eigen::VectorXd* zdot, Eigen::VectorXd& F) const {
+  F.resize(size());
+  for (int j = 0; j < size(); ++j) {
+    const double y = rail_y(j, u, map), yd = udot ? rail_y(j, *udot, map) : 0.0;
+    F(j) = force(j, y, yd, z(j), zdot ? (*zdot)(j) : 0.0);
+  }
+}
+
+void Sleepers::add_rail_force(const Eigen::VectorXd& z, const Eigen::VectorXd* zdot,
+                              const std::vector<int>& map, Eigen::VectorXd& Q, double sign) const {
+  for (int j = 0; j < size(); ++j) {
+    const double f = sign * (kp_[j] * z(j) + (zdot ? cp_[j] * (*zdot)(j) : 0.0));
+    for (int a = 0; a < 4; ++a) {
+      const int i = map[index(j, a)];
+      if (i >= 0) Q(i) += weight(j, a) * f;
+    }
+  }
+}
+
+Eigen::VectorXd Sleepers::static_z(const Eigen::VectorXd& e) const {
+  Eigen::VectorXd z(size());
+  for (int j = 0; j < size(); ++j) {
+    double y = 0.0;
+    for (int a = 0; a < 4; ++a) y += weight(j, a) * e(index(j, a));
+    z(j) = (kp_[j] * y - m_[j] * g_) / (kp_[j] + kb_[j]);
+  }
+  return z;
+}
+
+Eigen::VectorXd Sleepers::ballast_force(const Eigen::VectorXd& z) const {
+  Eigen::VectorXd f(size());
+  for (int j = 0; j < size(); ++j) f(j) = -kb_[j] * z(j);
+  return f;
+}
+
+double Sleepers::energy(const Eigen::VectorXd& u, const std::vector<int>& map,
+                        const Eigen::VectorXd& z, const Eigen::VectorXd& zdot) const {
+  double E = kinetic_energy(zdot);
+  for (int j = 0; j < size(); ++j) {
+    const double y = rail_y(j, u, map);
+    E += -kp_[j] * y * z(j) + 0.5 * (kp_[j] + kb_[j]) * z(j) * z(j) + m_[j] * g_ * z(j);
+  }
+  return E;
+}
+
+double Sleepers::kinetic_energy(const Eigen::VectorXd& zdot) const {
+  double E = 0.0;
+  for (int j = 0; j < size(); ++j) E += 0.5 * m_[j] * zdot(j) * zdot(j);
+  return E;
+}
+
+double Sleepers::highest_frequency() const {
+  double w2 = 0.0;
+  for (int j = 0; j < size(); ++j) w2 = std::max(w2, (kp_[j] + kb_[j]) / m_[j]);
+  return std::sqrt(w2);
+}
+
+void Sleepers::set_coefficients(double cm, double cv, double cq) {
+  a_.resize(size());
+  D_.resize(size());
+  for (int j = 0; j < size(); ++j) {
+    a_(j) = cq * kp_[j] + cv * cp_[j];
+    D_(j) = cm * m_[j] + cv * (cp_[j] + cb_[j]) + cq * (kp_[j] + kb_[j]);
+  }
+}
+
+void Sleepers::condense_matrix(const std::vector<int>& map, BandMatrix& K) const {
+  for (int j = 0; j < size(); ++j) {
+    const double c = a_(j) * a_(j) / D_(j);
+    for (int a = 0; a < 4; ++a) {
+      const int i = map[index(j, a)];
+      if (i < 0) continue;
+      for (int b = 0; b < 4; ++b) {
+        const int k = map[index(j, b)];
+        if (k >= 0) K.add(i, k, -c * weight(j, a) * weight(j, b));
+      }
+    }
+  }
+}
+
+void Sleepers::condense_rhs(const Eigen::VectorXd& rs, const std::vector<int>& map,
+                            Eigen::VectorXd& r) const {
+  for (int j = 0; j < size(); ++j) {
+    const double c = a_(j) / D_(j) * rs(j);
+    for (int a = 0; a < 4; ++a) {
+      const int i = map[index(j, a)];
+      if (i >= 0) r(i) += c * weight(j, a);
+    }
+  }
+}
+
+void Sleepers::back_substitute(const Eigen::VectorXd& rs, const Eigen::VectorXd& dx,
+                               const std::vector<int>& map, Eigen::VectorXd& dz) const {
+  dz.resize(size());
+  for (int j = 0; j < size(); ++j) dz(j) = (rs(j) + a_(j) * rail_y(j, dx, map)) / D_(j);
+}
+
+void Sleepers::coupling_blocks(const std::vector<int>& map, int n, Eigen::MatrixXd& B,
+                               Eigen::VectorXd& D) const {
+  B = Eigen::MatrixXd::Zero(n, size());
+  for (int j = 0; j < size(); ++j)
+    for (int a = 0; a < 4; ++a) {
+      const int i = map[index(j, a)];
+      if (i >= 0) B(i, j) -= a_(j) * weight(j, a);
+    }
+  D = D_;
+}
+
+void Sleepers::uncondense_dense(const std::vector<int>& map, Eigen::MatrixXd& K) const {
+  for (int j = 0; j < size(); ++j) {
+    const double c = a_(j) * a_(j) / D_(j);
+    for (int a = 0; a < 4; ++a) {
+      const int i = map[index(j, a)];
+      if (i < 0) continue;
+      for (int b = 0; b < 4; ++b) {
+        const int k = map[index(j, b)];
+        if (k >= 0) K(i, k) += c * weight(j, a) * weight(j, b);
+      }
+    }
+  }
+}
+
+}  // namespace trackwheel
