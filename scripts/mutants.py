@@ -214,8 +214,8 @@ MUTANTS: list[Mutant] = [
     M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x, linear)",
       "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005, linear)",
       "quasi-static line taken 5 mm ahead of the wheel"),
-    M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(positions[p]);",
-      "const MeshPoint mp = rail.locate(positions[p] + 0.05);",
+    M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(position);",
+      "const MeshPoint mp = rail.locate(position + 0.05);",
       "eigen analysis attaches the wheel 5 cm from where it is asked"),
 ]
 
