@@ -176,9 +176,10 @@ def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None =
 
 def vertical_matrices(scene: Scene, *, n_elements: int | None = None):
     """The linear vertical rail's sparse M [kg], C [N s/m] and K [N/m] (scipy CSR) over its free
-    y coordinates (y, y_s per node), at the straight reference, with the support and end-zone
-    dampers in C, and the full ANCF index of each coordinate: ``(M, C, K, dofs)``. The same
-    band matrices the linear path integrates (docs: Model § Rail (linearised))."""
+    y coordinates (y, y_s per node), then the sleepers' z_j on layered supports, at the straight
+    reference, with the support and end-zone dampers in C, and the full ANCF index of each rail
+    coordinate: ``(M, C, K, dofs)`` (``dofs`` has no entries for the sleepers). The same band
+    matrices the linear path integrates (docs: Model § Rail (linearised))."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     model = _kernel.rail_model(scene, _mesh(scene, n_elements))
