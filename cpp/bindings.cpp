@@ -449,7 +449,8 @@ PYBIND11_MODULE(_core, m) {
       py::arg("contact_stiffness") = 0.0, py::arg("position") = 0.0,
       "K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) "
       "at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates "
-      "(the direction's free coordinates, full indices in dofs, then the wheel's Y_w)");
+      "(the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the "
+      "sleepers' z_j on layered supports)");
 
   // ---------------------------------------------------------------- linear beam, frequency domain
   py::class_<BeamParams>(m, "BeamParams")

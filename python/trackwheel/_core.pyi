@@ -839,7 +839,7 @@ def contact_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike,
     """
 def direction_pencil(rail: RailModel, component: typing.SupportsInt | typing.SupportsIndex, wheel_mass: typing.SupportsFloat | typing.SupportsIndex = 0.0, contact_stiffness: typing.SupportsFloat | typing.SupportsIndex = 0.0, position: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
     """
-    K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates (the direction's free coordinates, full indices in dofs, then the wheel's Y_w)
+    K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates (the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the sleepers' z_j on layered supports)
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
