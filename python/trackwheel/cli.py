@@ -423,7 +423,7 @@ def _add_decay_rate(sub) -> None:
         "decay-rate", help="print the track decay rate per one-third-octave band",
         description="Vertical track decay rate [dB/m] of the linear track by the EN 15461 method "
                     "(trackwheel.decay_rate) in the one-third-octave bands 250 Hz - 5 kHz, each "
-                    "from the band average of |transfer receptance|^2 over --per-band "
+                    "from the band average of the squared magnitude of the transfer receptances over --per-band "
                     "frequencies, beside the ISO 3095:2013 lower limit for a test track. "
                     "The rail must be longer than 66 support spacings: --track ballasted, "
                     f"whose length here defaults to {_DECAY_LENGTH:g} m.")
