@@ -1047,24 +1047,6 @@ def _cmd_receptance(args: argparse.Namespace, parser: argparse.ArgumentParser) -
     return 0
 
 
-def band_decay_rates(scene: Scene, per_band: int = 8, n_elements: int | None = None
-                     ) -> np.ndarray:
-    """Decay rate [dB/m] per ``ISO3095_BANDS`` one-third-octave band: the EN 15461 sum of the
-    band averages of |A(x_n)|^2 over ``per_band`` log-spaced frequencies inside each band (the
-    standard filters the measured transfer functions in bands, not at the centre frequency)."""
-    from .frequency import decay_rate_positions, en15461_decay, iso3095_band_edges, receptance
-
-    x = decay_rate_positions(scene)
-    edges = iso3095_band_edges()
-    out = np.empty(edges.size - 1)
-    for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
-        f = np.geomspace(lo, hi, per_band + 2)[1:-1]
-        a = receptance(scene, float(x[0]), f, x, n_elements=n_elements)
-        power = np.mean(np.abs(a) ** 2, axis=0)
-        out[k] = en15461_decay(x, np.sqrt(power)[None, :])[0]
-    return out
-
-
 def _cmd_decay_rate(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     from .frequency import (EN15461_SPANS, ISO3095_BANDS, ISO3095_VERTICAL_LIMIT,
                             iso3095_band_edges)
@@ -1084,6 +1066,8 @@ def _cmd_decay_rate(args: argparse.Namespace, parser: argparse.ArgumentParser) -
                      f"--track ballasted (default {_DECAY_LENGTH:g} m)")
     n_el, note = _frequency_mesh(scene, iso3095_band_edges()[-1], args.n_elements)
     _print_notes([note] if note else [], "decay-rate")
+    from .frequency import band_decay_rates
+
     dr = band_decay_rates(scene, args.per_band, n_el)
     limit = np.asarray(ISO3095_VERTICAL_LIMIT)
     print(f"{_scene_name(scene, args)}, {scene.rail.length:g} m, {n_el} elements")
