@@ -171,3 +171,22 @@ def test_bad_brake_input_is_refused():
     for fidelity in ("linear/hertz", "linear/moving_mass"):
         with pytest.raises(ValueError, match=r"brake_torque.*'full', 'ancf/sprung'"):
             tw.simulate(braked(BASE), V, fidelity=fidelity, x_end=2.6, progress=False)
+
+
+def test_cli_brake_torque_brakes_the_wheel(capsys):
+    """``trackwheel run --brake-torque T_B`` runs the API's braked scene (printed results of a
+    braked and an unbraked run differ) and refuses a negative T_B or a linear level with a
+    one-line error naming the option."""
+    from trackwheel import cli
+
+    cheap = ["--speed-kmh", "100", "--n-elements", "20", "--dt", "1e-5", "--x-end", "0.75"]
+    assert cli.main(["run", *cheap]) == 0
+    free = capsys.readouterr().out
+    assert cli.main(["run", *cheap, "--brake-torque", str(T_B)]) == 0
+    assert capsys.readouterr().out.split("wall")[0] != free.split("wall")[0]
+    for argv, word in ((["--brake-torque", "-1"], "--brake-torque = -1.0"),
+                       (["--brake-torque", "5000", "--fidelity", "linear/hertz"],
+                        "--brake-torque > 0 needs the wheel's rotation")):
+        assert cli.main(["run", *cheap, *argv]) == 2
+        err = capsys.readouterr().err
+        assert len(err.splitlines()) == 1 and word in err, err
