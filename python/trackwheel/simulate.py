@@ -238,7 +238,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     energy : also record the total mechanical energy [J] per sample: kinetic + strain + support
         springs + contact potential + potentials of gravity on the rail, of the wheel load
         (F + M g) Y_A and of the torque (-T theta). Conserved without damping when the wheel does
-        not move forward (the driving reaction does work when it does).
+        not move forward (the driving reaction does work when it does); sliding friction
+        (lambda times the slip velocity) and a brake (-T_b |theta'| while it turns) dissipate.
 
     Raises
     ------
