@@ -17,7 +17,8 @@ Excitation (``run`` and ``sweep``, docs: Model § Irregularities; lengths in m):
 ``--irregularity fra:N | german:low | german:high | china | iso3095 | sine:WAVELENGTH,AMPLITUDE``
 (repeatable: the profiles add), ``--seed N`` and ``--wavelengths MIN MAX`` for the random
 spectra, ``--joint DEPTH,LENGTH,AT`` (a Kabo dipped joint; turns the contact filter on),
-``--wheel-flat LENGTH`` (a new flat, half a revolution from the start), ``--patch-filter``.
+``--wheel-flat LENGTH`` (a new flat, half a revolution from the start), ``--patch-filter``;
+``run --brake-torque T_B`` brakes the wheel [N m] (beyond adhesion it locks and slides).
 ``trackwheel eigen [--position X] [--n-modes N]``
     Print the lowest vertical natural frequencies with the wheel at X [m].
 ``trackwheel receptance [--at midspan|support|X] [--fmin F] [--fmax F] [--n N] [--out CSV]``
@@ -336,6 +337,10 @@ def _add_run(sub) -> None:
                         "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
                         "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
     _excitation_options(p)
+    p.add_argument("--brake-torque", type=_finite_float, metavar="T_B",
+                   help="friction brake on the wheel's rotation [N m], >= 0: beyond adhesion "
+                        "(mu P rho0, 1414 N m for the paper's wheel) it locks the wheel, which "
+                        "then slides (docs: Model § Rolling and slip)")
     _simulate_options(p)
     p.add_argument("--plot", type=Path, metavar="PNG",
                    help="save y_B, y_qs, d(t) and the spectrum of d to this file (any format "
@@ -513,6 +518,7 @@ def _option_error(exc: Exception) -> str:
     text = str(exc)
     text = text.replace("Supports.stiffness", "--support-stiffness")
     text = text.replace("Rail.shear_coefficient", "--shear-coefficient")
+    text = text.replace("Wheel.brake_torque", "--brake-torque")
     if text.startswith("length = "):  # Scene.ballasted_track's length
         text = "--length " + text[len("length = "):]
     for name in ("n_elements", "x_start", "x_end", "speed_kmh", "support_stiffness"):
@@ -788,9 +794,14 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     _check_beam_fidelity(args, parser)
     if args.vehicle != "single" and args.wheel_flat is not None:
         parser.error("--wheel-flat is only available with --vehicle single")
+    if args.vehicle != "single" and args.brake_torque is not None:
+        parser.error("--brake-torque is only available with --vehicle single")
     try:
         scene = _vehicle_scene(_track_scene(args, args.support_stiffness), args.vehicle)
         scene, notes = _excited_scene(scene, args)
+        if args.brake_torque is not None:
+            scene = dataclasses.replace(scene, wheel=dataclasses.replace(
+                scene.wheel, brake_torque=args.brake_torque))
     except _OptionError as exc:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
