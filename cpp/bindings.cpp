@@ -250,6 +250,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("radius", &WheelParams::radius)
       .def_readwrite("load", &WheelParams::load)
       .def_readwrite("torque", &WheelParams::torque)
+      .def_readwrite("brake_torque", &WheelParams::brake_torque,
+                     "T_b of the friction brake on the rotation [N m] (0: none)")
       .def_readwrite("gravity", &WheelParams::gravity)
       .def_readwrite("x_offset", &WheelParams::x_offset,
                      "X_A - (X_0 + v t), the wheel's place along the vehicle [m]")
@@ -532,7 +534,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("thetadot", &WheelState::thetadot, "rolling rate [rad/s]")
       .def_readwrite("s", &WheelState::s, "contact parameter warm start [m]")
       .def_readwrite("state", &WheelState::state)
-      .def_readwrite("sigma", &WheelState::sigma, "sign of the sliding friction force");
+      .def_readwrite("sigma", &WheelState::sigma, "sign of the sliding friction force")
+      .def_readwrite("locked", &WheelState::locked, "held by the brake at theta' = 0")
+      .def_readwrite("brake_sign", &WheelState::brake_sign,
+                     "sign of the brake torque on the turning wheel (-sign theta')");
   py::class_<SimState>(m, "SimState")
       .def(py::init<>())
       .def_readwrite("e", &SimState::e, "rail coordinates (n_dof,)")

@@ -167,7 +167,7 @@ MUTANTS: list[Mutant] = [
       "Newton matrix of the sliding row without dN/dqdot",
       equivalent="only the Newton matrix changes: the iteration converges to the same residual "
                  "tolerance (modified Newton), results agree to newton_tol; kept as a control"),
-    M("out-of-round-moment", SYS, "- we.cf.N * we.drho.rx;", ";",
+    M("out-of-round-moment", SLIP, "- ev.cf.N * ev.drho.rx;", ";",
       "an out-of-round wheel's normal force without its moment -N d(Delta rho)/d psi"),
     M("baumgarte-sign", SYS, "- set_.baumgarte * we.rk.g;", "+ set_.baumgarte * we.rk.g;",
       "Baumgarte stabilisation destabilises the constraint drift"),

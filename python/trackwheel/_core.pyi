@@ -172,6 +172,14 @@ class WheelParams:
     def __init__(self) -> None:
         ...
     @property
+    def brake_torque(self) -> float:
+        """
+        T_b of the friction brake on the rotation [N m] (0: none)
+        """
+    @brake_torque.setter
+    def brake_torque(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def gravity(self) -> float:
         ...
     @gravity.setter
@@ -634,6 +642,22 @@ class SimSettings:
 class WheelState:
     state: SlipState
     def __init__(self) -> None:
+        ...
+    @property
+    def brake_sign(self) -> float:
+        """
+        sign of the brake torque on the turning wheel (-sign theta')
+        """
+    @brake_sign.setter
+    def brake_sign(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def locked(self) -> bool:
+        """
+        held by the brake at theta' = 0
+        """
+    @locked.setter
+    def locked(self, arg0: bool) -> None:
         ...
     @property
     def s(self) -> float:

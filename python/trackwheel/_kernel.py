@@ -112,6 +112,7 @@ def wheel_params(scene: Scene) -> _core.WheelParams:
     p.radius = w.radius
     p.load = w.load
     p.torque = w.torque
+    p.brake_torque = w.brake_torque
     p.gravity = scene.gravity
     p.out_of_round = out_of_round(scene)
     return p
@@ -132,6 +133,7 @@ def wheels_params(scene: Scene) -> list:
         p.radius = w.radius
         p.load = 0.0 if veh.bogie_of(i) is not None else w.load
         p.torque = w.torque
+        p.brake_torque = w.brake_torque
         p.gravity = scene.gravity
         p.x_offset = x
         p.out_of_round = _out_of_round(w.defects, w.radius)

@@ -261,6 +261,11 @@ class Wheel:
     youngs_modulus: float = 2.058e11  #: E of the wheel [Pa] (Hertz constant)
     poisson_ratio: float = 0.30  #: nu of the wheel [-]
     torque: float = 0.0  #: external torque on the wheel, positive in the rolling direction [N m]
+    #: T_b, a friction brake on the rotation [N m]: -T_b sign(theta') while the wheel turns; the
+    #: wheel locks (theta' = 0) when its spin reaches zero and stays locked while the torque
+    #: needed to hold it, abs(T - rho lambda), is <= T_b (beyond adhesion, T_b > mu P rho0, it
+    #: locks and slides). Full and ancf/* levels only (docs: Model § Rolling and slip)
+    brake_torque: float = 0.0
     #: out-of-roundness, a tuple of :class:`~trackwheel.irregularity.WheelFlat` /
     #: :class:`~trackwheel.irregularity.Polygon` (docs: Model § Irregularities); () is a round wheel
     defects: tuple = ()
@@ -274,6 +279,7 @@ class Wheel:
         v.positive("Wheel.youngs_modulus", self.youngs_modulus, "Pa")
         v.number("Wheel.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
         v.number("Wheel.torque", self.torque, unit="N m")
+        v.number("Wheel.brake_torque", self.brake_torque, low=0.0, unit="N m")
         if not isinstance(self.defects, (tuple, list)):
             raise TypeError(f"Wheel.defects must be a tuple of WheelFlat/Polygon, "
                             f"got {type(self.defects).__name__}")
