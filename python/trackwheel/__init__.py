@@ -19,7 +19,7 @@ from .force_statistics import ForceStatistics, force_statistics
 from .frequency import decay_rate, receptance
 from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
-from .scene import Contact, Rail, Scene, Supports, Wheel, kmh
+from .scene import Contact, Rail, Scene, Supports, Wheel, Window, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .vehicle import Bogie, CarBody, Vehicle
 from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
@@ -45,6 +45,7 @@ __all__ = [
     "StaticResult",
     "Supports",
     "Wheel",
+    "Window",
     "__version__",
     "adequacy",
     "amplitude_spectrum",

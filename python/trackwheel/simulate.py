@@ -220,11 +220,11 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         vehicle's static state (docs: Model § The vehicle).
     duration : simulated time [s] (overrides ``x_end``).
     distance : distance run [m], ``x_end = x_start + distance`` (give one of ``x_end``,
-        ``distance``, ``duration``). On a travelling window (``scene.window``, docs: Model § The
-        travelling window) ``x_end`` and ``distance`` are not bounded by the rail: kilometres
-        cost the same per metre and keep only the decimated samples in memory; there the
-        default run is one window length, and ``x_start`` >= 0 (the rear wheel's start by
-        default: the middle of the first bay).
+        ``distance``, ``duration``). On a travelling window (``scene.window``,
+        docs: Model § The travelling window) ``x_end`` and ``distance`` are not bounded by the
+        rail: kilometres cost the same per metre and keep only the decimated samples in
+        memory; there the default run is one window length, and every wheel starts at X >= 0
+        (default: the rear wheel in the middle of the first bay).
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
         beyond.
     rho_inf : generalized-alpha spectral radius at infinite frequency, in [0, 1] (1: no numerical

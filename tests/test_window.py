@@ -1,0 +1,137 @@
+"""The travelling window (docs: Model § The travelling window).
+
+The window's rail is a fixed number of sleeper bays that moves with the wheel; the state shifts
+by one bay inside the kernel's time loop. Checks: it reproduces a long fixed track (same
+irregularity, same supports), it gives the closed-form steady state of a constant force moving
+along an infinite beam on an elastic foundation, its output size is that of the kept samples
+whatever the distance, and it refuses tracks it cannot shift.
+"""
+
+from __future__ import annotations
+
+import dataclasses as dc
+import math
+
+import numpy as np
+import pytest
+
+import trackwheel as tw
+from trackwheel import spectra
+
+V = tw.kmh(300)
+#: the ballasted preset's static wheel load P = F + M g [N]
+P_STATIC = 70e3
+
+
+def _fra5():
+    # wavelengths 3-50 m: the wheel keeps contact at 300 km/h, so the comparison tests the
+    # shift, not the sensitivity of a wheel landing after a loss of contact
+    return tw.Irregularity.random(spectra.fra(5), seed=3, wavelengths=(3.0, 50.0))
+
+
+def test_window_equals_long_fixed_track():
+    """12 m of FRA class 5 at 300 km/h on a window of 20 + 1 + 20 bays (24.6 m, 20 shifts)
+    against a 60 m fixed rail whose ends are 20 m behind the start and 28 m beyond the end:
+    Hertzian contact force and wheel height agree within 1e-3 of the static load (and the
+    corresponding 1e-3 P / k_H of the wheel) over the last 4 m. The first metres differ by up to
+    8e-3 P: the start (static equilibrium at speed) sends waves to both rails' ends, which
+    return at different times from the window's nearer ends; they have died out by 8 m."""
+    irr = _fra5()
+    fixed = dc.replace(tw.Scene.ballasted_track(length=60.0), irregularity=irr)
+    window = dc.replace(tw.Scene.ballasted_track(window=tw.Window(20, 20)), irregularity=irr)
+    kw = dict(x_start=20.1, x_end=32.1, fidelity="linear/hertz", progress=False)
+    rf = tw.simulate(fixed, V, n_elements=fixed.rail.n_elements, **kw)
+    rw = tw.simulate(window, V, n_elements=window.rail.n_elements, dt=rf.settings.dt, **kw)
+    assert window.rail.length == pytest.approx(41 * 0.6) and rw.x_wheel[-1] > window.rail.length
+    np.testing.assert_array_equal(rw.x_wheel, rf.x_wheel)  # outputs in the track's X
+    stretch = rw.x_wheel >= 28.1
+    assert np.ptp(rf.normal_force[stretch]) > 0.1 * P_STATIC  # the irregularity excites
+    assert np.abs(rw.normal_force - rf.normal_force)[stretch].max() < 1e-3 * P_STATIC
+    # the wheel's height to the same fraction: 1e-3 P over the Hertz stiffness at P
+    k_h = 1.5 * window.hertz_constant ** (2 / 3) * P_STATIC ** (1 / 3)
+    assert np.abs(rw.y_wheel - rf.y_wheel)[stretch].max() < 1e-3 * P_STATIC / k_h
+
+
+def winkler_scene(zeta: float = 0.02) -> tuple[tw.Scene, float, float]:
+    """A light beam on supports every 5 cm (lambda d = 0.1: the Winkler limit) on a window of
+    401 bays (20 m, 40 / lambda), no gravity, the foundation damped at zeta of critical.
+    Returns (scene, k [N/m^2], m [kg/m])."""
+    EI, E, k, d = 37500.0, 210e9, 2.4e6, 0.05
+    rail = tw.Rail(length=1.0, youngs_modulus=E, density=7850.0, area=7.69e-3,
+                   second_moment=EI / E, n_elements=20)
+    m = rail.mass_per_length
+    c = 2.0 * zeta * math.sqrt(k * m)
+    scene = tw.Scene(rail=rail, supports=tw.Supports(stiffness=k * d, damping=c * d, spacing=d),
+                     wheel=tw.Wheel(load=1e4, mass=10.0), gravity=0.0, rail_gravity=False)
+    return scene.windowed(tw.Window(bays_behind=200, bays_ahead=200)), k, m
+
+
+@pytest.mark.parametrize("alpha", [0.0, 0.3, 0.5, 0.7])
+def test_moving_load_on_winkler_beam(alpha):
+    """Steady deflection under a constant force P moving at v = alpha v_cr along an infinite
+    Euler-Bernoulli beam on an elastic foundation (Winkler modulus k):
+    w(0) = P lambda / (2 k) / sqrt(1 - alpha^2), lambda = (k / (4 EI))^(1/4),
+    v_cr = (4 k EI / m^2)^(1/4) (docs: Model § Validation). It is the value at xi = 0 of the
+    steady solution of EI w'''' + m v^2 w'' + k w = P delta(xi) in xi = x - v t,
+    (P / pi) int_0^inf dkappa / (EI kappa^4 - m v^2 kappa^2 + k); the same closed form is
+    Fryba, *Vibration of Solids and Structures under Moving Loads* (1999), ch. 4 (the infinite
+    beam on an elastic foundation), undamped case.
+
+    Tolerance 2e-3: the foundation damping zeta = 0.02 (there to let the start transient die)
+    lowers w(0) by 8e-4 at alpha = 0.7 (the damped Fourier integral, evaluated separately:
+    3e-5 at 0.3), 5 cm supports and elements differ from the continuous foundation by 1e-4,
+    and the mean over the last 0.2 s averages the remaining transient (1 % peak to peak)."""
+    scene, k, m = winkler_scene()
+    EI = scene.rail.bending_stiffness
+    lam = (k / (4.0 * EI)) ** 0.25
+    v_cr = (4.0 * k * EI / m**2) ** 0.25
+    speed = max(alpha * v_cr, 1.0)  # 1 m/s for the static limit: alpha = 0.01
+    r = tw.simulate(scene, speed, fidelity="linear/moving_force", dt=2e-4, duration=1.2,
+                    n_elements=scene.rail.n_elements, progress=False)
+    a = speed / v_cr
+    w0 = scene.static_load * lam / (2.0 * k) / math.sqrt(1.0 - a * a)
+    assert r.x_wheel[-1] - r.x_wheel[0] > scene.rail.length or alpha < 0.3
+    w = -r.y_contact[r.t > 1.0].mean()
+    assert w == pytest.approx(w0, rel=2e-3)
+
+
+def test_output_size_independent_of_distance():
+    """Memory: a run ten windows long keeps exactly its decimated samples (n_steps // every
+    + 1 per field), and the kernel's state is the window's: the same rail size whatever the
+    distance."""
+    scene, _, _ = winkler_scene()
+    kw = dict(fidelity="linear/moving_force", dt=2e-4, n_elements=scene.rail.n_elements,
+              progress=False, output_every=50, x_start=0.3)
+    short = tw.simulate(scene, 100.0, distance=20.0, **kw)
+    long = tw.simulate(scene, 100.0, distance=200.0, **kw)
+    assert long.x_wheel[-1] == pytest.approx(200.3)
+    for r, dist in ((short, 20.0), (long, 200.0)):
+        n_steps = round(dist / 100.0 / 2e-4)
+        assert r.t.size == n_steps // 50 + 1
+    assert long.settings.n_elements == short.settings.n_elements == scene.rail.n_elements
+
+
+def test_window_runs_are_bit_identical():
+    scene = tw.Scene.ballasted_track(window=tw.Window(5, 5))
+    kw = dict(fidelity="linear/hertz", distance=5.0, x_start=1.0, progress=False)
+    a, b = tw.simulate(scene, V, **kw), tw.simulate(scene, V, **kw)
+    np.testing.assert_array_equal(a.normal_force, b.normal_force)
+
+
+def test_window_validation():
+    with pytest.raises(ValueError, match="Window.bays_behind"):
+        tw.Window(bays_behind=0)
+    scene = tw.Scene.ballasted_track(window=tw.Window(5, 5))
+    with pytest.raises(ValueError, match="linear levels"):
+        tw.simulate(scene, V, distance=1.0, x_start=1.0, progress=False)
+    with pytest.raises(ValueError, match="n_modes"):
+        tw.simulate(scene, V, distance=1.0, x_start=1.0, fidelity="linear/hertz", n_modes=10)
+    with pytest.raises(ValueError, match="Rail.length"):
+        dc.replace(scene, rail=dc.replace(scene.rail, length=6.0))
+    with pytest.raises(ValueError, match="Supports.positions"):
+        dc.replace(scene, supports=dc.replace(scene.supports, positions=(1.0, 2.0)))
+    with pytest.raises(ValueError, match="multiple"):
+        tw.simulate(scene, V, distance=1.0, x_start=1.0, fidelity="linear/hertz",
+                    n_elements=scene.rail.n_elements + 1)
+    with pytest.raises(ValueError, match="x_end or distance"):
+        tw.simulate(scene, V, distance=1.0, x_end=3.0, fidelity="linear/hertz")
