@@ -135,3 +135,22 @@ def test_window_validation():
                     n_elements=scene.rail.n_elements + 1)
     with pytest.raises(ValueError, match="x_end or distance"):
         tw.simulate(scene, V, distance=1.0, x_end=3.0, fidelity="linear/hertz")
+
+
+def test_cli_distance_runs_on_a_window(capsys):
+    """``run --distance`` is the window run of the API (the same forces, bit for bit) and
+    prints per-100-m statistics; --window without --distance is refused."""
+    from trackwheel import cli
+
+    args = ["run", "--track", "ballasted", "--speed-kmh", "300", "--distance", "3",
+            "--window", "5,5", "--irregularity", "sine:3,1e-4"]
+    assert cli.main(args) == 0
+    out = capsys.readouterr().out
+    assert "travelling window of 5 + 5 bays" in out and "per 100 m" in out
+    scene = dc.replace(tw.Scene.ballasted_track(window=tw.Window(5, 5)),
+                       irregularity=tw.Irregularity.sine(3.0, 1e-4))
+    r = tw.simulate(scene, V, fidelity="linear/hertz", distance=3.0, x_start=0.3,
+                    progress=False)
+    assert f"{r.normal_force.max() / 1e3:.2f} kN" in out
+    assert cli.main(["run", "--speed-kmh", "300", "--window", "5,5"]) == 2
+    assert "--window needs --distance" in capsys.readouterr().err
