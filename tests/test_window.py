@@ -154,3 +154,55 @@ def test_cli_distance_runs_on_a_window(capsys):
     assert f"{r.normal_force.max() / 1e3:.2f} kN" in out
     assert cli.main(["run", "--speed-kmh", "300", "--window", "5,5"]) == 2
     assert "--window needs --distance" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def smooth_run():
+    """30 m of the smooth ballasted preset at 300 km/h on a window of 20 + 20 bays."""
+    scene = tw.Scene.ballasted_track(window=tw.Window(20, 20))
+    return tw.simulate(scene, V, fidelity="linear/hertz", distance=30.0, x_start=0.3,
+                       progress=False)
+
+
+def test_steady_state_mean_force_is_the_static_load(smooth_run):
+    """Momentum balance: in a bay-periodic steady state the wheel's vertical velocity is
+    periodic, so its mean acceleration over whole bays is zero and the mean contact force is
+    the static load P = F + M g. Tolerance 1e-4 P: the resampling of the kept samples at 128
+    per bay (linear interpolation, a 0.6 m bay in about 210 samples here) and what is left of
+    the transient (bay-to-bay differences below tol = 1e-3 of the scale, alternating)."""
+    s = tw.steady_state(smooth_run)
+    assert s.mean == pytest.approx(P_STATIC, rel=1e-4)
+    assert 0.0 < s.t_from < smooth_run.t[-1] and s.n_bays >= 10
+    assert s.bay_difference < 1e-3
+    assert s.sleeper_frequency == pytest.approx(V / 0.6)
+    np.testing.assert_allclose(s.harmonics[0], V / 0.6 * np.arange(1, 5))
+    # the sleeper-passing force: the first harmonic carries most of the bay's variation
+    assert s.harmonics[1][0] > 0.5 * s.amplitude > 0.0
+    a = tw.analyse(smooth_run, steady=True)
+    assert a.t[0] >= s.t_from and a.t.size < smooth_run.t.size
+
+
+def test_steady_state_recovers_known_harmonics(smooth_run):
+    """A synthetic bay-periodic signal N = P + a1 cos(2 pi X/d) + a3 sin(6 pi X/d) under a
+    transient 5 kN exp(-t/0.02 s): the harmonics come back to 1e-3 of a1 (the resampling
+    error of 128 samples per bay on samples about 3 mm apart), the steady part starts where
+    the transient is below tol x scale: 5 kN exp(-t/0.02) < 1e-3 x 70 kN at t > 0.085 s, so
+    within one bay (7.2 ms) after that."""
+    r = smooth_run
+    x, t, d = r.x_wheel, r.t, 0.6
+    a1, a3 = 500.0, 80.0
+    N = (P_STATIC + a1 * np.cos(2 * np.pi * x / d) + a3 * np.sin(6 * np.pi * x / d)
+         + 5e3 * np.exp(-t / 0.02))
+    s = tw.steady_state(dc.replace(r, normal_force=N))
+    amps = s.harmonics[1]
+    np.testing.assert_allclose(amps, [a1, 0.0, a3, 0.0], atol=1e-3 * a1)
+    t_settle = 0.02 * math.log(5e3 / (1e-3 * (P_STATIC + a1)))
+    assert t_settle - 0.0075 <= s.t_from <= t_settle + 2 * d / V
+
+
+def test_steady_state_refuses_an_unsettled_run(smooth_run):
+    # a drift of 5 kN over the run's 50 bays: 100 N per bay, above tol x scale = 70 N, so no
+    # three bays agree with the last one
+    N = P_STATIC + 5e3 * smooth_run.x_wheel / 30.0
+    with pytest.raises(ValueError, match="does not settle"):
+        tw.steady_state(dc.replace(smooth_run, normal_force=N))

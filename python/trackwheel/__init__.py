@@ -22,6 +22,7 @@ from .results import Result, RunSettings
 from .scene import Contact, Rail, Scene, Supports, Wheel, Window, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .vehicle import Bogie, CarBody, Vehicle
+from .steady import SteadyState, steady_state
 from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
@@ -46,6 +47,8 @@ __all__ = [
     "Supports",
     "Wheel",
     "Window",
+    "SteadyState",
+    "steady_state",
     "__version__",
     "adequacy",
     "amplitude_spectrum",

@@ -269,11 +269,12 @@ class Window:
 
     The window holds ``bays_behind`` whole bays behind the bay of the rearmost wheel, the bays
     the vehicle spans, and ``bays_ahead`` bays ahead of the leading wheel's bay; its rail length
-    is :meth:`length`. When the rearmost wheel leaves its bay the state moves one bay back: the
-    rear bay leaves, a fresh bay at rest under its own weight joins at the front. Needs a track
-    periodic in its bay (equal supports every ``Supports.spacing``, ``Supports.positions`` not
-    given) and, so that the rail's ends do not reflect, enough damping in the track (layered
-    supports) or bays to let waves decay. Runs on the ``linear/...`` fidelity levels.
+    is :meth:`length` (a longer rail of whole bays adds bays ahead). When the rearmost wheel
+    leaves its bay the state moves one bay back: the rear bay leaves, a fresh bay at rest under
+    its own weight joins at the front. Needs a track periodic in its bay (equal supports every
+    ``Supports.spacing``, ``Supports.positions`` not given) and, so that the rail's ends do not
+    reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
+    the ``linear/...`` fidelity levels.
     """
 
     bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
@@ -352,11 +353,12 @@ class Scene:
         d = self.supports.spacing
         rear, front = self.active_vehicle.span
         L = w.length(front - rear, d)
-        if abs(self.rail.length - L) > 1e-9 * L:
-            raise ValueError(f"Rail.length = {self.rail.length} m must be the window's length "
-                             f"{L:.6g} m ({w.n_bays(front - rear, d)} bays of {d} m: "
-                             "Window.length(span, spacing)); Scene.windowed(window) sets it")
-        n_bays = w.n_bays(front - rear, d)
+        n_bays = round(self.rail.length / d)
+        if abs(n_bays * d - self.rail.length) > 1e-9 * L or self.rail.length < L * (1 - 1e-9):
+            raise ValueError(f"Rail.length = {self.rail.length} m must be a whole number of "
+                             f"{d} m bays, at least the window's length {L:.6g} m "
+                             f"({w.n_bays(front - rear, d)} bays: Window.length(span, "
+                             "spacing)); Scene.windowed(window) sets it")
         if self.rail.n_elements % n_bays:
             raise ValueError(f"Rail.n_elements = {self.rail.n_elements} must be a whole number "
                              f"of elements per bay: a multiple of the window's {n_bays} bays")
