@@ -1,5 +1,6 @@
-"""Steady state of a run over a track periodic in its sleeper bay (docs: Model § The travelling
-window).
+"""Steady state of a run over a track periodic in its sleeper bay.
+
+Docs: Model § The travelling window.
 
 Under a smooth periodic track the response of a wheel at constant speed v settles, once the
 start-up transient has died, into a function of the position in the bay: periodic in X with
