@@ -187,6 +187,7 @@ def _in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
 
 def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
     """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
+    x = _in_window(scene, x)
     le = scene.rail.length / n_elements
     e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
     e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
@@ -325,8 +326,7 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     dt = float(s.dt) * int(s.output_every)
     x = np.asarray(result.x_wheel, dtype=float)
     linear = s.fidelity.startswith("linear/")
-    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), _in_window(result.scene, x),
-                                      linear)
+    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), x, linear)
     d = result.y_contact - y_qs
     i_max = int(np.argmax(np.abs(d)))
     nf = _n_fft(n_fft, n)
