@@ -213,7 +213,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("exact_curvature", &RailParams::exact_curvature)
       .def_readwrite("n_gauss", &RailParams::n_gauss)
       .def_readwrite("gravity", &RailParams::gravity)
-      .def_readwrite("pin_far_end", &RailParams::pin_far_end);
+      .def_readwrite("pin_far_end", &RailParams::pin_far_end)
+      .def_readwrite("absorbing_length", &RailParams::absorbing_length, "L_z [m]")
+      .def_readwrite("absorbing_damping", &RailParams::absorbing_damping,
+                     "c_max at the rail ends [N s/m^2]");
   py::class_<SupportParams>(m, "SupportParams")
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)
@@ -247,6 +250,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("radius", &WheelParams::radius)
       .def_readwrite("load", &WheelParams::load)
       .def_readwrite("torque", &WheelParams::torque)
+      .def_readwrite("brake_torque", &WheelParams::brake_torque,
+                     "T_b of the friction brake on the rotation [N m] (0: none)")
       .def_readwrite("gravity", &WheelParams::gravity)
       .def_readwrite("x_offset", &WheelParams::x_offset,
                      "X_A - (X_0 + v t), the wheel's place along the vehicle [m]")
@@ -428,6 +433,26 @@ PYBIND11_MODULE(_core, m) {
   m.def("axial_modes", [](const RailModel& rail, int n_modes) {
     return modal_to_tuple(axial_modes(rail, n_modes));
   });
+  m.def(
+      "direction_pencil",
+      [](const RailModel& rail, int component, double M, double k, double x) {
+        const SparsePencil p = direction_pencil(rail, component, M, k, x);
+        py::dict d;
+        d["n"] = p.n;
+        d["dofs"] = p.dofs;
+        d["row"] = p.row;
+        d["col"] = p.col;
+        d["K"] = p.K;
+        d["M"] = p.M;
+        d["C"] = p.C;
+        return d;
+      },
+      py::arg("rail"), py::arg("component"), py::arg("wheel_mass") = 0.0,
+      py::arg("contact_stiffness") = 0.0, py::arg("position") = 0.0,
+      "K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) "
+      "at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates "
+      "(the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the "
+      "sleepers' z_j on layered supports)");
 
   // ---------------------------------------------------------------- linear beam, frequency domain
   py::class_<BeamParams>(m, "BeamParams")
@@ -516,7 +541,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("thetadot", &WheelState::thetadot, "rolling rate [rad/s]")
       .def_readwrite("s", &WheelState::s, "contact parameter warm start [m]")
       .def_readwrite("state", &WheelState::state)
-      .def_readwrite("sigma", &WheelState::sigma, "sign of the sliding friction force");
+      .def_readwrite("sigma", &WheelState::sigma, "sign of the sliding friction force")
+      .def_readwrite("locked", &WheelState::locked, "held by the brake at theta' = 0")
+      .def_readwrite("brake_sign", &WheelState::brake_sign,
+                     "sign of the brake torque on the turning wheel (-sign theta')");
   py::class_<SimState>(m, "SimState")
       .def(py::init<>())
       .def_readwrite("e", &SimState::e, "rail coordinates (n_dof,)")
@@ -542,6 +570,7 @@ PYBIND11_MODULE(_core, m) {
 
   m.attr("OUTPUT_FIELDS") = output_table();
   m.attr("MAX_ELEMENTS") = limits::kMaxElements;
+  m.attr("MAX_DENSE_EIGEN_DOF") = limits::kMaxDenseEigenDof;
   m.attr("GAUSS_RANGE") = py::make_tuple(limits::kMinGauss, limits::kMaxGauss);
   m.attr("MAX_SPEED") = limits::kMaxSpeed;
 

@@ -3,38 +3,14 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
+#include "limits.hpp"
 #include "sleepers.hpp"
 
 namespace trackwheel {
 
 namespace {
-
-// Free coordinates of one direction (component 0: x, 1: y) in full numbering.
-std::vector<int> direction_dofs(const RailModel& rail, int component) {
-  std::vector<int> idx;
-  for (int i = 0; i < rail.n_dof(); ++i)
-    if (rail.full_to_free()[i] >= 0 && (i % 2) == component) idx.push_back(i);
-  return idx;
-}
-
-// The sleepers' rows and columns from index z0 on: RailModel's tangent already holds the pads as
-// springs to the ground, k_p s_j s_j^T; the pad's other end is z_j.
-void add_sleepers(const RailModel& rail, const std::vector<int>& local, int z0, Eigen::MatrixXd& K,
-                  Eigen::MatrixXd& M) {
-  const Sleepers sl(rail);
-  for (int j = 0; j < sl.size(); ++j) {
-    const int z = z0 + j;
-    M(z, z) = sl.mass(j);
-    K(z, z) = sl.pad_stiffness(j) + sl.ballast_stiffness(j);
-    for (int a = 0; a < 4; ++a) {
-      const int i = local[sl.index(j, a)];
-      if (i < 0) continue;
-      K(i, z) -= sl.pad_stiffness(j) * sl.weight(j, a);
-      K(z, i) -= sl.pad_stiffness(j) * sl.weight(j, a);
-    }
-  }
-}
 
 void solve_pencil(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int n_modes,
                   Eigen::VectorXd& f, Eigen::MatrixXd& V) {
@@ -47,53 +23,120 @@ void solve_pencil(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int n_mode
   V = es.eigenvectors().leftCols(n_modes);
 }
 
+// The sleepers' rows and columns from local index z0 on: the rail's band already holds the pads
+// as springs and dampers to the ground, (k_p, c_p) s_j s_j^T; the pad's other end is z_j.
+template <class Push>
+void add_sleepers(const Sleepers& sl, const std::vector<int>& local, int z0, int ns, Push& push) {
+  for (int j = 0; j < ns; ++j) {
+    const int z = z0 + j;
+    const double kp = sl.pad_stiffness(j), cp = sl.pad_damping(j);
+    for (int a = 0; a < 4; ++a) {
+      const int i = local[sl.index(j, a)];
+      if (i < 0) continue;
+      const double w = sl.weight(j, a);
+      push(i, z, -kp * w, 0.0, -cp * w);
+      push(z, i, -kp * w, 0.0, -cp * w);
+    }
+    push(z, z, kp + sl.ballast_stiffness(j), sl.mass(j), cp + sl.ballast_damping(j));
+  }
+}
+
+void check_dense_size(int n, int n_modes) {
+  if (n_modes < 1 || n_modes > n)
+    throw std::invalid_argument("n_modes must be in [1, " + std::to_string(n) + "]");
+  if (n > limits::kMaxDenseEigenDof)
+    throw std::invalid_argument(
+        "the dense eigen analysis takes at most " + std::to_string(limits::kMaxDenseEigenDof) +
+        " coordinates, this mesh has " + std::to_string(n) + " (use the sparse method)");
+}
+
+void to_dense(const SparsePencil& p, Eigen::MatrixXd& K, Eigen::MatrixXd& M) {
+  K = Eigen::MatrixXd::Zero(p.n, p.n);
+  M = Eigen::MatrixXd::Zero(p.n, p.n);
+  for (size_t t = 0; t < p.row.size(); ++t) {
+    K(p.row[t], p.col[t]) += p.K[t];
+    M(p.row[t], p.col[t]) += p.M[t];
+  }
+}
+
 }  // namespace
+
+SparsePencil direction_pencil(const RailModel& rail, int component, double wheel_mass,
+                              double contact_stiffness, double position) {
+  if (component != 0 && component != 1) throw std::invalid_argument("component must be 0 or 1");
+  const auto& f2f = rail.full_to_free();
+  SparsePencil p;
+  std::vector<int> local(rail.n_dof(), -1);
+  for (int i = 0; i < rail.n_dof(); ++i)
+    if (f2f[i] >= 0 && (i % 2) == component) {
+      local[i] = static_cast<int>(p.dofs.size());
+      p.dofs.push_back(i);
+    }
+  const int nr = static_cast<int>(p.dofs.size());
+  const bool with_wheel = component == 1 && wheel_mass > 0.0;
+  const Sleepers sl(rail);
+  const int ns = component == 1 ? sl.size() : 0, z0 = nr + (with_wheel ? 1 : 0);
+  p.n = z0 + ns;
+  BandMatrix Kb(rail.n_free(), kHalfBandwidth);
+  rail.add_tangent(rail.reference(), 1.0, Kb);
+  const BandMatrix &Mb = rail.mass(), &Cb = rail.support_damping();
+  // the wheel's coupling g: V = k/2 (g . [e; Y_w])^2, g = [-S_y(X) on the rail, 1]
+  std::vector<double> g(p.n, 0.0);
+  if (with_wheel) {
+    const MeshPoint mp = rail.locate(position);
+    for (int a = 0; a < 4; ++a) {
+      const int j = local[mp.dof0() + 2 * a + 1];
+      if (j >= 0) g[j] = -mp.h.n[a];
+    }
+    g[nr] = 1.0;
+  }
+  auto push = [&p](int a, int b, double k, double m, double c) {
+    if (k == 0.0 && m == 0.0 && c == 0.0) return;
+    p.row.push_back(a);
+    p.col.push_back(b);
+    p.K.push_back(k);
+    p.M.push_back(m);
+    p.C.push_back(c);
+  };
+  // a coordinate of one direction couples with those of its own and the two neighbouring nodes
+  for (int a = 0; a < nr; ++a)
+    for (int b = std::max(0, a - 4); b <= std::min(nr - 1, a + 4); ++b) {
+      const int i = f2f[p.dofs[a]], j = f2f[p.dofs[b]];
+      if (!Kb.in_band(i, j)) continue;
+      push(a, b, Kb.at(i, j) + contact_stiffness * g[a] * g[b], Mb.at(i, j), Cb.at(i, j));
+    }
+  if (with_wheel) {  // the wheel's row and column: only the contact spring to the rail
+    for (int a = 0; a < nr; ++a) {
+      push(a, nr, contact_stiffness * g[a], 0.0, 0.0);
+      push(nr, a, contact_stiffness * g[a], 0.0, 0.0);
+    }
+    push(nr, nr, contact_stiffness, wheel_mass, 0.0);
+  }
+  add_sleepers(sl, local, z0, ns, push);
+  return p;
+}
 
 ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double contact_stiffness,
                            const std::vector<double>& positions, int n_modes) {
-  const std::vector<int> ydofs = direction_dofs(rail, 1);
-  const int ny = static_cast<int>(ydofs.size());
   const bool with_wheel = wheel_mass > 0.0;
-  const int ns = Sleepers(rail).size(), z0 = ny + (with_wheel ? 1 : 0);
-  const int n = z0 + ns;
-  if (n_modes < 1 || n_modes > n)
-    throw std::invalid_argument("n_modes must be in [1, " + std::to_string(n) + "]");
-  const Eigen::MatrixXd Kfull = rail.tangent_dense(rail.reference());
-  const Eigen::MatrixXd Mfull = rail.mass_dense();
-  Eigen::MatrixXd K0 = Eigen::MatrixXd::Zero(n, n), M0 = Eigen::MatrixXd::Zero(n, n);
-  for (int a = 0; a < ny; ++a)
-    for (int b = 0; b < ny; ++b) {
-      K0(a, b) = Kfull(ydofs[a], ydofs[b]);
-      M0(a, b) = Mfull(ydofs[a], ydofs[b]);
-    }
-  std::vector<int> local(rail.n_dof(), -1);
-  for (int a = 0; a < ny; ++a) local[ydofs[a]] = a;
-  add_sleepers(rail, local, z0, K0, M0);
-
-  ModalResult out;
+  const int ns = Sleepers(rail).size();
   const int npos = with_wheel ? static_cast<int>(positions.size()) : 1;
-  out.frequencies.resize(npos, n_modes);
+  ModalResult out;
+  out.frequencies.resize(npos, n_modes < 1 ? 0 : n_modes);
   for (int p = 0; p < npos; ++p) {
-    Eigen::MatrixXd K = K0, M = M0;
-    if (with_wheel) {
-      M(ny, ny) = wheel_mass;
-      // k (Y_w - s^T e)^2 / 2 with s the y-row of S(X) on the y coordinates
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
-      const MeshPoint mp = rail.locate(positions[p]);
-      for (int a = 0; a < 4; ++a) {
-        const int j = local[mp.dof0() + 2 * a + 1];
-        if (j >= 0) g(j) = -mp.h.n[a];
-      }
-      g(ny) = 1.0;
-      K += contact_stiffness * g * g.transpose();
-    }
+    const SparsePencil pen =
+        direction_pencil(rail, 1, wheel_mass, contact_stiffness, with_wheel ? positions[p] : 0.0);
+    check_dense_size(pen.n, n_modes);
+    Eigen::MatrixXd K, M, V;
+    to_dense(pen, K, M);
     Eigen::VectorXd f;
-    Eigen::MatrixXd V;
     solve_pencil(K, M, n_modes, f, V);
     out.frequencies.row(p) = f.transpose();
+    // local order: rail coordinates, the wheel's Y_w, the sleepers' z (direction_pencil)
+    const int nr = static_cast<int>(pen.dofs.size()), z0 = nr + (with_wheel ? 1 : 0);
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(rail.n_dof() + 1 + ns, n_modes);
-    for (int a = 0; a < ny; ++a) S.row(ydofs[a]) = V.row(a);
-    if (with_wheel) S.row(rail.n_dof()) = V.row(ny);
+    for (int a = 0; a < nr; ++a) S.row(pen.dofs[a]) = V.row(a);
+    if (with_wheel) S.row(rail.n_dof()) = V.row(nr);
     for (int j = 0; j < ns; ++j) S.row(rail.n_dof() + 1 + j) = V.row(z0 + j);
     out.shapes.push_back(S);
   }
@@ -101,25 +144,16 @@ ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double cont
 }
 
 ModalResult axial_modes(const RailModel& rail, int n_modes) {
-  const std::vector<int> xdofs = direction_dofs(rail, 0);
-  const int nx = static_cast<int>(xdofs.size());
-  if (n_modes < 1 || n_modes > nx)
-    throw std::invalid_argument("n_modes must be in [1, " + std::to_string(nx) + "]");
-  const Eigen::MatrixXd Kfull = rail.tangent_dense(rail.reference());
-  const Eigen::MatrixXd Mfull = rail.mass_dense();
-  Eigen::MatrixXd K(nx, nx), M(nx, nx);
-  for (int a = 0; a < nx; ++a)
-    for (int b = 0; b < nx; ++b) {
-      K(a, b) = Kfull(xdofs[a], xdofs[b]);
-      M(a, b) = Mfull(xdofs[a], xdofs[b]);
-    }
+  const SparsePencil pen = direction_pencil(rail, 0, 0.0, 0.0, 0.0);
+  check_dense_size(pen.n, n_modes);
+  Eigen::MatrixXd K, M, V;
+  to_dense(pen, K, M);
   Eigen::VectorXd f;
-  Eigen::MatrixXd V;
   solve_pencil(K, M, n_modes, f, V);
   ModalResult out;
   out.frequencies = f.transpose();
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(rail.n_dof(), n_modes);
-  for (int a = 0; a < nx; ++a) S.row(xdofs[a]) = V.row(a);
+  for (int a = 0; a < pen.n; ++a) S.row(pen.dofs[a]) = V.row(a);
   out.shapes.push_back(S);
   return out;
 }

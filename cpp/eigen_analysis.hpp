@@ -24,10 +24,28 @@ struct ModalResult {
                                         // (layered supports); mass-normalised
 };
 
+// One direction's K and M (and the dampers' C) at the straight reference, as sparse triplets over
+// local coordinates: the free coordinates of that direction in full order (dofs), then, for the
+// vertical pencil, the wheel's Y_w (with a wheel) and the sleepers' z_j (layered supports). Built
+// from the band matrices: O(n) memory, for the partial (shift-invert) eigen solver in
+// trackwheel.eigen and for the reflection tests.
+struct SparsePencil {
+  int n = 0;
+  std::vector<int> dofs;        // local -> full ANCF index (rail coordinates only)
+  std::vector<int> row, col;    // triplet indices, local
+  std::vector<double> K, M, C;  // [N/m], [kg], [N s/m] at (row, col)
+};
+
+// component 0: axial (x) of the bare rail; 1: vertical (y), with the wheel mass on its contact
+// spring at X = position if wheel_mass > 0.
+SparsePencil direction_pencil(const RailModel& rail, int component, double wheel_mass,
+                              double contact_stiffness, double position);
+
 // wheel_mass <= 0: the bare rail on its supports (positions then must hold one dummy entry).
 ModalResult vertical_modes(const RailModel& rail, double wheel_mass, double contact_stiffness,
                            const std::vector<double>& positions, int n_modes);
 
+// Dense paths: at most limits::kMaxDenseEigenDof coordinates (std::invalid_argument beyond).
 // Axial (x) modes of the bare rail: (n_modes) [Hz] and shapes (n_dof, n_modes).
 ModalResult axial_modes(const RailModel& rail, int n_modes);
 

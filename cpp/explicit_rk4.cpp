@@ -40,14 +40,20 @@ void ExplicitRK4::step(long n) {
     sys_.accelerations(st_, ev_, acc_);
   }
   start_ready_ = false;
-  int n_changed = 0;
+  int n_changed = 0, n_locked = 0;
   for (int w = 0; w < sys_.n_wheels(); ++w) {
     st_.wheels[w].s = ev_.w[w].pt.s;
+    const double lambda = acc_.x(kBorderPerWheel * w + kLambda);
     n_changed += update_slip_state(set.rolling, sys_.model().contact.friction, set.speed,
-                                   st_.wheels[w], ev_.w[w], acc_.x(kBorderPerWheel * w + kLambda));
+                                   st_.wheels[w], ev_.w[w], lambda);
+    const bool was_locked = st_.wheels[w].locked;
+    n_changed += update_brake_state(sys_.model().wheels[w], st_.wheels[w], ev_.w[w], lambda);
+    n_locked += !was_locked && st_.wheels[w].locked;
   }
   if (n_changed > 0) {
     out_.state_changes += n_changed;
+    // locking set theta' = 0, on which the slip velocity and contact damping depend
+    if (n_locked > 0) sys_.contact_terms(st_, true, ev_);
     sys_.accelerations(st_, ev_, acc_);
   }
   k1_ = st_;

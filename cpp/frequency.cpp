@@ -133,6 +133,9 @@ Eigen::MatrixXd track_modes(const RailModel& rail, const BeamParams& beam, doubl
   const bool with_wheel = wheel_mass > 0.0;
   const int ny = tr.ny, n = ny + (with_wheel ? 1 : 0);
   require(n_modes >= 1 && n_modes <= n, "n_modes must be in [1, " + std::to_string(n) + "]");
+  require(n <= limits::kMaxDenseEigenDof, "track_modes: the dense eigen analysis takes at most " +
+                                              std::to_string(limits::kMaxDenseEigenDof) +
+                                              " coordinates, this mesh has " + std::to_string(n));
   Eigen::MatrixXd K0 = Eigen::MatrixXd::Zero(n, n), M0 = Eigen::MatrixXd::Zero(n, n);
   K0.topLeftCorner(ny, ny) = tr.K.dense();
   M0.topLeftCorner(ny, ny) = tr.M.dense();

@@ -76,7 +76,8 @@ bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
     const MatrixKey& k = key_[w];
     const WheelEval& we = ev_.w[w];
     if (k.element != we.pt.mp.element || k.state != s1.wheels[w].state ||
-        k.sigma != s1.wheels[w].sigma || std::abs(we.pt.s - k.s) > reach)
+        k.sigma != s1.wheels[w].sigma || k.locked != s1.wheels[w].locked ||
+        std::abs(we.pt.s - k.s) > reach)
       return true;
   }
   return false;
@@ -91,7 +92,8 @@ void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x
   if (!sys_.factorize_iteration_matrix()) div_.fail(n, "singular Newton matrix");
   have_matrix_ = true;
   for (int w = 0; w < sys_.n_wheels(); ++w)
-    key_[w] = {ev_.w[w].pt.mp.element, s1.wheels[w].state, s1.wheels[w].sigma, ev_.w[w].pt.s};
+    key_[w] = {ev_.w[w].pt.mp.element, s1.wheels[w].state, s1.wheels[w].sigma, ev_.w[w].pt.s,
+               s1.wheels[w].locked};
   ++out_.factorizations;
 }
 
@@ -143,14 +145,17 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
   return false;
 }
 
-// Applies the slip state machine to every wheel at the converged iterate; returns how many
-// wheels changed state (changed: any did).
+// Applies the slip and brake state machines to every wheel at the converged iterate; returns how
+// many state changes there were (changed: any).
 int GeneralizedAlpha::commit_slip_states(Accel& x, SimState& s1, bool& changed) {
   const SimSettings& set = sys_.settings();
   int n_changed = 0;
-  for (int w = 0; w < sys_.n_wheels(); ++w)
+  for (int w = 0; w < sys_.n_wheels(); ++w) {
+    const double lambda = x.x(kBorderPerWheel * w + kLambda);
     n_changed += update_slip_state(set.rolling, sys_.model().contact.friction, set.speed,
-                                   s1.wheels[w], ev_.w[w], x.x(kBorderPerWheel * w + kLambda));
+                                   s1.wheels[w], ev_.w[w], lambda);
+    n_changed += update_brake_state(sys_.model().wheels[w], s1.wheels[w], ev_.w[w], lambda);
+  }
   changed = n_changed > 0;
   return n_changed;
 }
@@ -180,6 +185,8 @@ void GeneralizedAlpha::step(long n) {
       for (int w = 0; w < sys_.n_wheels(); ++w) {
         st_.wheels[w].state = s1_.wheels[w].state;
         st_.wheels[w].sigma = s1_.wheels[w].sigma;
+        st_.wheels[w].locked = s1_.wheels[w].locked;
+        st_.wheels[w].brake_sign = s1_.wheels[w].brake_sign;
       }
       continue;
     }

@@ -58,6 +58,7 @@ class GeneralizedAlpha : public FullStepper {
     int element = -1;
     SlipState state = SlipState::Free;
     double sigma = 0.0, s = 0.0;
+    bool locked = false;
   };
   std::vector<MatrixKey> key_;
   bool have_matrix_ = false;

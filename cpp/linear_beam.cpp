@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include "ancf_cable.hpp"
 
 namespace trackwheel {
 
@@ -15,6 +18,39 @@ constexpr double kGw[4] = {0.1739274225687269, 0.3260725774312731, 0.32607257743
                            0.1739274225687269};
 
 double shear_parameter(double EI, double kGA, double l) { return 12.0 * EI / (kGA * l * l); }
+
+// The rail's absorbing end zones (RailModel::add_absorbing_ends: c(d) = c_max (1 - d/L_z)^2 at
+// distance d from the nearer end) through the Timoshenko w functions: C += int c N_w^T N_w dX,
+// 5 Gauss points over each element's overlap with a zone (the integrand is a polynomial there).
+void add_absorbing_ends(const RailModel& r, const BeamParams& b, const std::vector<int>& y_of_full,
+                        BandMatrix& C) {
+  const RailParams& p = r.params();
+  const double Lz = p.absorbing_length, cmax = p.absorbing_damping, l = r.element_length();
+  if (Lz <= 0.0 || cmax <= 0.0) return;
+  double gx[5], gw[5];
+  gauss_points(5, gx, gw);
+  for (int el = 0; el < p.n_elements; ++el) {
+    const double x0 = el * l, x1 = x0 + l;
+    const std::pair<double, double> parts[2] = {{x0, std::min(x1, Lz)},
+                                                {std::max(x0, p.length - Lz), x1}};
+    for (const auto& [lo, hi] : parts)
+      for (int g = 0; g < 5 && hi > lo; ++g) {
+        const double X = lo + (hi - lo) * gx[g], d = std::min(X, p.length - X);
+        const double w = (hi - lo) * gw[g] * cmax * std::pow(std::max(1.0 - d / Lz, 0.0), 2);
+        // the element's own shapes at X (an element end may belong to the neighbour in locate)
+        const BeamShapes s =
+            timoshenko_shapes((X - x0) / l, l, shear_parameter(p.EI, b.shear_stiffness, l));
+        for (int a = 0; a < 4; ++a) {
+          const int i = y_of_full[4 * el + 2 * a + 1];
+          if (i < 0) continue;
+          for (int c = 0; c < 4; ++c) {
+            const int j = y_of_full[4 * el + 2 * c + 1];
+            if (j >= 0) C.add(i, j, w * s.w[a] * s.w[c]);
+          }
+        }
+      }
+  }
+}
 
 // Timoshenko: element matrices, supports through the w shape functions, consistent gravity.
 void timoshenko_beam(const RailModel& r, const BeamParams& b, const std::vector<int>& y_of_full,
@@ -54,6 +90,7 @@ void timoshenko_beam(const RailModel& r, const BeamParams& b, const std::vector<
       }
     }
   }
+  add_absorbing_ends(r, b, y_of_full, C);
 }
 
 }  // namespace

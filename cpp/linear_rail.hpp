@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "limits.hpp"
 #include "linear_beam.hpp"
 #include "rail.hpp"
 
@@ -54,6 +55,12 @@ struct LinearTrack {
     }
     if (n_modes > ny)
       throw std::invalid_argument("n_modes must be in [1, " + std::to_string(ny) + "]");
+    // the reduction is a dense generalised eigenproblem: O(ny^2) memory, O(ny^3) time
+    if (ny > limits::kMaxDenseEigenDof)
+      throw std::invalid_argument("modal reduction (n_modes) takes at most " +
+                                  std::to_string(limits::kMaxDenseEigenDof) +
+                                  " vertical coordinates, this mesh has " + std::to_string(ny) +
+                                  " (use all coordinates: n_modes = None)");
     modal = true;
     nq = n_modes;
     bw = nq - 1;

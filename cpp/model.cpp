@@ -20,6 +20,7 @@ void check_model(const Model& m) {
     require(std::isfinite(p.radius) && p.radius > 0, n + "radius", "> 0 m");
     require(std::isfinite(p.load) && p.load >= 0, n + "load", ">= 0 N");
     require(std::isfinite(p.torque), n + "torque", "finite [N m]");
+    require(std::isfinite(p.brake_torque) && p.brake_torque >= 0, n + "brake_torque", ">= 0 N m");
     require(std::isfinite(p.gravity) && p.gravity >= 0, n + "gravity", ">= 0 m/s^2");
     require(std::isfinite(p.x_offset), n + "x_offset", "finite [m]");
   }

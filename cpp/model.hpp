@@ -33,6 +33,10 @@ struct WheelParams {
   // the wheel, ~1e-3 rad, is neglected), so a defect returns with the rolled, not the
   // travelled, distance (docs: Model § Irregularities).
   Profile out_of_round;
+  // T_b of a friction brake on the rotation [N m]: -T_b sign(theta') while the wheel turns; the
+  // wheel locks (theta' = 0) while the torque needed to hold it stays <= T_b (docs: Model §
+  // Rolling and slip). 0: no brake.
+  double brake_torque = 0.0;
   double total_load() const { return load + mass * gravity; }  // P = F + M g [N]
   ProfileValue radius_change(double psi) const {               // Delta rho, d/dpsi, d2/dpsi2 at psi
     if (out_of_round.empty()) return ProfileValue();

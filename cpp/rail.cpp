@@ -47,6 +47,11 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
           "n_gauss must be in [" + std::to_string(limits::kMinGauss) + ", " +
               std::to_string(limits::kMaxGauss) + "]");
   require(std::isfinite(p_.gravity), "gravity must be finite");
+  require(std::isfinite(p_.absorbing_length) && p_.absorbing_length >= 0 &&
+              2.0 * p_.absorbing_length <= p_.length,
+          "absorbing_length must be in [0, L/2] m");
+  require(std::isfinite(p_.absorbing_damping) && p_.absorbing_damping >= 0,
+          "absorbing_damping must be >= 0 N s/m^2");
   const size_t ns = sup_.position.size();
   require(sup_.stiffness.size() == ns && sup_.damping.size() == ns,
           "support position, stiffness and damping must have the same length");
@@ -100,6 +105,7 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
     add_element_block(mp.element, Sy, sup_.stiffness[j], Ks_);
     add_element_block(mp.element, Sy, sup_.damping[j], Cs_);
   }
+  add_absorbing_ends();
 
   // consistent gravity load -int rhoA g S_y^T ds
   Qg_ = Eigen::VectorXd::Zero(nd);
@@ -107,6 +113,39 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   const double nint[4] = {0.5 * l, l * l / 12.0, 0.5 * l, -l * l / 12.0};
   for (int el = 0; el < p_.n_elements; ++el)
     for (int a = 0; a < 4; ++a) Qg_(4 * el + 2 * a + 1) -= p_.rhoA * p_.gravity * nint[a];
+}
+
+// C_e = int c(X) S_y^T S_y dX over the part of each element inside an end zone, c(d) = c_max
+// (1 - d/L_z)^2 at distance d from the nearer end. Integrated by Gauss over the overlap only,
+// so the integrand (degree 2 + 6) is a polynomial there and 5 points are exact.
+void RailModel::add_absorbing_ends() {
+  const double Lz = p_.absorbing_length, cmax = p_.absorbing_damping;
+  if (Lz <= 0.0 || cmax <= 0.0) return;
+  double gx[5], gw[5];
+  gauss_points(5, gx, gw);
+  const double l = sec_.length;
+  for (int el = 0; el < p_.n_elements; ++el) {
+    const double x0 = el * l, x1 = x0 + l;
+    // the overlaps with [0, Lz] and [L - Lz, L] (one of them at most, unless the zones meet)
+    const std::pair<double, double> parts[2] = {{x0, std::min(x1, Lz)},
+                                                {std::max(x0, p_.length - Lz), x1}};
+    Mat8 Ce = Mat8::Zero();
+    for (const auto& [a, b] : parts) {
+      if (b <= a) continue;
+      for (int g = 0; g < 5; ++g) {
+        const double X = a + (b - a) * gx[g];
+        const double d = std::min(X, p_.length - X);
+        const double c = cmax * std::pow(std::max(1.0 - d / Lz, 0.0), 2);
+        const HermiteValues h = hermite((X - x0) / l, l);
+        for (int i = 0; i < 4; ++i)
+          for (int k = 0; k < 4; ++k)
+            Ce(2 * i + 1, 2 * k + 1) += (b - a) * gw[g] * c * h.n[i] * h.n[k];
+      }
+    }
+    if (Ce.isZero(0.0)) continue;
+    absorbing_.emplace_back(el, Ce);
+    add_element_block(el, Ce, 1.0, Cs_);
+  }
 }
 
 Eigen::VectorXd RailModel::reference() const {
@@ -181,6 +220,8 @@ void RailModel::internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* 
     for (int a = 0; a < 4; ++a) Q(mp.dof0() + 2 * a + 1) += mp.h.n[a] * f;
     U += 0.5 * sup_.stiffness[j] * y * y;
   }
+  if (edot)
+    for (const auto& [el, Ce] : absorbing_) Q.segment<8>(4 * el) += Ce * edot->segment<8>(4 * el);
   if (energy) *energy = U;
 }
 

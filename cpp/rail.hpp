@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "ancf_cable.hpp"
@@ -31,6 +32,11 @@ struct RailParams {
   int n_gauss = 0;              // Gauss points per element for the elastic forces [-], 2..10
   double gravity = 0.0;         // g acting on the rail [m/s^2] (0 switches rail weight off)
   bool pin_far_end = false;     // fix x at s = L too
+  // Absorbing end zones (docs: Model § Long tracks and absorbing ends): viscous dampers from the
+  // rail to the ground over the last absorbing_length of each end, c(d) = absorbing_damping
+  // (1 - d / absorbing_length)^2 per length at distance d from the end. 0: none.
+  double absorbing_length = 0.0;   // L_z [m], 0 <= 2 L_z <= L
+  double absorbing_damping = 0.0;  // c_max at the rail ends [N s/m^2]
 };
 
 struct SupportParams {
@@ -76,14 +82,15 @@ class RailModel {
   Eigen::Vector2d curvature_vector(const Eigen::VectorXd& e, const MeshPoint& p) const;  // r_ss
 
   const Mat8& element_mass() const { return Me_; }
-  const BandMatrix& mass() const { return M_; }                 // free x free [kg]
-  const BandMatrix& support_stiffness() const { return Ks_; }   // free x free [N/m]
-  const BandMatrix& support_damping() const { return Cs_; }     // free x free [N s/m]
+  const BandMatrix& mass() const { return M_; }                // free x free [kg]
+  const BandMatrix& support_stiffness() const { return Ks_; }  // free x free [N/m]
+  // support dampers + absorbing end zones, free x free [N s/m]
+  const BandMatrix& support_damping() const { return Cs_; }
   const Eigen::VectorXd& gravity_force() const { return Qg_; }  // full [N]
   double total_mass() const { return p_.rhoA * p_.length; }
 
-  // Elastic (axial + bending) + support spring (+ support damper if edot) forces, full
-  // coordinates [N]; energy [J] = elastic + support spring energy (optional).
+  // Elastic (axial + bending) + support spring (+ support and end-zone dampers if edot) forces,
+  // full coordinates [N]; energy [J] = elastic + support spring energy (optional).
   void internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* edot, Eigen::VectorXd& Q,
                       double* energy = nullptr) const;
   // K += scale * d(elastic + support force)/de over the free coordinates.
@@ -105,9 +112,11 @@ class RailModel {
   Mat8 Me_;
   std::vector<int> full_to_free_, free_to_full_;
   std::vector<MeshPoint> support_points_;
+  std::vector<std::pair<int, Mat8>> absorbing_;  // (element, its end-zone damping matrix)
   BandMatrix M_, Ks_, Cs_;
   Eigen::VectorXd Qg_;
   void add_element_block(int el, const Mat8& Ke, double scale, BandMatrix& K) const;
+  void add_absorbing_ends();
 };
 
 }  // namespace trackwheel

@@ -82,6 +82,8 @@ class Sleepers {
   double mass(int j) const { return m_[j]; }
   double pad_stiffness(int j) const { return kp_[j]; }
   double ballast_stiffness(int j) const { return kb_[j]; }
+  double pad_damping(int j) const { return cp_[j]; }
+  double ballast_damping(int j) const { return cb_[j]; }
   const MeshPoint& point(int j) const { return pt_[j]; }
   // full index of the a-th y coordinate of s_j and its weight
   int index(int j, int a) const { return pt_[j].dof0() + 2 * a + 1; }

@@ -42,4 +42,29 @@ bool update_slip_state(bool rolling, double friction, double speed, WheelState& 
   return ws.state != old || ws.sigma != old_sigma;
 }
 
+double wheel_torque(const WheelParams& p, const WheelEval& ev, double lambda) {
+  // the normal force of an out-of-round wheel has a moment: -dV/dtheta = -N dDelta rho/dpsi
+  return p.torque + lambda * ev.rk.b(10) - ev.cf.N * ev.drho.rx;
+}
+
+double brake_torque(const WheelParams& p, const WheelState& ws) {
+  return p.brake_torque > 0.0 && !ws.locked ? ws.brake_sign * p.brake_torque : 0.0;
+}
+
+bool update_brake_state(const WheelParams& p, WheelState& ws, const WheelEval& ev, double lambda) {
+  if (!(p.brake_torque > 0.0)) return false;
+  if (ws.locked) {
+    // stiction: the brake holds any torque up to T_b; beyond it the wheel turns that way
+    const double hold = wheel_torque(p, ev, lambda);
+    if (std::abs(hold) <= p.brake_torque) return false;
+    ws.locked = false;
+    ws.brake_sign = hold > 0.0 ? -1.0 : 1.0;
+    return true;
+  }
+  if (ws.thetadot * ws.brake_sign < 0.0) return false;  // still turning against the brake
+  ws.locked = true;
+  ws.thetadot = 0.0;
+  return true;
+}
+
 }  // namespace trackwheel

@@ -48,6 +48,10 @@ struct WheelState {
   double s = 0.0;                      // contact parameter warm start [m]
   SlipState state = SlipState::Stick;
   double sigma = 1.0;  // sign of the sliding friction force on the wheel
+  // the brake (WheelParams::brake_torque > 0): locked (theta' held at 0), or turning with the
+  // brake torque brake_sign T_b on the wheel (brake_sign = -sign theta', set when it releases)
+  bool locked = false;
+  double brake_sign = -1.0;
 };
 
 struct SimState {

@@ -75,8 +75,8 @@ void System::forces(const SimState& st, const Eval& ev, const Eigen::VectorXd& l
     const int d0 = we.pt.mp.dof0(), o = kBorderPerWheel * w;
     fr.segment<8>(d0) += we.cf.F.tail<8>() + lam(w) * we.rk.b.segment<8>(2);
     fb(o + kY) = -p.total_load() + we.cf.F(1) + lam(w) * we.rk.b(1);
-    // the normal force of an out-of-round wheel has a moment: -dV/dtheta = -N dDelta rho/dpsi
-    fb(o + kTheta) = p.torque + lam(w) * we.rk.b(10) - we.cf.N * we.drho.rx;
+    fb(o + kTheta) = wheel_torque(p, we, lam(w));
+    if (p.brake_torque > 0.0) fb(o + kTheta) += brake_torque(p, st.wheels[w]);
   }
   if (nb_ > 0) add_vehicle_forces(st, fb);
 }
@@ -153,6 +153,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     qdot.tail<8>() = st.edot.segment<8>(d0);
     r2(o + kLambda) = -we.rk.dg_dq.dot(qdot) - set_.baumgarte * we.rk.g;
   }
+  lock_theta_rows(st, &r2);
   if (nb_ > 0) {
     add_vehicle_block(true, 0.0, 0.0);
     const int o = kBorderPerWheel * nw_;
@@ -182,6 +183,8 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
     r2(o + kY) = -(p.mass * acc.x(o + kY) - fb_(o + kY));
     r2(o + kTheta) = -(p.inertia * acc.x(o + kTheta) - fb_(o + kTheta));
     r2(o + kLambda) = std::isnan(lam_p) ? -ev.w[w].rk.g / cv : -(lam_(w) - lam_p);
+    // a locked wheel: the velocity theta'_{n+1} = 0, scaled as d theta'_{n+1} / d theta'' = cv
+    if (st.wheels[w].locked) r2(o + kTheta) = -st.wheels[w].thetadot / cv;
   }
   const int o = kBorderPerWheel * nw_;
   for (int k = 0; k < 2 * nb_; ++k) r2(o + k) = -(vm_.mass(nw_ + k) * acc.x(o + k) - fb_(o + k));
@@ -235,7 +238,22 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Db_(o + kTheta, o + kTheta) = model_.wheels[w].inertia;
   }
   for (int w = 0; w < nw_; ++w) add_wheel_block(st, ev, acc, w, cq, cv);
+  lock_theta_rows(st, nullptr);
   if (nb_ > 0) add_vehicle_block(false, cq, cv);
+}
+
+// A locked wheel's theta row holds theta' = 0 (the brake's stiction) in place of J theta'' =
+// torques: its rows of Cb_ and Db_ become the identity's, for theta'' = 0 at acceleration level
+// (r2 given: its entry 0) and for generalized-alpha's velocity row (residual()).
+void System::lock_theta_rows(const SimState& st, Eigen::VectorXd* r2) {
+  for (int w = 0; w < nw_; ++w) {
+    if (!st.wheels[w].locked) continue;
+    const int i = kBorderPerWheel * w + kTheta;
+    Cb_.row(i).setZero();
+    Db_.row(i).setZero();
+    Db_(i, i) = 1.0;
+    if (r2) (*r2)(i) = 0.0;
+  }
 }
 
 // Wheel w's contact, rolling and slip terms. Local index 1 -> Y, 2..9 -> rail, 10 -> theta.

@@ -7,7 +7,8 @@
 // body b [z_b'', phi_b''] at 3 n_w + 2 b + {0, 1} (vehicle.hpp); with layered supports the
 // sleepers' z'' too, condensed exactly into the band (sleepers.hpp). Equations:
 //   rail    M e''   = Q_g - Q_kl - Q_kt - Q_s + sum_w (Q_contact,w + lambda_w b_rail,w)
-//   wheel w M Y_A'' = -(F + M g) + N n_y + lambda t_y,   J th'' = T - rho lambda
+//   wheel w M Y_A'' = -(F + M g) + N n_y + lambda t_y,   J th'' = T - rho lambda - T_b sgn th'
+//   (a braked wheel locked: th' = 0 instead),
 //   lambda_w: rolling constraint g_w = 0 (stick), sigma mu N (slide) or 0 (no contact),
 //   vehicle  M_v u'' = -K_v u - C_v u' - G_v (the suspensions also act on each Y_A row).
 // The model is const; every buffer lives here, so a step allocates nothing new.
@@ -130,6 +131,7 @@ class System {
   void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
                        double cv);
   void add_entry(int i, int j, double v);
+  void lock_theta_rows(const SimState& st, Eigen::VectorXd* r2);
   // g: the global row/column of wheel-local index 1..10 (-1: none)
   void add_out_of_round_block(const WheelEval& we, const int* g, int o, double cq, double cv);
 

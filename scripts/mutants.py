@@ -167,7 +167,7 @@ MUTANTS: list[Mutant] = [
       "Newton matrix of the sliding row without dN/dqdot",
       equivalent="only the Newton matrix changes: the iteration converges to the same residual "
                  "tolerance (modified Newton), results agree to newton_tol; kept as a control"),
-    M("out-of-round-moment", SYS, "- we.cf.N * we.drho.rx;", ";",
+    M("out-of-round-moment", SLIP, "- ev.cf.N * ev.drho.rx;", ";",
       "an out-of-round wheel's normal force without its moment -N d(Delta rho)/d psi"),
     M("baumgarte-sign", SYS, "- set_.baumgarte * we.rk.g;", "+ set_.baumgarte * we.rk.g;",
       "Baumgarte stabilisation destabilises the constraint drift"),
@@ -214,8 +214,8 @@ MUTANTS: list[Mutant] = [
     M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x, linear)",
       "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005, linear)",
       "quasi-static line taken 5 mm ahead of the wheel"),
-    M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(positions[p]);",
-      "const MeshPoint mp = rail.locate(positions[p] + 0.05);",
+    M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(position);",
+      "const MeshPoint mp = rail.locate(position + 0.05);",
       "eigen analysis attaches the wheel 5 cm from where it is asked"),
 ]
 

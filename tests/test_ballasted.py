@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel.cli import band_decay_rates
+from trackwheel.frequency import band_decay_rates
 from test_layered import two_layer_cut_on
 from trackwheel.frequency import (ISO3095_BANDS, ISO3095_VERTICAL_LIMIT, decay_rate_positions,
                                   en15461_decay, iso3095_band_edges)

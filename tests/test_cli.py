@@ -550,7 +550,7 @@ def test_band_decay_rate_with_one_frequency_is_the_centre_value():
     scene = tw.Scene.ballasted_track(60.0)
     e = iso3095_band_edges()
     centres = np.sqrt(e[:-1] * e[1:])
-    np.testing.assert_allclose(cli.band_decay_rates(scene, 1), tw.decay_rate(scene, centres),
+    np.testing.assert_allclose(tw.frequency.band_decay_rates(scene, 1), tw.decay_rate(scene, centres),
                                rtol=1e-12)
 
 
@@ -562,7 +562,7 @@ def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
     t = np.loadtxt(out, delimiter=",", skiprows=1)
     np.testing.assert_array_equal(t[:, 0], tw.frequency.ISO3095_BANDS)
     np.testing.assert_array_equal(t[:, 2], tw.frequency.ISO3095_VERTICAL_LIMIT)
-    dr = cli.band_decay_rates(tw.Scene.ballasted_track(60.0), 3, 400)
+    dr = tw.frequency.band_decay_rates(tw.Scene.ballasted_track(60.0), 3, 400)
     np.testing.assert_allclose(t[:, 1], dr, rtol=1e-9)
     n_ok = int(np.sum(dr >= t[:, 2]))
     assert f"{n_ok} of 14 bands at or above the limit" in printed
@@ -592,7 +592,7 @@ def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
 ])
 def test_bad_track_arguments_are_one_line(argv, words, capsys, monkeypatch):
     calls = []
-    monkeypatch.setattr(cli, "band_decay_rates", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(tw.frequency, "band_decay_rates", lambda *a, **k: calls.append(a))
     assert cli.main(argv) == 2
     err = capsys.readouterr().err
     assert len(err.splitlines()) == 1 and words in err, err

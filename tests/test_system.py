@@ -17,7 +17,8 @@ largest entry (and 1e-5 with h = 1, where round-off dominates, falling as 1/h). 
 1e-6 of each column's largest entry. The scene has no contact damping, whose q-dependence the
 matrix neglects on purpose. The out-of-round cases add an 8th-order polygon of 50 um at
 theta = 0.3 rad: the radius change couples theta with the contact force (its moment
--N dDelta rho/dpsi and the force's dependence on theta).
+-N dDelta rho/dpsi and the force's dependence on theta). The locked cases hold the wheel by its
+brake (Wheel.brake_torque, sliding): the theta row becomes the velocity row theta'_{n+1} / cv = 0.
 """
 
 from __future__ import annotations
@@ -34,7 +35,8 @@ V = tw.kmh(300)
 DT = 1e-5
 
 
-def _probe_case(law, slide, n_wheels, polygon=False, layered=False, irregularity=None):
+def _probe_case(law, slide, n_wheels, polygon=False, layered=False, irregularity=None,
+                locked=False):
     scene = dc.replace(tw.Scene.kato2005(), irregularity=irregularity)
     if layered:  # damped pad-sleeper-ballast supports (the sleepers' z'' join the unknowns)
         scene = dc.replace(scene, supports=dc.replace(
@@ -63,6 +65,9 @@ def _probe_case(law, slide, n_wheels, polygon=False, layered=False, irregularity
         w.theta = 0.3 if polygon else 0.0
         w.state = _core.SlipState.slip if slide else _core.SlipState.stick
         w.sigma = -1.0
+        if locked:  # held by a brake beyond adhesion, 3 mu P rho0
+            p.brake_torque = 3.0 * 0.3 * scene.static_load * scene.wheel.radius
+            w.locked, w.thetadot = True, 0.0
         wheels.append(p)
         states.append(w)
     st = _core.SimState()
@@ -72,13 +77,16 @@ def _probe_case(law, slide, n_wheels, polygon=False, layered=False, irregularity
     return model, wheels, contact, s, st
 
 
-@pytest.mark.parametrize("law, slide, n_wheels, polygon, layered", [
-    ("linear", False, 1, False, False), ("linear", True, 1, False, False),
-    ("hertz", False, 2, False, False), ("hertz", True, 2, False, False),
-    ("linear", False, 1, True, False), ("hertz", True, 2, True, False),
-    ("linear", False, 1, False, True), ("hertz", True, 2, False, True)])
-def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, polygon, layered):
-    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, polygon, layered)
+@pytest.mark.parametrize("law, slide, n_wheels, polygon, layered, locked", [
+    ("linear", False, 1, False, False, False), ("linear", True, 1, False, False, False),
+    ("hertz", False, 2, False, False, False), ("hertz", True, 2, False, False, False),
+    ("linear", False, 1, True, False, False), ("hertz", True, 2, True, False, False),
+    ("linear", False, 1, False, True, False), ("hertz", True, 2, False, True, False),
+    ("linear", True, 1, False, False, True), ("hertz", True, 2, True, False, True)])
+def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, polygon, layered,
+                                                      locked):
+    model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, polygon, layered,
+                                                locked=locked)
 
     def R(x=None):
         return _core.ga_probe(model, wheels, contact, s, st, DT, x)
@@ -106,10 +114,14 @@ def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, poly
         lam = model.n_free + 3 * k + 2
         assert np.count_nonzero(J[:model.n_free, lam]) >= 4
         assert np.count_nonzero(J[lam, :model.n_free]) >= 4
+        th = model.n_free + 3 * k + 1
         if polygon:  # theta couples with the rail and Y through the radius change
-            th = model.n_free + 3 * k + 1
             assert np.count_nonzero(J[:model.n_free, th]) >= 4
             assert J[model.n_free + 3 * k, th] != 0.0
+        if locked:  # the theta row is the locked wheel's theta'_{n+1} / cv = 0 alone
+            row = np.zeros(len(x0))
+            row[th] = 1.0
+            np.testing.assert_array_equal(J[th], row)
 
 
 @pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("hertz", True, 2)])

@@ -19,7 +19,7 @@ from .force_statistics import ForceStatistics, force_statistics
 from .frequency import decay_rate, receptance
 from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
-from .scene import Contact, Rail, Scene, Supports, Wheel, Window, kmh
+from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, Window, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .vehicle import Bogie, CarBody, Vehicle
 from .steady import SteadyState, steady_state
@@ -30,6 +30,7 @@ from . import frequency as frequency  # the module (trackwheel.frequency.decay_r
 
 __all__ = [
     "FIDELITY_LEVELS",
+    "AbsorbingEnds",
     "Analysis",
     "Contact",
     "Convergence",

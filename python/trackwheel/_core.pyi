@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -65,6 +65,22 @@ class RailParams:
         ...
     @EI.setter
     def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def absorbing_damping(self) -> float:
+        """
+        c_max at the rail ends [N s/m^2]
+        """
+    @absorbing_damping.setter
+    def absorbing_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def absorbing_length(self) -> float:
+        """
+        L_z [m]
+        """
+    @absorbing_length.setter
+    def absorbing_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def gravity(self) -> float:
@@ -154,6 +170,14 @@ class Profile:
         ...
 class WheelParams:
     def __init__(self) -> None:
+        ...
+    @property
+    def brake_torque(self) -> float:
+        """
+        T_b of the friction brake on the rotation [N m] (0: none)
+        """
+    @brake_torque.setter
+    def brake_torque(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def gravity(self) -> float:
@@ -663,6 +687,22 @@ class WheelState:
     def __init__(self) -> None:
         ...
     @property
+    def brake_sign(self) -> float:
+        """
+        sign of the brake torque on the turning wheel (-sign theta')
+        """
+    @brake_sign.setter
+    def brake_sign(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def locked(self) -> bool:
+        """
+        held by the brake at theta' = 0
+        """
+    @locked.setter
+    def locked(self, arg0: bool) -> None:
+        ...
+    @property
     def s(self) -> float:
         """
         contact parameter warm start [m]
@@ -864,6 +904,10 @@ def contact_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike,
     """
     Contact point and force for q = [X_A, Y_A, e_el]
     """
+def direction_pencil(rail: RailModel, component: typing.SupportsInt | typing.SupportsIndex, wheel_mass: typing.SupportsFloat | typing.SupportsIndex = 0.0, contact_stiffness: typing.SupportsFloat | typing.SupportsIndex = 0.0, position: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> dict:
+    """
+    K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates (the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the sleepers' z_j on layered supports)
+    """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
 def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, vehicle: VehicleParams = ...) -> dict:
@@ -941,6 +985,7 @@ def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.Supports
     Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
     """
 GAUSS_RANGE: tuple = (2, 10)
-MAX_ELEMENTS: int = 2000
+MAX_DENSE_EIGEN_DOF: int = 4000
+MAX_ELEMENTS: int = 20000
 MAX_SPEED: float = 300.0
 OUTPUT_FIELDS: tuple = (('t', 's', 'time', False, 'float64'), ('x_wheel', 'm', 'X_A, wheel-centre position (prescribed X_0 + v t)', True, 'float64'), ('y_wheel', 'm', 'Y_A, wheel-centre height', True, 'float64'), ('ydot_wheel', 'm/s', 'dY_A/dt', True, 'float64'), ('theta', 'rad', 'rolling angle', True, 'float64'), ('thetadot', 'rad/s', 'rolling rate', True, 'float64'), ('contact_s', 'm', 's*, rail coordinate of the contact point', True, 'float64'), ('y_contact', 'm', 'y_B = y(s*), rail displacement under the wheel', True, 'float64'), ('normal_force', 'N', 'N, normal contact force (0 without contact)', True, 'float64'), ('tangential_force', 'N', 'lambda, tangential contact force on the wheel', True, 'float64'), ('slip', 'm/s', 'slip velocity t.(V_A - S edot) - rho thetadot', True, 'float64'), ('slip_state', '', '0 no contact, 1 stick, 2 slide', True, 'int32'), ('v_error', '%', "paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100", True, 'float64'), ('phi', 'rad', 'rail obliquity at the contact point', True, 'float64'), ('acc_contact', 'm/s^2', "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss (s'' y_s neglected)", True, 'float64'), ('acc_A', 'm/s^2', "rho cos(phi) theta' v phi_s (docs: Model § Outputs)", True, 'float64'), ('acc_B', 'm/s^2', "rho cos(phi) theta' phi_t", True, 'float64'), ('acc_C', 'm/s^2', 'rho cos(phi) v^2 phi_s^2', True, 'float64'), ('acc_D', 'm/s^2', 'rho cos(phi) phi_t^2', True, 'float64'), ('acc_E', 'm/s^2', '2 rho cos(phi) phi_t v phi_s', True, 'float64'), ('reaction', 'N', 'horizontal force holding X_A = X_0 + v t', True, 'float64'), ('penetration', 'm', 'rho0 - rho (negative: gap)', True, 'float64'), ('energy', 'J', 'total mechanical energy (recorded on request only)', False, 'float64'))

@@ -42,6 +42,9 @@ def rail_model(scene: Scene, n_elements: int | None = None,
     p.n_gauss = r.n_gauss
     p.gravity = scene.gravity if scene.rail_gravity else 0.0
     p.pin_far_end = r.far_end == "pinned"
+    if r.absorbing_ends is not None:
+        p.absorbing_length = r.absorbing_ends.length
+        p.absorbing_damping = r.absorbing_damping
     s = _core.SupportParams()
     pos = scene.support_positions
     s.position = list(pos)
@@ -114,6 +117,7 @@ def wheel_params(scene: Scene) -> _core.WheelParams:
     p.radius = w.radius
     p.load = w.load
     p.torque = w.torque
+    p.brake_torque = w.brake_torque
     p.gravity = scene.gravity
     p.out_of_round = out_of_round(scene)
     return p
@@ -134,6 +138,7 @@ def wheels_params(scene: Scene) -> list:
         p.radius = w.radius
         p.load = 0.0 if veh.bogie_of(i) is not None else w.load
         p.torque = w.torque
+        p.brake_torque = w.brake_torque
         p.gravity = scene.gravity
         p.x_offset = x
         p.out_of_round = _out_of_round(w.defects, w.radius)

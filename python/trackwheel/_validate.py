@@ -11,8 +11,10 @@ from . import _core
 
 #: Limits defined once in the C++ kernel (cpp/limits.hpp) and read here, so that the Python
 #: checks and the kernel's accept the same inputs: most rail elements [-], the Gauss points per
-#: element (low, high) [-] and the highest forward speed [m/s].
+#: element (low, high) [-], the highest forward speed [m/s] and the most coordinates of a dense
+#: generalised eigenproblem [-] (larger ones take the partial sparse solver).
 MAX_ELEMENTS: int = _core.MAX_ELEMENTS
+MAX_DENSE_EIGEN_DOF: int = _core.MAX_DENSE_EIGEN_DOF
 GAUSS_RANGE: tuple[int, int] = tuple(_core.GAUSS_RANGE)
 MAX_SPEED: float = _core.MAX_SPEED
 

@@ -17,7 +17,8 @@ Excitation (``run`` and ``sweep``, docs: Model § Irregularities; lengths in m):
 ``--irregularity fra:N | german:low | german:high | china | iso3095 | sine:WAVELENGTH,AMPLITUDE``
 (repeatable: the profiles add), ``--seed N`` and ``--wavelengths MIN MAX`` for the random
 spectra, ``--joint DEPTH,LENGTH,AT`` (a Kabo dipped joint; turns the contact filter on),
-``--wheel-flat LENGTH`` (a new flat, half a revolution from the start), ``--patch-filter``.
+``--wheel-flat LENGTH`` (a new flat, half a revolution from the start), ``--patch-filter``;
+``run --brake-torque T_B`` brakes the wheel [N m] (beyond adhesion it locks and slides).
 ``trackwheel eigen [--position X] [--n-modes N]``
     Print the lowest vertical natural frequencies with the wheel at X [m].
 ``trackwheel receptance [--at midspan|support|X] [--fmin F] [--fmax F] [--n N] [--out CSV]``
@@ -336,6 +337,10 @@ def _add_run(sub) -> None:
                         "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
                         "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
     _excitation_options(p)
+    p.add_argument("--brake-torque", type=_finite_float, metavar="T_B",
+                   help="friction brake on the wheel's rotation [N m], >= 0: beyond adhesion "
+                        "(mu P rho0, 1414 N m for the paper's wheel) it locks the wheel, which "
+                        "then slides (docs: Model § Rolling and slip)")
     _simulate_options(p)
     g = p.add_argument_group(
         "long runs on a travelling window (docs: Model § The travelling window)")
@@ -442,7 +447,7 @@ def _add_decay_rate(sub) -> None:
         "decay-rate", help="print the track decay rate per one-third-octave band",
         description="Vertical track decay rate [dB/m] of the linear track by the EN 15461 method "
                     "(trackwheel.decay_rate) in the one-third-octave bands 250 Hz - 5 kHz, each "
-                    "from the band average of |transfer receptance|^2 over --per-band "
+                    "from the band average of the squared magnitude of the transfer receptances over --per-band "
                     "frequencies, beside the ISO 3095:2013 lower limit for a test track. "
                     "The rail must be longer than 66 support spacings: --track ballasted, "
                     f"whose length here defaults to {_DECAY_LENGTH:g} m.")
@@ -532,6 +537,7 @@ def _option_error(exc: Exception) -> str:
     text = str(exc)
     text = text.replace("Supports.stiffness", "--support-stiffness")
     text = text.replace("Rail.shear_coefficient", "--shear-coefficient")
+    text = text.replace("Wheel.brake_torque", "--brake-torque")
     if text.startswith("length = "):  # Scene.ballasted_track's length
         text = "--length " + text[len("length = "):]
     for name in ("n_elements", "x_start", "x_end", "speed_kmh", "support_stiffness"):
@@ -807,11 +813,16 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     _check_beam_fidelity(args, parser)
     if args.vehicle != "single" and args.wheel_flat is not None:
         parser.error("--wheel-flat is only available with --vehicle single")
+    if args.vehicle != "single" and args.brake_torque is not None:
+        parser.error("--brake-torque is only available with --vehicle single")
     if args.window is not None and args.distance is None:
         parser.error("--window needs --distance (the window is for long runs)")
     try:
         scene = _vehicle_scene(_track_scene(args, args.support_stiffness), args.vehicle)
         scene, notes = _excited_scene(scene, args)
+        if args.brake_torque is not None:
+            scene = dataclasses.replace(scene, wheel=dataclasses.replace(
+                scene.wheel, brake_torque=args.brake_torque))
         if args.distance is not None:
             scene = scene.windowed(args.window or Window())
     except _OptionError as exc:
@@ -1117,24 +1128,6 @@ def _cmd_receptance(args: argparse.Namespace, parser: argparse.ArgumentParser) -
     return 0
 
 
-def band_decay_rates(scene: Scene, per_band: int = 8, n_elements: int | None = None
-                     ) -> np.ndarray:
-    """Decay rate [dB/m] per ``ISO3095_BANDS`` one-third-octave band: the EN 15461 sum of the
-    band averages of |A(x_n)|^2 over ``per_band`` log-spaced frequencies inside each band (the
-    standard filters the measured transfer functions in bands, not at the centre frequency)."""
-    from .frequency import decay_rate_positions, en15461_decay, iso3095_band_edges, receptance
-
-    x = decay_rate_positions(scene)
-    edges = iso3095_band_edges()
-    out = np.empty(edges.size - 1)
-    for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
-        f = np.geomspace(lo, hi, per_band + 2)[1:-1]
-        a = receptance(scene, float(x[0]), f, x, n_elements=n_elements)
-        power = np.mean(np.abs(a) ** 2, axis=0)
-        out[k] = en15461_decay(x, np.sqrt(power)[None, :])[0]
-    return out
-
-
 def _cmd_decay_rate(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     from .frequency import (EN15461_SPANS, ISO3095_BANDS, ISO3095_VERTICAL_LIMIT,
                             iso3095_band_edges)
@@ -1154,6 +1147,8 @@ def _cmd_decay_rate(args: argparse.Namespace, parser: argparse.ArgumentParser) -
                      f"--track ballasted (default {_DECAY_LENGTH:g} m)")
     n_el, note = _frequency_mesh(scene, iso3095_band_edges()[-1], args.n_elements)
     _print_notes([note] if note else [], "decay-rate")
+    from .frequency import band_decay_rates
+
     dr = band_decay_rates(scene, args.per_band, n_el)
     limit = np.asarray(ISO3095_VERTICAL_LIMIT)
     print(f"{_scene_name(scene, args)}, {scene.rail.length:g} m, {n_el} elements")

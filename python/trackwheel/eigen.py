@@ -7,8 +7,17 @@ beam (docs: Model, section "Shear-deformable rail (Timoshenko)"), whose mode sha
 the slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
 be a node. Layered supports add one DOF per sleeper (mass m_s between the pad and the ballast
-springs). ``K x = omega^2 M x`` is solved by the symmetric-definite generalised eigensolver
-(Eigen, in the C++ kernel) for each position.
+springs). ``K x = omega^2 M x`` is solved for each position by one of two methods:
+
+- ``"dense"``: the symmetric-definite generalised eigensolver (Eigen, in the C++ kernel; scipy's
+  ``eigh`` with a vehicle), all modes, O(n^2) memory and O(n^3) time, at most
+  ``MAX_DENSE_EIGEN_DOF`` coordinates;
+- ``"sparse"``: the lowest modes only, by shift-invert Lanczos (ARPACK through
+  :func:`scipy.sparse.linalg.eigsh`) on the banded K and M the kernel exports (rail, wheel,
+  sleepers), O(n) memory and time per mode; the Euler-Bernoulli rail with one wheel only (a
+  vehicle and the Timoshenko rail take the dense method);
+
+``"auto"`` takes the sparse method above ``AUTO_SPARSE_DOF`` coordinates where it can.
 """
 
 from __future__ import annotations
@@ -20,6 +29,19 @@ import numpy as np
 from . import _core, _kernel
 from . import _validate as v
 from .scene import MAX_ELEMENTS, Scene
+
+#: ``method="auto"`` solves problems with more coordinates than this by the sparse method [-]:
+#: below it the dense solve takes milliseconds and gives every mode.
+AUTO_SPARSE_DOF = 400
+MAX_DENSE_EIGEN_DOF = v.MAX_DENSE_EIGEN_DOF
+METHODS = ("auto", "dense", "sparse")
+#: Lanczos basis size (ARPACK's ncv, at least 2 n_modes + 1) and relative tolerance of the
+#: eigenvalues of the sparse method [-].
+SPARSE_BASIS = 64
+SPARSE_TOL = 1e-12
+#: the shift sits this fraction below the first estimate of the lowest eigenvalue omega_1^2 [-]
+#: (closer gains little and costs accuracy on ill-conditioned pencils such as a long bare rail)
+SPARSE_SHIFT = 0.1
 
 
 @dataclass(frozen=True)
@@ -73,9 +95,10 @@ class EigenResult:
 
 
 def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None = None,
-          n_axial: int = 3) -> EigenResult:
+          n_axial: int = 3, method: str = "auto") -> EigenResult:
     """Lowest ``n_modes`` vertical natural frequencies [Hz] with the wheel at each of
-    ``positions`` [m] (0 <= X <= L).
+    ``positions`` [m] (0 <= X <= L); ``method`` is "auto", "dense" or "sparse" (module
+    docstring).
 
     With a ``scene.vehicle`` the positions place the vehicle's reference point (x = 0; every
     wheel must be on the rail) and the modes are those of the rail, the wheels on their
@@ -90,26 +113,148 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    model = _kernel.rail_model(scene, ne)
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    if scene.vehicle is not None or scene.rail.beam != "euler":
+        _dense_only(method, scene)
     if scene.vehicle is not None:
-        return _vehicle_eigen(scene, x, n_modes, ne, n_axial)
+        return _vehicle_eigen(scene, x, n_modes, model.n_nodes - 1, n_axial)
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n_y + 1 + n_sleepers)
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
+    n = n_y + 1 + n_sleepers
+    sparse = scene.rail.beam == "euler" and _sparse(method, n)
+    # ARPACK finds at most n - 1 modes of an n x n problem
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n - 1 if sparse else n)
     # at most the n_x axial modes the mesh has (one element has only one or two)
-    n_axial = min(v.integer("n_axial", n_axial, low=0), n_x)
-    if scene.rail.beam == "euler":
+    n_axial = min(v.integer("n_axial", n_axial, low=0), n_x - 1 if _sparse(method, n_x) else n_x)
+    if sparse:
+        res = [_sparse_modes(model, 1, n_modes, scene.wheel.mass, scene.contact_stiffness, xi)
+               for xi in x]
+        freqs = np.array([f for f, _ in res])
+        shapes = np.array([s for _, s in res])
+    elif scene.rail.beam == "euler":
+        _check_dense(n)
         freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
                                              x.tolist(), n_modes)
     else:
+        _check_dense(n)
         freqs, shapes = _timoshenko_modes(scene, model, x, n_modes)
-    axial = (np.asarray(_core.axial_modes(model, n_axial)[0]).ravel() if n_axial
-             else np.empty(0))
+    axial = np.empty(0)
+    if n_axial and _sparse(method, n_x):
+        axial = _sparse_modes(model, 0, n_axial)[0]
+    elif n_axial:
+        _check_dense(n_x)
+        axial = np.asarray(_core.axial_modes(model, n_axial)[0]).ravel()
     return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
-                       shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne)
+                       shapes=np.asarray(shapes), axial_frequencies=axial,
+                       n_elements=model.n_nodes - 1)
+
+
+def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None,
+                     method: str = "auto") -> np.ndarray:
+    """Vertical natural frequencies of the rail on its supports without the wheel [Hz]
+    (``method`` as in :func:`eigen`)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
+    n = n_y + (len(scene.support_positions) if scene.supports.layered else 0)
+    if scene.rail.beam != "euler":
+        _dense_only(method, scene)
+        _check_dense(n)
+        n_modes = v.integer("n_modes", n_modes, low=1, high=n)
+        freqs, _ = _core.track_modes(model, _kernel.beam_params(scene), 0.0, 0.0, [0.0], n_modes)
+        return np.asarray(freqs).ravel()
+    sparse = _sparse(method, n)
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n - 1 if sparse else n)
+    if sparse:
+        return _sparse_modes(model, 1, n_modes)[0]
+    _check_dense(n)
+    freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], n_modes)
+    return np.asarray(freqs).ravel()
+
+
+def vertical_matrices(scene: Scene, *, n_elements: int | None = None):
+    """The linear vertical rail's sparse M [kg], C [N s/m] and K [N/m] (scipy CSR) over its free
+    y coordinates (y, y_s per node), then the sleepers' z_j on layered supports, at the straight
+    reference, with the support and end-zone dampers in C, and the full ANCF index of each rail
+    coordinate: ``(M, C, K, dofs)`` (``dofs`` has no entries for the sleepers). The same band
+    matrices the linear path integrates (docs: Model § Rail (linearised))."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    d = _core.direction_pencil(model, 1)
+    return (*(_csr(d, key) for key in ("M", "C", "K")), np.asarray(d["dofs"]))
+
+
+def _mesh(scene: Scene, n_elements) -> int:
+    if n_elements is None:
+        return scene.rail.n_elements
+    return v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
+
+
+def _sparse(method: str, n: int) -> bool:
+    v.choice("method", method, set(METHODS))
+    return method == "sparse" or (method == "auto" and n > AUTO_SPARSE_DOF)
+
+
+def _dense_only(method: str, scene: Scene) -> None:
+    v.choice("method", method, set(METHODS))
+    if method == "sparse":
+        what = "a vehicle" if scene.vehicle is not None else "Rail(beam='timoshenko')"
+        raise ValueError(f"method='sparse' is not available with {what}; allowed: "
+                         "method='dense' or 'auto'")
+
+
+def _check_dense(n: int) -> None:
+    if n > MAX_DENSE_EIGEN_DOF:
+        raise ValueError(f"method='dense' takes at most MAX_DENSE_EIGEN_DOF = "
+                         f"{MAX_DENSE_EIGEN_DOF} coordinates, this mesh has {n}; allowed: "
+                         "method='sparse' or 'auto', or fewer elements")
+
+
+def _csr(d: dict, key: str):
+    from scipy.sparse import csr_matrix
+
+    n = d["n"]
+    return csr_matrix((np.asarray(d[key]), (np.asarray(d["row"]), np.asarray(d["col"]))),
+                      shape=(n, n))
+
+
+def _sparse_modes(model, component: int, n_modes: int, wheel_mass: float = 0.0,
+                  contact_stiffness: float = 0.0, position: float = 0.0):
+    """(frequencies (n_modes,) [Hz], mass-normalised shapes over the full rail coordinates then
+    the wheel's Y and the sleepers' z (vertical) or over the rail's (axial)) of the lowest
+    ``n_modes`` modes by
+    shift-invert Lanczos about 0. The start vector is fixed, so the result is reproducible."""
+    from scipy.sparse.linalg import eigsh
+
+    d = _core.direction_pencil(model, component, wheel_mass, contact_stiffness, position)
+    K, M = _csr(d, "K").tocsc(), _csr(d, "M").tocsc()
+    # A long rail's lowest modes crowd just above the cut-on frequency (hundreds within 1 Hz at
+    # 100 m), where shift-invert about 0 barely separates them. So a rough lowest eigenvalue
+    # first (a Ritz value of the inverted pencil: an upper bound, here within 1e-6), then the
+    # shift below it by the fraction SPARSE_SHIFT: the modes nearest the shift are then the
+    # lowest, spread apart 10x more by the inversion than about 0. With a wide basis and a
+    # relative tolerance of 1e-12 this takes 200 m of the paper's track from 20 s to 3-5 s.
+    v0 = np.ones(d["n"])
+    ncv = min(d["n"] - 1, max(2 * n_modes + 1, SPARSE_BASIS))
+    lowest = eigsh(K, k=1, M=M, sigma=0.0, which="LM", v0=v0, ncv=min(d["n"] - 1, 20),
+                   tol=1e-6, return_eigenvectors=False)[0]
+    w2, vec = eigsh(K, k=n_modes, M=M, sigma=lowest * (1.0 - SPARSE_SHIFT), which="LM", v0=v0,
+                    ncv=ncv, tol=SPARSE_TOL)
+    order = np.argsort(w2)
+    w2, vec = w2[order], vec[:, order]
+    vec = vec / np.sqrt(np.einsum("ik,ik->k", vec, M @ vec))
+    dofs = np.asarray(d["dofs"])
+    # local order: rail coordinates, the wheel's Y (with a wheel), the sleepers' z
+    nr, wheel = dofs.size, int(wheel_mass > 0.0)
+    shapes = np.zeros((model.n_dof + (d["n"] - nr + 1 - wheel if component == 1 else 0), n_modes))
+    shapes[dofs] = vec[:nr]
+    if component == 1:
+        shapes[model.n_dof] = vec[nr] if wheel else 0.0
+        shapes[model.n_dof + 1:] = vec[nr + wheel:]
+    return np.sqrt(np.maximum(w2, 0.0)) / (2.0 * np.pi), shapes
 
 
 def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: int
@@ -129,6 +274,8 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
         raise ValueError(f"positions: the vehicle's wheels span x = {rear}..{front} m, so its "
                          f"reference must lie in [{-rear:.4g}, {scene.rail.length - front:.4g}] m")
     free = np.asarray(model.free_to_full)
+    n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
+    _check_dense(int(np.sum(free % 2 == 1)) + veh.n_wheels + 2 * veh.n_bodies + n_sleepers)
     e0 = model.reference()
     Kr = np.asarray(model.tangent_dense(e0))
     Mr = np.asarray(model.mass_dense())
@@ -220,22 +367,6 @@ def _couplings(model, e0, vert, xs) -> np.ndarray:
         unit[i] = 1.0
         S[:, j] = np.asarray(model.positions(unit, list(xs)))[:, 1]
     return S
-
-
-def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None
-                     ) -> np.ndarray:
-    """Vertical natural frequencies of the rail on its supports without the wheel [Hz]."""
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    model = _kernel.rail_model(scene, ne)
-    n_modes = v.integer("n_modes", n_modes, low=1)
-    if scene.rail.beam == "euler":
-        freqs, _ = _core.vertical_modes(model, 0.0, 0.0, [0.0], n_modes)
-    else:
-        freqs, _ = _core.track_modes(model, _kernel.beam_params(scene), 0.0, 0.0, [0.0], n_modes)
-    return np.asarray(freqs).ravel()
 
 
 def _timoshenko_modes(scene: Scene, model, x: np.ndarray, n_modes: int):

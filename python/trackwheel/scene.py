@@ -21,6 +21,12 @@ MAX_SUPPORTS = 100_000
 #: Most rail elements a scene or a call may use [-] (defined in the kernel, cpp/limits.hpp).
 MAX_ELEMENTS = v.MAX_ELEMENTS
 
+#: Design of the default absorbing end zones (:attr:`Rail.absorbing_damping`): bending waves up
+#: to ABSORBING_MAX_FREQUENCY [Hz] lose at least ABSORBING_ATTENUATION [dB] over the zone and
+#: back (docs: Model § Long tracks and absorbing ends).
+ABSORBING_MAX_FREQUENCY = 3000.0
+ABSORBING_ATTENUATION = 30.0
+
 #: Standard gravity used by the paper's scene [m/s^2]: F = 47040 N is 4800 kg x 9.8 m/s^2.
 GRAVITY = 9.8
 
@@ -28,6 +34,27 @@ GRAVITY = 9.8
 def kmh(speed_kmh: float) -> float:
     """Convert a speed from km/h to m/s (``kmh(300)`` -> 83.33 m/s)."""
     return v.number("speed_kmh", speed_kmh, low=0.0, unit="km/h") / 3.6
+
+
+@dataclass(frozen=True)
+class AbsorbingEnds:
+    """Absorbing end zones of a long rail (docs: Model § Long tracks and absorbing ends).
+
+    Viscous dampers from the rail to the ground, per length, graded over the last ``length`` of
+    each end: ``c(d) = c_max (1 - d / L_z)^2`` at distance d from the rail end (zero, with zero
+    slope, where the zone meets the rail, so the zone's start does not reflect). ``damping=None``
+    takes the c_max of :attr:`Rail.absorbing_damping`. The zone should be at least about two
+    bending wavelengths long at the lowest frequency to absorb (10 m: from about 300 Hz for a
+    UIC60-like rail). The statics are unaffected (dampers carry no static load).
+    """
+
+    length: float  #: L_z, zone length at each end [m]; several support bays
+    damping: float | None = None  #: c_max, damping per length at the rail ends [N s/m^2]
+
+    def __post_init__(self):
+        v.positive("AbsorbingEnds.length", self.length, "m")
+        if self.damping is not None:
+            v.number("AbsorbingEnds.damping", self.damping, low=0.0, unit="N s/m^2")
 
 
 @dataclass(frozen=True)
@@ -49,6 +76,8 @@ class Rail:
     n_gauss: int = 5  #: Gauss points per element for the elastic forces [-], in
     #: ``_validate.GAUSS_RANGE`` = (2, 10) (one point under-integrates the bending stiffness:
     #: singular, zero-frequency modes)
+    #: graded viscous end zones that absorb waves leaving the rail, or None (the paper's rail)
+    absorbing_ends: AbsorbingEnds | None = None
     #: "euler" (Euler-Bernoulli) or "timoshenko" (shear deformation and rotary inertia: the
     #: linear levels, receptance and eigen analysis of the linear track; the full ANCF model is
     #: Euler-Bernoulli and refuses "timoshenko")
@@ -71,6 +100,35 @@ class Rail:
         v.choice("Rail.beam", self.beam, {"euler", "timoshenko"})
         v.number("Rail.shear_coefficient", self.shear_coefficient, low=0.0, high=1.0,
                  low_open=True)
+        z = self.absorbing_ends
+        if z is not None:
+            if not isinstance(z, AbsorbingEnds):
+                raise TypeError(f"Rail.absorbing_ends must be a trackwheel.AbsorbingEnds or None, "
+                                f"got {type(z).__name__}")
+            v.number("Rail.absorbing_ends.length", z.length, low=0.0, low_open=True,
+                     high=0.5 * self.length, unit="m")
+
+    @property
+    def absorbing_damping(self) -> float:
+        """c_max of the end zones [N s/m^2] (0 without them): ``absorbing_ends.damping``, or
+        the damping that attenuates bending waves up to ``f_max`` = ABSORBING_MAX_FREQUENCY by
+        ABSORBING_ATTENUATION = A dB on the way through the zone and back.
+
+        A viscous foundation c per length adds -i omega c to m omega^2 in the beam's dispersion
+        EI k^4 = m omega^2 - i omega c, so for c << m omega a wave decays by
+        Im k = k c / (4 m omega) per metre (on supports, the excess over the cut-on frequency
+        makes it decay faster). Through the zone and back, int c = 2 c_max L_z / 3, so the
+        amplitude falls by exp(-k c_max L_z / (6 m omega)), k = (m omega^2 / EI)^(1/4): weakest
+        at the highest frequency. Setting that to 10^(-A/20) at f_max gives
+        c_max = 6 ln(10^(A/20)) (m^3 EI)^(1/4) sqrt(2 pi f_max) / L_z."""
+        z = self.absorbing_ends
+        if z is None:
+            return 0.0
+        if z.damping is not None:
+            return z.damping
+        loss = math.log(10.0 ** (ABSORBING_ATTENUATION / 20.0))
+        impedance = (self.mass_per_length**3 * self.bending_stiffness) ** 0.25
+        return 6.0 * loss * impedance * math.sqrt(2.0 * math.pi * ABSORBING_MAX_FREQUENCY) / z.length
 
     @property
     def mass_per_length(self) -> float:
@@ -203,6 +261,11 @@ class Wheel:
     youngs_modulus: float = 2.058e11  #: E of the wheel [Pa] (Hertz constant)
     poisson_ratio: float = 0.30  #: nu of the wheel [-]
     torque: float = 0.0  #: external torque on the wheel, positive in the rolling direction [N m]
+    #: T_b, a friction brake on the rotation [N m]: -T_b sign(theta') while the wheel turns; the
+    #: wheel locks (theta' = 0) when its spin reaches zero and stays locked while the torque
+    #: needed to hold it, abs(T - rho lambda), is <= T_b (beyond adhesion, T_b > mu P rho0, it
+    #: locks and slides). Full and ancf/* levels only (docs: Model § Rolling and slip)
+    brake_torque: float = 0.0
     #: out-of-roundness, a tuple of :class:`~trackwheel.irregularity.WheelFlat` /
     #: :class:`~trackwheel.irregularity.Polygon` (docs: Model § Irregularities); () is a round wheel
     defects: tuple = ()
@@ -216,6 +279,7 @@ class Wheel:
         v.positive("Wheel.youngs_modulus", self.youngs_modulus, "Pa")
         v.number("Wheel.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
         v.number("Wheel.torque", self.torque, unit="N m")
+        v.number("Wheel.brake_torque", self.brake_torque, low=0.0, unit="N m")
         if not isinstance(self.defects, (tuple, list)):
             raise TypeError(f"Wheel.defects must be a tuple of WheelFlat/Polygon, "
                             f"got {type(self.defects).__name__}")

@@ -245,7 +245,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
     energy : also record the total mechanical energy [J] per sample: kinetic + strain + support
         springs + contact potential + potentials of gravity on the rail, of the wheel load
         (F + M g) Y_A and of the torque (-T theta). Conserved without damping when the wheel does
-        not move forward (the driving reaction does work when it does).
+        not move forward (the driving reaction does work when it does); sliding friction
+        (lambda times the slip velocity) and a brake (-T_b |theta'| while it turns) dissipate.
 
     Raises
     ------
@@ -463,6 +464,11 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
                          "'linear/moving_mass', 'linear/sprung', 'linear/hertz', 'ancf/...', "
                          "'full'")
     linear = fidelity.startswith("linear/")
+    if linear and any(w.brake_torque > 0.0 for w in scene.active_vehicle.wheels):
+        # the linear levels have no wheel rotation (a defect sits at theta = v t / rho0)
+        raise ValueError(f"Wheel.brake_torque > 0 needs the wheel's rotation, which fidelity = "
+                         f"{fidelity!r} does not model; use 'full', 'ancf/sprung' or "
+                         f"'ancf/hertz'")
     if not linear:
         _kernel.require_euler(scene, f"fidelity={fidelity!r}")
     if scene.window is not None and not linear:
