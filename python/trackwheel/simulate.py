@@ -278,15 +278,13 @@ def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
     return fidelity, n_modes
 
 
-def _end_of(x_start, x_end, distance):
-    """``x_end``, or ``x_start + distance`` (one of them, checked)."""
+def _end_of(x0: float, x_end, distance):
+    """``x_end``, or ``x0 + distance`` [m] from the resolved start ``x0`` (one of them)."""
     if distance is None:
         return x_end
     if x_end is not None:
         raise ValueError("give x_end or distance, not both")
-    if x_start is None:
-        raise ValueError("distance needs x_start (or give x_end)")
-    return x_start + v.number("distance", distance, low=0.0, low_open=True, unit="m")
+    return x0 + v.number("distance", distance, low=0.0, low_open=True, unit="m")
 
 
 def _window_passage(scene: Scene, speed: float, x_start, x_end, duration, distance):
