@@ -525,7 +525,14 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("newton_tol", &SimSettings::newton_tol)
       .def_readwrite("reuse_jacobian", &SimSettings::reuse_jacobian)
       .def_readwrite("record_energy", &SimSettings::record_energy)
-      .def_readwrite("progress_every", &SimSettings::progress_every);
+      .def_readwrite("progress_every", &SimSettings::progress_every)
+      .def_readwrite("window", &SimSettings::window, "the travelling window (a copy: assign it)");
+  py::class_<WindowParams>(m, "WindowParams")
+      .def(py::init<>())
+      .def_readwrite("bay", &WindowParams::bay, "sleeper bay d_s [m]; 0: no window")
+      .def_readwrite("elements_per_bay", &WindowParams::elements_per_bay, "[-]")
+      .def_readwrite("origin", &WindowParams::origin, "track coordinate of s = 0 at t = 0 [m]")
+      .def_readwrite("hold", &WindowParams::hold, "s of the rearmost wheel at a shift [m]");
   py::class_<WheelState>(m, "WheelState")
       .def(py::init<>())
       .def_readwrite("y", &WheelState::y, "Y_A [m]")

@@ -8,10 +8,27 @@
 #include "generalized_alpha.hpp"
 #include "linear_rail.hpp"
 #include "sleepers.hpp"
+#include "window.hpp"
 
 namespace trackwheel {
 
 namespace {
+
+// The track at rest under its own weight, no wheel: K q = Q_g with the sleepers condensed (q over
+// the linear track's coordinates, z the sleeper heights) [m].
+void own_weight_state(const LinearTrack& tr, Sleepers& sl, Eigen::VectorXd& q, Eigen::VectorXd& z) {
+  sl.set_coefficients(0.0, 0.0, 1.0);
+  BandMatrix K = tr.K;
+  sl.condense_matrix(tr.y_of_full, K);
+  if (!K.factorize()) throw std::runtime_error("rail stiffness is singular");
+  Eigen::VectorXd rs;
+  q = tr.Qg;
+  z = Eigen::VectorXd::Zero(sl.size());
+  sl.forces(Eigen::VectorXd::Zero(tr.nq), nullptr, tr.y_of_full, z, nullptr, rs);
+  sl.condense_rhs(rs, tr.y_of_full, q);
+  K.solve_in_place(q);
+  sl.back_substitute(rs, q, tr.y_of_full, z);
+}
 
 // One wheel on the linear track: its coupling at X_A, state and 2-wide border [Y'', N].
 struct LinearWheel {
@@ -42,9 +59,12 @@ class LinearStepper : public Stepper {
   void record_sample(double t);
 
  private:
+  // The track coordinate of wheel w at t [m] (outputs, excitation), and its rail coordinate
+  // s = X - X_w in the window (couplings; X on a fixed rail).
   double X(int w, double t) const {
     return set_.x_start + model_.wheels[w].x_offset + set_.speed * t;
   }
+  double Xl(int w, double t) const { return X(w, t) - origin_; }
   bool rigid() const {
     return opt_.wheel_model == WheelModel::MovingForce ||
            opt_.wheel_model == WheelModel::MovingMass;
@@ -72,6 +92,8 @@ class LinearStepper : public Stepper {
   void predict_bodies(double h);
   void update_bodies(double cq, double cv);
   void predict_sleepers(double h);
+  void start_window();
+  void shift_window(double t1);
   void add_sleeper_residual();
   void correct_sleepers();
 
@@ -99,6 +121,10 @@ class LinearStepper : public Stepper {
   std::vector<double> aYh_, Yh_, Ydh_;
   Eigen::MatrixXd S_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  // the travelling window: origin X_w, shift maps, the fresh bay's rail and sleeper heights
+  double origin_ = 0.0;
+  WindowShift win_;
+  Eigen::VectorXd q_st_, z_st_;
 };
 
 LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const LinearOptions& opt,
@@ -120,6 +146,7 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
     throw std::invalid_argument(
         "n_modes (modal superposition) does not take layered supports (sleeper_mass given); "
         "with sleepers use all coordinates (n_modes=None in trackwheel.simulate)");
+  start_window();
   initial_state();
   const double h = set.dt, cq = c_.bp * h * h, cv = c_.gp * h;
   A_.resize(tr_.nq, tr_.bw);
@@ -174,7 +201,7 @@ void LinearStepper::initial_state() {
   for (int w = 0; w < nw_; ++w) Pst_(w) = model_.wheels[w].total_load() - (nb_ > 0 ? fv(w) : 0.0);
   q_ = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
-    tr_.coupling(X(w, 0.0), wh_[w].s, wh_[w].ss, wh_[w].sss);
+    tr_.coupling(Xl(w, 0.0), wh_[w].s, wh_[w].ss, wh_[w].sss);
     if (!opt_.sudden) q_ -= static_load(w) * wh_[w].s;
   }
   z_ = Eigen::VectorXd::Zero(ns);
@@ -234,7 +261,7 @@ double LinearStepper::static_load(int w) const { return Pst_(w); }
 void LinearStepper::couple(double t1) {
   for (int w = 0; w < nw_; ++w) {
     LinearWheel& lw = wh_[w];
-    const double X1 = X(w, t1);
+    const double X1 = Xl(w, t1);
     tr_.coupling(X1, lw.s, lw.ss, lw.sss);
     const BeamPoint bp = tr_.point(X1);
     if (bp.element != lw.cache_el) {
@@ -363,6 +390,7 @@ void LinearStepper::update_bodies(double cq, double cv) {
 void LinearStepper::step(long n) {
   const double h = set_.dt, t1 = n * h, am = c_.am, af = c_.af, gam = c_.gam, bet = c_.bet;
   const double cq = c_.bp * h * h, cv = c_.gp * h;
+  shift_window(t1);
   couple(t1);
   // predictors: q_{n+1} = qh + cq qdd_{n+1}, qd_{n+1} = qdh + cv qdd_{n+1}
   ah_ = (af * qdd_ - am * a_) / (1.0 - am);  // a_{n+1} minus qdd part
@@ -477,6 +505,51 @@ void LinearStepper::step(long n) {
                    " iterations");
 }
 
+// The window's shift maps and its rest state: the window's rail at rest under its own weight (no
+// wheel), computed once.
+void LinearStepper::start_window() {
+  const WindowParams& wp = set_.window;
+  if (!wp.active()) return;
+  if (tr_.modal)
+    throw std::invalid_argument("the travelling window needs all coordinates, not n_modes");
+  win_ = WindowShift(model_.rail, wp, tr_.y_of_full, tr_.nq, sl_.size());
+  origin_ = wp.origin;
+  own_weight_state(tr_, sl_, q_st_, z_st_);
+}
+
+// Moves the state one bay back in the window while the rearmost wheel at t1 is past the hold
+// point. What shifts is the departure from the rest state q_st (the track is linear, so the
+// departure obeys the same equations in every window position): q <- q_st + shift(q - q_st),
+// likewise z; the generalized-alpha history (q', q'', a and the sleepers') shifts as it is.
+// The fresh bay joins at rest (zero departure), and the rest state keeps the window's ends as
+// they are (a shift of the state itself would move their end effects into the track). The
+// wheels' element caches are invalid after the shift.
+void LinearStepper::shift_window(double t1) {
+  if (!win_.active()) return;
+  const WindowParams& wp = win_.params();
+  for (;;) {
+    double rear = Xl(0, t1);
+    for (int w = 1; w < nw_; ++w) rear = std::min(rear, Xl(w, t1));
+    if (rear < wp.hold) return;
+    q_ -= q_st_;
+    win_.shift(q_);
+    q_ += q_st_;
+    win_.shift(qd_);
+    win_.shift(qdd_);
+    win_.shift(a_);
+    if (!sl_.empty()) {
+      z_ -= z_st_;
+      win_.shift_sleepers(z_);
+      z_ += z_st_;
+      win_.shift_sleepers(zd_);
+      win_.shift_sleepers(zdd_);
+      win_.shift_sleepers(az_);
+    }
+    for (LinearWheel& lw : wh_) lw.cache_el = -1;
+    origin_ += wp.bay;
+  }
+}
+
 // The sleepers' generalized-alpha predictors (as the rail's in step) and z''_{n+1} = 0.
 void LinearStepper::predict_sleepers(double h) {
   if (sl_.empty()) return;
@@ -536,7 +609,7 @@ void LinearStepper::record_sample(double t) {
   for (int w = 0; w < nw_; ++w) {
     const LinearWheel& lw = wh_[w];
     const double r0 = model_.wheels[w].radius, Xw = X(w, t);
-    tr_.coupling(Xw, s, ss, sss);
+    tr_.coupling(Xw - origin_, s, ss, sss);
     const double yc = s.dot(q_), ys = ss.dot(q_), yss = sss.dot(q_), yst = ss.dot(qd_);
     rec.push(Field::x_wheel, Xw);
     rec.push(Field::y_wheel, lw.Y);

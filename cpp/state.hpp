@@ -10,6 +10,15 @@ namespace trackwheel {
 enum class Integrator { GeneralizedAlpha = 0, ExplicitRK4 = 1 };
 enum class SlipState { Free = 0, Stick = 1, Slip = 2 };
 
+// The travelling window of a run (window.hpp; docs: Model § The travelling window).
+struct WindowParams {
+  double bay = 0.0;          // d_s [m]; 0: no window (a fixed rail)
+  int elements_per_bay = 0;  // n_e,bay [-]
+  double origin = 0.0;       // X_w at t = 0: the track coordinate of s = 0 [m]
+  double hold = 0.0;         // s at which the rearmost wheel triggers a shift [m]
+  bool active() const { return bay > 0.0; }
+};
+
 // Numerical settings of one run (the physics is in Model).
 struct SimSettings {
   Integrator integrator = Integrator::GeneralizedAlpha;
@@ -26,6 +35,7 @@ struct SimSettings {
   bool record_energy = false;  // record the total mechanical energy per sample
   bool reuse_jacobian = true;  // modified Newton: keep the factorised matrix while it converges
   long progress_every = 2000;  // steps between progress callbacks [-]
+  WindowParams window;         // the travelling window (inactive by default)
 };
 
 // Throws std::invalid_argument for settings no integrator can run (dt, t_end, output_every,

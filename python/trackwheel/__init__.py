@@ -19,9 +19,10 @@ from .force_statistics import ForceStatistics, force_statistics
 from .frequency import decay_rate, receptance
 from .irregularity import Irregularity, Polygon, WheelFlat
 from .results import Result, RunSettings
-from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, kmh
+from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, Window, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .vehicle import Bogie, CarBody, Vehicle
+from .steady import SteadyState, steady_state
 from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .sweep import load_sweep, summarise_seeds, sweep
 from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
@@ -46,6 +47,9 @@ __all__ = [
     "StaticResult",
     "Supports",
     "Wheel",
+    "Window",
+    "SteadyState",
+    "steady_state",
     "__version__",
     "adequacy",
     "amplitude_spectrum",

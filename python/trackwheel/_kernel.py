@@ -26,7 +26,11 @@ WHEEL_ARC_STEP = 5e-4
 
 
 @lru_cache(maxsize=64)
-def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
+def rail_model(scene: Scene, n_elements: int | None = None,
+               profile_end: float | None = None) -> _core.RailModel:
+    """The kernel's rail of ``scene`` on ``n_elements`` (None: the scene's); its profile covers
+    the track coordinates [0, ``profile_end``] [m] (None: the rail, [0, L]; a travelling
+    window's run covers the track it passes)."""
     r = scene.rail
     p = _core.RailParams()
     p.length = r.length
@@ -50,7 +54,7 @@ def rail_model(scene: Scene, n_elements: int | None = None) -> _core.RailModel:
         s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
         s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
         s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
-    return _core.RailModel(p, s, profile(scene))
+    return _core.RailModel(p, s, profile(scene, profile_end))
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:
@@ -72,9 +76,9 @@ def require_euler(scene: Scene, what: str) -> None:
             "Rail.beam='euler' or a 'linear/...' fidelity level")
 
 
-def profile(scene: Scene) -> _core.Profile:
-    """The scene's rail profile as the kernel's piecewise cubic over [0, L] (none: empty),
-    patch-filtered if ``scene.contact.patch_filter``.
+def profile(scene: Scene, end: float | None = None) -> _core.Profile:
+    """The scene's rail profile as the kernel's piecewise cubic over [0, L] (or [0, ``end``]
+    [m]; none: empty), patch-filtered if ``scene.contact.patch_filter``.
 
     Raises ValueError where the profile curves upwards more sharply than the wheel (r'' >=
     1/rho0, e.g. a dipped joint's cusp): the wheel would bridge the dip on two points, which
@@ -89,7 +93,8 @@ def profile(scene: Scene) -> _core.Profile:
 
     dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
     a = contact_half_width(scene) if scene.contact.patch_filter else None
-    x0, h, r = irr.table(0.0, scene.rail.length, dx, half_width=a)
+    end = scene.rail.length if end is None else end
+    x0, h, r = irr.table(0.0, end, dx, half_width=a)
     x = x0 + h * np.arange(r.size)
     spline = CubicSpline(x, r)
     curvature = spline(x, 2)

@@ -175,8 +175,19 @@ def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
     return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
 
 
+def _in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
+    """X [m] as the rail coordinate of a fixed rail, or on a travelling window the same place
+    in its bay in the window's middle bay (the quasi-static line of the periodic track)."""
+    if scene.window is None:
+        return x
+    d = scene.supports.spacing
+    middle = round(scene.rail.length / d) // 2
+    return middle * d + np.mod(x, d)
+
+
 def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
     """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
+    x = _in_window(scene, x)
     le = scene.rail.length / n_elements
     e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
     e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
@@ -251,7 +262,8 @@ class Analysis:
 
 def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
             p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD,
-            wheel: int | None = None) -> Analysis:
+            wheel: int | None = None, t_from: float | None = None,
+            steady: bool = False) -> Analysis:
     """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model §
     Outputs).
 
@@ -280,6 +292,12 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     (its quasi-static line is that wheel's alone; the neighbours' static deflection is part
     of its dynamic part d).
 
+    ``t_from`` [s] measures only the samples from that time on; ``steady=True`` from the start
+    of the steady state in the sleeper bay (:func:`trackwheel.steady_state` of the contact
+    force: the start-up transient left out). On a travelling window (``scene.window``) the
+    quasi-static line is the periodic track's: solved in the window's middle bay at the wheel's
+    position in its bay.
+
     Raises ValueError if the run kept fewer than 4 samples, if ``defect_at`` is not passed
     in the run, or if the run has several wheels and ``wheel`` is not given.
     """
@@ -290,6 +308,16 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     elif result.n_wheels > 1:
         raise ValueError(f"result has {result.n_wheels} wheels: give wheel = 0 .. "
                          f"{result.n_wheels - 1} (one Analysis per wheel)")
+    if steady:
+        from .steady import steady_state
+
+        if t_from is not None:
+            raise ValueError("give t_from or steady=True, not both")
+        t_from = steady_state(result).t_from
+    if t_from is not None:
+        from .steady import from_time
+
+        result = from_time(result, t_from)
     n = result.t.size
     if n < 4:
         raise ValueError(f"result has {n} samples; the analysis needs at least 4 "

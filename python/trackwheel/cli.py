@@ -62,7 +62,7 @@ from .eigen import eigen as _eigen
 from .force_statistics import defect_position
 from .irregularity import Irregularity, WheelFlat
 from .reproduce import REPRODUCE_STEPS, STORE_NAME, X_REPORT, reproduce
-from .scene import MAX_ELEMENTS, Scene, kmh
+from .scene import MAX_ELEMENTS, Scene, Window, kmh
 from .simulate import FIDELITY_LEVELS, simulate
 from .vehicle import Vehicle
 from .sweep import sweep
@@ -342,10 +342,29 @@ def _add_run(sub) -> None:
                         "(mu P rho0, 1414 N m for the paper's wheel) it locks the wheel, which "
                         "then slides (docs: Model § Rolling and slip)")
     _simulate_options(p)
+    g = p.add_argument_group(
+        "long runs on a travelling window (docs: Model § The travelling window)")
+    g.add_argument("--distance", type=_positive_float, metavar="M",
+                   help="run this many metres on a travelling window of the --track (the rail "
+                        "becomes --window bays that move with the wheel): any distance at the "
+                        "same cost per metre; default --fidelity linear/hertz (the window runs "
+                        "on the linear levels); prints contact-force statistics per 100 m")
+    g.add_argument("--window", type=_window_spec, metavar="BEHIND,AHEAD",
+                   help="with --distance: whole sleeper bays behind the rear wheel's bay and "
+                        "ahead of the leading wheel's (default 20,20)")
     p.add_argument("--plot", type=Path, metavar="PNG",
                    help="save y_B, y_qs, d(t) and the spectrum of d to this file (any format "
                         "matplotlib writes: .png, .pdf, .svg, ...)")
     p.set_defaults(run=_cmd_run, parser=p)
+
+
+def _window_spec(text: str) -> Window:
+    try:
+        behind, ahead = (int(t) for t in text.split(","))
+        return Window(bays_behind=behind, bays_ahead=ahead)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"{text!r}: give two whole numbers of bays "
+                                         f"BEHIND,AHEAD, each 1..1000 ({exc})") from None
 
 
 def _add_sweep(sub) -> None:
@@ -796,17 +815,23 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error("--wheel-flat is only available with --vehicle single")
     if args.vehicle != "single" and args.brake_torque is not None:
         parser.error("--brake-torque is only available with --vehicle single")
+    if args.window is not None and args.distance is None:
+        parser.error("--window needs --distance (the window is for long runs)")
     try:
         scene = _vehicle_scene(_track_scene(args, args.support_stiffness), args.vehicle)
         scene, notes = _excited_scene(scene, args)
         if args.brake_torque is not None:
             scene = dataclasses.replace(scene, wheel=dataclasses.replace(
                 scene.wheel, brake_torque=args.brake_torque))
+        if args.distance is not None:
+            scene = scene.windowed(args.window or Window())
     except _OptionError as exc:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
         parser.error(_option_error(exc))
     _print_notes(notes, "run")
+    if args.distance is not None:
+        return _window_run(scene, args, parser)
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -843,6 +868,51 @@ def _cmd_run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
             return 1
         print(f"  plot           : {args.plot}")
+    return 0
+
+
+def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
+    """``run --distance``: the passage on the travelling window and its contact-force
+    statistics, over the whole run and per 100 m."""
+    if args.plot is not None:
+        parser.error("--plot is not available with --distance (plot Result.normal_force "
+                     "against Result.x_wheel from the API)")
+    kw = _simulate_kwargs(args)
+    kw.setdefault("fidelity", "linear/hertz")
+    if args.x_end is None:
+        kw["distance"] = args.distance
+        kw.setdefault("x_start", 0.5 * scene.supports.spacing
+                      - scene.active_vehicle.span[0])
+    elif args.x_start is None:
+        parser.error("--distance with --x-end needs --x-start")
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            r = simulate(scene, kmh(args.speed_kmh), **kw)
+    except (ValueError, TypeError) as exc:
+        parser.error(_option_error(exc))
+    except DivergenceError as exc:
+        _print_warnings(caught, "run")
+        print(f"trackwheel run: the simulation diverged: {exc}", file=sys.stderr)
+        return 1
+    _print_warnings(caught, "run")
+    N = np.atleast_2d(np.asarray(r.normal_force).T).T  # (samples, wheels)
+    x = np.asarray(r.x_wheel).reshape(len(r.t), -1)[:, 0]
+    w = scene.window
+    print(f"scene          : {_scene_name(scene, args)} on a travelling window of "
+          f"{w.bays_behind} + {w.bays_ahead} bays ({scene.rail.length:g} m), "
+          f"{kw['fidelity']}")
+    print(f"run            : {x[-1] - x[0]:.1f} m at {args.speed_kmh:g} km/h, {r.steps} steps "
+          f"in {r.wall_time:.1f} s ({1e6 * r.wall_time / max(r.steps, 1):.1f} us/step)")
+    print(f"contact force  : {N.min() / 1e3:.2f} .. {N.max() / 1e3:.2f} kN, mean "
+          f"{N.mean() / 1e3:.2f} kN, std {N.std() / 1e3:.2f} kN; lost contact: "
+          f"{'yes' if (N <= 0.0).any() else 'no'}")
+    print("per 100 m      :   from [m]   min [kN]   max [kN]   std [kN]")
+    for x0 in np.arange(x[0], x[-1], 100.0):
+        m = (x >= x0) & (x < x0 + 100.0)
+        if m.sum() > 1:
+            print(f"{'':17s}{x0:>8.1f}  {N[m].min() / 1e3:>9.2f}  {N[m].max() / 1e3:>9.2f}  "
+                  f"{N[m].std() / 1e3:>9.2f}")
     return 0
 
 

@@ -326,6 +326,38 @@ class Contact:
 
 
 @dataclass(frozen=True)
+class Window:
+    """The travelling window (docs: Model § The travelling window): the rail is a fixed number of
+    sleeper bays that travels with the wheels, so a run of any length costs the same per metre
+    and the same memory.
+
+    The window holds ``bays_behind`` whole bays behind the bay of the rearmost wheel, the bays
+    the vehicle spans, and ``bays_ahead`` bays ahead of the leading wheel's bay; its rail length
+    is :meth:`length` (a longer rail of whole bays adds bays ahead). When the rearmost wheel
+    leaves its bay the state moves one bay back: the rear bay leaves, a fresh bay at rest under
+    its own weight joins at the front. Needs a track periodic in its bay (equal supports every
+    ``Supports.spacing``, ``Supports.positions`` not given) and, so that the rail's ends do not
+    reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
+    the ``linear/...`` fidelity levels.
+    """
+
+    bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
+    bays_ahead: int = 20  #: whole bays ahead of the leading wheel's bay [-], 1..1000
+
+    def __post_init__(self):
+        v.integer("Window.bays_behind", self.bays_behind, low=1, high=1000)
+        v.integer("Window.bays_ahead", self.bays_ahead, low=1, high=1000)
+
+    def n_bays(self, span: float, spacing: float) -> int:
+        """Bays of the window for wheels spanning ``span`` [m] on bays of ``spacing`` [m]."""
+        return self.bays_behind + 1 + math.ceil(span / spacing - 1e-9) + self.bays_ahead
+
+    def length(self, span: float, spacing: float) -> float:
+        """The window's rail length [m]: :meth:`n_bays` x ``spacing``."""
+        return self.n_bays(span, spacing) * spacing
+
+
+@dataclass(frozen=True)
 class Scene:
     """A wheel (or a vehicle) on a rail on supports: everything the kernel needs, in SI units.
 
@@ -350,6 +382,8 @@ class Scene:
     #: the vehicle (trackwheel.Vehicle), or None: the single wheel ``wheel``
     #: (docs: Model § The vehicle)
     vehicle: object = None
+    #: the travelling window (:class:`Window`), or None: the rail is the whole track
+    window: Window | None = None
 
     def __post_init__(self):
         for f in fields(self)[:4]:
@@ -369,6 +403,29 @@ class Scene:
                              "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
                              "Scene.gravity > 0")
         self.supports.resolve(self.rail.length)  # supports must lie on the rail
+        if self.window is not None:
+            self._check_window()
+
+    def _check_window(self):
+        w = self.window
+        if not isinstance(w, Window):
+            raise TypeError(f"Scene.window must be a trackwheel.Window or None, "
+                            f"got {type(w).__name__}")
+        if self.supports.positions is not None:
+            raise ValueError("Scene.window needs equal supports every Supports.spacing: leave "
+                             "Supports.positions None")
+        d = self.supports.spacing
+        rear, front = self.active_vehicle.span
+        L = w.length(front - rear, d)
+        n_bays = round(self.rail.length / d)
+        if abs(n_bays * d - self.rail.length) > 1e-9 * L or self.rail.length < L * (1 - 1e-9):
+            raise ValueError(f"Rail.length = {self.rail.length} m must be a whole number of "
+                             f"{d} m bays, at least the window's length {L:.6g} m "
+                             f"({w.n_bays(front - rear, d)} bays: Window.length(span, "
+                             "spacing)); Scene.windowed(window) sets it")
+        if self.rail.n_elements % n_bays:
+            raise ValueError(f"Rail.n_elements = {self.rail.n_elements} must be a whole number "
+                             f"of elements per bay: a multiple of the window's {n_bays} bays")
 
     def _derive_wheel(self):
         from dataclasses import replace
@@ -389,6 +446,28 @@ class Scene:
         derived = replace(w0, load=max(sum(loads) / len(loads) - w0.mass * self.gravity, 0.0))
         object.__setattr__(self, "wheel", derived)
 
+    def windowed(self, window: Window | None) -> "Scene":
+        """This scene on the travelling ``window`` (None: the scene without one, its rail as
+        given): the rail's length becomes ``window.length`` for the vehicle's span, with as many
+        elements per bay as the scene's mesh has (at least one)."""
+        from dataclasses import replace
+
+        if window is None:
+            return replace(self, window=None)
+        if not isinstance(window, Window):
+            raise TypeError(f"window must be a trackwheel.Window or None, "
+                            f"got {type(window).__name__}")
+        d = self.supports.spacing
+        rear, front = self.active_vehicle.span
+        epb = max(1, round(self.rail.n_elements / max(1, round(self.rail.length / d))))
+        n_el = window.n_bays(front - rear, d) * epb
+        if n_el > MAX_ELEMENTS:
+            raise ValueError(f"the window's {window.n_bays(front - rear, d)} bays with {epb} "
+                             f"elements each need {n_el} elements; allowed at most "
+                             f"{MAX_ELEMENTS}: fewer Window.bays_behind/bays_ahead")
+        rail = replace(self.rail, length=window.length(front - rear, d), n_elements=n_el)
+        return replace(self, rail=rail, window=window)
+
     @property
     def active_vehicle(self):
         """The vehicle that runs: ``vehicle``, or ``Vehicle.single_wheel(wheel)`` if None."""
@@ -403,7 +482,8 @@ class Scene:
         return cls()
 
     @classmethod
-    def ballasted_track(cls, length: float = 30.0, *, elements_per_bay: int = 4) -> "Scene":
+    def ballasted_track(cls, length: float = 30.0, *, elements_per_bay: int = 4,
+                        window: Window | None = None) -> "Scene":
         """A high-speed wheel on UIC60 rail on ballasted track with concrete monobloc sleepers
         (docs: Model § Layered supports).
 
@@ -426,8 +506,14 @@ class Scene:
         ``elements_per_bay`` per 0.6 m bay (default 4: 0.15 m elements, sleepers on nodes).
         The rail's ends rest on rigid supports, so the track stiffens within a few metres of
         them: run passages well inside, e.g. ``simulate(scene, v, x_start=10.0, x_end=20.0)``.
+
+        window: a :class:`Window` makes the rail a travelling window of that many bays (the
+        length is then the window's, ``length`` is ignored) for runs of any length, e.g.
+        ``simulate(scene, v, distance=1000.0, fidelity="linear/hertz")``.
         """
         spacing = 0.6
+        if window is not None:
+            return cls.ballasted_track(elements_per_bay=elements_per_bay).windowed(window)
         length = v.number("length", length, low=3 * spacing, unit="m")
         epb = v.integer("elements_per_bay", elements_per_bay, low=1, high=64)
         n_bays = round(length / spacing)

@@ -83,6 +83,7 @@ class RunPlan:
     max_newton: int
     newton_tol: float  #: [m]
     rolling: bool  #: the rolling flag as given (the linear kernel path has no constraint)
+    window: object = None  #: _core.WindowParams of a travelling window, or None
 
     @property
     def linear(self) -> bool:
@@ -188,7 +189,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
              start: str = "static", drop_height: float = 0.0,
              progress: bool | None = None, energy: bool = False,
              fidelity: str = "full", n_modes: int | None = None, max_newton: int = 25,
-             newton_tol: float = 1e-11) -> Result:
+             newton_tol: float = 1e-11, distance: float | None = None) -> Result:
     """Simulate the wheel passing over the rail at constant forward ``speed`` [m/s].
 
     Parameters
@@ -218,6 +219,12 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         leading wheel ends in the middle of the last. Its start ("static") is the whole
         vehicle's static state (docs: Model § The vehicle).
     duration : simulated time [s] (overrides ``x_end``).
+    distance : distance run [m], ``x_end = x_start + distance`` (give one of ``x_end``,
+        ``distance``, ``duration``). On a travelling window (``scene.window``,
+        docs: Model § The travelling window) ``x_end`` and ``distance`` are not bounded by the
+        rail: kilometres cost the same per metre and keep only the decimated samples in
+        memory; there the default run is one window length, and every wheel starts at X >= 0
+        (default: the rear wheel in the middle of the first bay).
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
         beyond.
     rho_inf : generalized-alpha spectral radius at infinite frequency, in [0, 1] (1: no numerical
@@ -250,7 +257,7 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
                    x_start=x_start, x_end=x_end, duration=duration, output_every=output_every,
                    rho_inf=rho_inf, baumgarte=baumgarte, rolling=rolling, start=start,
                    drop_height=drop_height, energy=energy, fidelity=fidelity, n_modes=n_modes,
-                   max_newton=max_newton, newton_tol=newton_tol)
+                   max_newton=max_newton, newton_tol=newton_tol, distance=distance)
     show = None if progress is None else v.boolean("progress", progress)
     out, wall = _run(plan, kernel_settings(plan), show)
     return result_from_kernel(out, plan.scene, plan.settings, wall, plan.energy)
@@ -271,10 +278,68 @@ def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
     return fidelity, n_modes
 
 
-def _passage(scene: Scene, speed: float, x_start, x_end, duration) -> tuple[float, float]:
-    """(X_0 [m], simulated time [s]) from the start and either the end or the duration."""
+def _end_of(x0: float, x_end, distance):
+    """``x_end``, or ``x0 + distance`` [m] from the resolved start ``x0`` (one of them)."""
+    if distance is None:
+        return x_end
+    if x_end is not None:
+        raise ValueError("give x_end or distance, not both")
+    return x0 + v.number("distance", distance, low=0.0, low_open=True, unit="m")
+
+
+def _window_passage(scene: Scene, speed: float, x_start, x_end, duration, distance):
+    """(X_0, time) on a travelling window: the track is unbounded ahead, X >= 0 for every
+    wheel; default start: the rear wheel in the middle of the first bay; default end: one
+    window length on."""
+    rear, _ = scene.active_vehicle.span
+    lo = -rear
+    x0 = 0.5 * scene.supports.spacing - rear if x_start is None else v.number(
+        "x_start", x_start, low=lo, unit="m")
+    if duration is not None:
+        return x0, v.number("duration", duration, low=0.0, low_open=True, unit="s")
+    if speed == 0.0:
+        raise ValueError("speed = 0: give duration [s] (x_end cannot be reached)")
+    if distance is not None:
+        x1 = x0 + v.number("distance", distance, low=0.0, low_open=True, unit="m")
+        if x_end is not None:
+            raise ValueError("give x_end or distance, not both")
+    else:
+        x1 = x0 + scene.rail.length if x_end is None else v.number(
+            "x_end", x_end, low=lo, unit="m")
+    if x1 <= x0:
+        raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m")
+    return x0, (x1 - x0) / speed
+
+
+def window_params(scene: Scene, ne: int, x0: float):
+    """The kernel's window for a run of ``scene`` on ``ne`` elements from X_0 = ``x0``: the
+    rear wheel held in the bay after ``bays_behind`` bays; the origin a whole number of bays,
+    so the supports stand where they stand on a fixed rail from X = 0."""
+    w, d = scene.window, scene.supports.spacing
+    rear, _ = scene.active_vehicle.span
+    n_bays = round(scene.rail.length / d)
+    if ne % n_bays:
+        raise ValueError(f"n_elements = {ne} must be a multiple of the window's {n_bays} bays "
+                         "(a whole number of elements per bay)")
+    p = _core.WindowParams()
+    p.bay = d
+    p.elements_per_bay = ne // n_bays
+    p.hold = (w.bays_behind + 1) * d
+    p.origin = (math.floor((x0 + rear) / d + 1e-9) - w.bays_behind) * d
+    return p
+
+
+def _passage(scene: Scene, speed: float, x_start, x_end, duration,
+             distance=None) -> tuple[float, float]:
+    """(X_0 [m], simulated time [s]) from the start and either the end, the distance or the
+    duration."""
+    if scene.window is not None:
+        return _window_passage(scene, speed, x_start, x_end, duration, distance)
     L = scene.rail.length
     rear, front = scene.active_vehicle.span
+    if distance is not None:
+        x_end = _end_of(start_position(scene, x_start) if scene.vehicle is None else (
+            default_start(scene) - rear if x_start is None else x_start), x_end, distance)
     if scene.vehicle is not None:
         return _vehicle_passage(scene, speed, x_start, x_end, duration, rear, front)
     x0 = start_position(scene, x_start)
@@ -371,7 +436,7 @@ def _output_every(output_every, n_steps: int, energy: bool) -> int:
 
 def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, x_end, duration,
             output_every, rho_inf, baumgarte, rolling, start, drop_height, energy, fidelity,
-            n_modes, max_newton, newton_tol) -> RunPlan:
+            n_modes, max_newton, newton_tol, distance=None) -> RunPlan:
     """Validate the arguments of :func:`simulate`, resolve its defaults (the same derived mesh
     and step at every fidelity level) and rewrite the scene for the fidelity level."""
     if not isinstance(scene, Scene):
@@ -381,7 +446,7 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     v.choice("start", start, {"static", "sudden"})
     ne = (derived_mesh(scene) if dt is None else scene.rail.n_elements) if n_elements is None \
         else v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-    x0, t_end = _passage(scene, speed, x_start, x_end, duration)
+    x0, t_end = _passage(scene, speed, x_start, x_end, duration, distance)
     rho_inf = v.number("rho_inf", rho_inf, low=0.0, high=1.0)
     baumgarte = v.number("baumgarte", baumgarte, low=0.0, unit="1/s")
     drop_height = v.number("drop_height", drop_height, low=0.0, high=scene.wheel.radius,
@@ -404,10 +469,18 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
                          f"'ancf/hertz'")
     if not linear:
         _kernel.require_euler(scene, f"fidelity={fidelity!r}")
+    if scene.window is not None and not linear:
+        raise ValueError(f"Scene.window (the travelling window) runs on the linear levels "
+                         f"('linear/hertz', 'linear/sprung', ...), not fidelity = {fidelity!r}")
+    if scene.window is not None and n_modes is not None:
+        raise ValueError("Scene.window needs all coordinates: n_modes = None")
     energy = v.boolean("energy", energy)
     warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
     scene = _scene_for(scene, fidelity)
-    model = _kernel.rail_model(scene, ne)
+    window = None if scene.window is None else window_params(scene, ne, x0)
+    profile_end = None if window is None else (
+        x0 + speed * t_end + scene.active_vehicle.span[1] + scene.rail.length)
+    model = _kernel.rail_model(scene, ne, profile_end)
     init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
     h = _time_step(scene, dt, integrator, linear, model, init, x0)
     n_steps = _steps(h, t_end, dt is None)
@@ -419,7 +492,7 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
         n_modes=n_modes)
     return RunPlan(scene=scene, settings=settings, model=model, init=init, n_steps=n_steps,
                    energy=energy, max_newton=max_newton, newton_tol=newton_tol,
-                   rolling=rolling)
+                   rolling=rolling, window=window)
 
 
 def kernel_settings(plan: RunPlan) -> _core.SimSettings:
@@ -438,6 +511,8 @@ def kernel_settings(plan: RunPlan) -> _core.SimSettings:
     s.max_newton = plan.max_newton
     s.newton_tol = plan.newton_tol
     s.record_energy = plan.energy
+    if plan.window is not None:
+        s.window = plan.window
     return s
 
 

@@ -1,0 +1,76 @@
+"""The travelling window (issue 14): cost per step and peak memory against the distance run.
+
+Each case runs in a fresh Python process on the ballasted preset on a window of 20 + 1 + 20
+bays (24.6 m, 328 elements at the default 8 per bay), the Hertzian wheel on the linear path
+(``fidelity="linear/hertz"``), 300 km/h, the default time step, and reports the kernel's wall
+time per step (``Result.wall_time / steps``: the time loop only), the whole call's wall time
+(with the profile table and the start), the peak resident set size
+(``resource.getrusage(RUSAGE_SELF).ru_maxrss``) before and after the run, and the bytes of the
+returned arrays. Cases:
+
+- ``smooth 100 m / 1 km / 5 km``: a smooth track, one sample kept every 20 steps: the cost per
+  step must not depend on the distance, the peak RSS only through the kept samples;
+- ``fra5 1 km``: FRA class 5 (seed 0), the issue's target (< 60 s on one core); its rail profile
+  is a cubic spline table over the kilometre (1 mm samples, 32 MB), built before the run.
+
+The full ANCF path is not windowed (docs: Model § The travelling window), so it has no case.
+Writes ``window.csv`` next to itself.
+
+    PYTHONPATH=python python benchmarks/window.py
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from _common import write_csv
+
+CASE = r"""
+import dataclasses as dc, json, resource, sys, time
+import numpy as np
+import trackwheel as tw
+from trackwheel import spectra
+kw = json.loads(sys.argv[1])
+scene = tw.Scene.ballasted_track(window=tw.Window(20, 20))
+if kw.pop("fra5"):
+    scene = dc.replace(scene, irregularity=tw.Irregularity.random(spectra.fra(5), seed=0))
+base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t0 = time.perf_counter()
+r = tw.simulate(scene, tw.kmh(300), fidelity="linear/hertz", x_start=0.3, progress=False, **kw)
+wall = time.perf_counter() - t0
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+out = sum(v.nbytes for v in vars(r).values() if isinstance(v, np.ndarray))
+print(json.dumps(dict(steps=r.steps, samples=len(r.t), us_per_step=1e6 * r.wall_time / r.steps,
+                      call_s=wall, baseline_mib=base / 1024, peak_mib=peak / 1024,
+                      output_mib=out / 2**20, f_max_kn=float(r.normal_force.max()) / 1e3)))
+"""
+
+CASES = [
+    ("smooth 100 m", dict(distance=100.0, output_every=20, fra5=False)),
+    ("smooth 1 km", dict(distance=1000.0, output_every=20, fra5=False)),
+    ("smooth 5 km", dict(distance=5000.0, output_every=20, fra5=False)),
+    ("fra5 1 km", dict(distance=1000.0, fra5=True)),
+]
+
+
+def main():
+    rows = []
+    for name, kw in CASES:
+        p = subprocess.run([sys.executable, "-c", CASE, json.dumps(kw)], capture_output=True,
+                           text=True, check=True)
+        d = json.loads(p.stdout.strip().splitlines()[-1])
+        row = dict(case=name, **{k: (round(v, 2) if isinstance(v, float) else v)
+                                 for k, v in d.items()})
+        row["growth_mib"] = round(d["peak_mib"] - d["baseline_mib"], 1)
+        rows.append(row)
+        print(f"{name:14s} {d['steps']:>8d} steps {d['samples']:>7d} samples: "
+              f"{d['us_per_step']:.1f} us/step, call {d['call_s']:.1f} s; peak RSS "
+              f"{d['peak_mib']:.1f} MiB (growth {row['growth_mib']:.1f}, output "
+              f"{d['output_mib']:.1f} MiB)", flush=True)
+    write_csv("window.csv", rows)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,233 @@
+"""The travelling window (docs: Model § The travelling window).
+
+The window's rail is a fixed number of sleeper bays that moves with the wheel; the state shifts
+by one bay inside the kernel's time loop. Checks: it reproduces a long fixed track (same
+irregularity, same supports), it gives the closed-form steady state of a constant force moving
+along an infinite beam on an elastic foundation, its output size is that of the kept samples
+whatever the distance, and it refuses tracks it cannot shift.
+"""
+
+from __future__ import annotations
+
+import dataclasses as dc
+import math
+
+import numpy as np
+import pytest
+
+import trackwheel as tw
+from trackwheel import spectra
+
+V = tw.kmh(300)
+#: the ballasted preset's static wheel load P = F + M g [N]
+P_STATIC = 70e3
+
+
+def _fra5():
+    # wavelengths 3-50 m: the wheel keeps contact at 300 km/h, so the comparison tests the
+    # shift, not the sensitivity of a wheel landing after a loss of contact
+    return tw.Irregularity.random(spectra.fra(5), seed=3, wavelengths=(3.0, 50.0))
+
+
+@pytest.mark.parametrize("absorbing", [None, 4.8])
+def test_window_equals_long_fixed_track(absorbing):
+    """12 m of FRA class 5 at 300 km/h on a window of 20 + 1 + 20 bays (24.6 m, 20 shifts)
+    against a 60 m fixed rail whose ends are 20 m behind the start and 28 m beyond the end:
+    Hertzian contact force and wheel height agree within 1e-3 of the static load (and the
+    corresponding 1e-3 P / k_H of the wheel) over the last 4 m. The first metres differ by up to
+    8e-3 P: the start (static equilibrium at speed) and the irregularity send waves along the
+    rail, which the window cuts 12 m from the wheel (its ends pin what reaches them, and each
+    shift drops the rear bay's motion); they have died out by 8 m. With absorbing end zones of
+    8 bays in the window's rail (``Rail.absorbing_ends``: the damping band is the same after a
+    shift) the same holds."""
+    irr = _fra5()
+    fixed = dc.replace(tw.Scene.ballasted_track(length=60.0), irregularity=irr)
+    window = dc.replace(tw.Scene.ballasted_track(window=tw.Window(20, 20)), irregularity=irr)
+    if absorbing is not None:
+        window = dc.replace(window, rail=dc.replace(
+            window.rail, absorbing_ends=tw.AbsorbingEnds(length=absorbing)))
+    kw = dict(x_start=20.1, x_end=32.1, fidelity="linear/hertz", progress=False)
+    rf = tw.simulate(fixed, V, n_elements=fixed.rail.n_elements, **kw)
+    rw = tw.simulate(window, V, n_elements=window.rail.n_elements, dt=rf.settings.dt, **kw)
+    assert window.rail.length == pytest.approx(41 * 0.6) and rw.x_wheel[-1] > window.rail.length
+    np.testing.assert_array_equal(rw.x_wheel, rf.x_wheel)  # outputs in the track's X
+    stretch = rw.x_wheel >= 28.1
+    assert np.ptp(rf.normal_force[stretch]) > 0.1 * P_STATIC  # the irregularity excites
+    assert np.abs(rw.normal_force - rf.normal_force)[stretch].max() < 1e-3 * P_STATIC
+    # the wheel's height to the same fraction: 1e-3 P over the Hertz stiffness at P
+    k_h = 1.5 * window.hertz_constant ** (2 / 3) * P_STATIC ** (1 / 3)
+    assert np.abs(rw.y_wheel - rf.y_wheel)[stretch].max() < 1e-3 * P_STATIC / k_h
+
+
+def winkler_scene(zeta: float = 0.02) -> tuple[tw.Scene, float, float]:
+    """A light beam on supports every 5 cm (lambda d = 0.1: the Winkler limit) on a window of
+    401 bays (20 m, 40 / lambda), no gravity, the foundation damped at zeta of critical.
+    Returns (scene, k [N/m^2], m [kg/m])."""
+    EI, E, k, d = 37500.0, 210e9, 2.4e6, 0.05
+    rail = tw.Rail(length=1.0, youngs_modulus=E, density=7850.0, area=7.69e-3,
+                   second_moment=EI / E, n_elements=20)
+    m = rail.mass_per_length
+    c = 2.0 * zeta * math.sqrt(k * m)
+    scene = tw.Scene(rail=rail, supports=tw.Supports(stiffness=k * d, damping=c * d, spacing=d),
+                     wheel=tw.Wheel(load=1e4, mass=10.0), gravity=0.0, rail_gravity=False)
+    return scene.windowed(tw.Window(bays_behind=200, bays_ahead=200)), k, m
+
+
+@pytest.mark.parametrize("alpha", [0.0, 0.3, 0.5, 0.7])
+def test_moving_load_on_winkler_beam(alpha):
+    """Steady deflection under a constant force P moving at v = alpha v_cr along an infinite
+    Euler-Bernoulli beam on an elastic foundation (Winkler modulus k):
+    w(0) = P lambda / (2 k) / sqrt(1 - alpha^2), lambda = (k / (4 EI))^(1/4),
+    v_cr = (4 k EI / m^2)^(1/4) (docs: Model § Validation). It is the value at xi = 0 of the
+    steady solution of EI w'''' + m v^2 w'' + k w = P delta(xi) in xi = x - v t,
+    (P / pi) int_0^inf dkappa / (EI kappa^4 - m v^2 kappa^2 + k); the same closed form is
+    Fryba, *Vibration of Solids and Structures under Moving Loads* (1999), ch. 4 (the infinite
+    beam on an elastic foundation), undamped case.
+
+    Tolerance 2e-3: the foundation damping zeta = 0.02 (there to let the start transient die)
+    lowers w(0) by 8e-4 at alpha = 0.7 (the damped Fourier integral, evaluated separately:
+    3e-5 at 0.3), 5 cm supports and elements differ from the continuous foundation by 1e-4,
+    and the mean over the last 0.2 s averages the remaining transient (1 % peak to peak)."""
+    scene, k, m = winkler_scene()
+    EI = scene.rail.bending_stiffness
+    lam = (k / (4.0 * EI)) ** 0.25
+    v_cr = (4.0 * k * EI / m**2) ** 0.25
+    speed = max(alpha * v_cr, 1.0)  # 1 m/s for the static limit: alpha = 0.01
+    r = tw.simulate(scene, speed, fidelity="linear/moving_force", dt=2e-4, duration=1.2,
+                    n_elements=scene.rail.n_elements, progress=False)
+    a = speed / v_cr
+    w0 = scene.static_load * lam / (2.0 * k) / math.sqrt(1.0 - a * a)
+    assert r.x_wheel[-1] - r.x_wheel[0] > scene.rail.length or alpha < 0.3
+    w = -r.y_contact[r.t > 1.0].mean()
+    assert w == pytest.approx(w0, rel=2e-3)
+
+
+def test_output_size_independent_of_distance():
+    """Memory: a run ten windows long keeps exactly its decimated samples (n_steps // every
+    + 1 per field), and the kernel's state is the window's: the same rail size whatever the
+    distance."""
+    scene, _, _ = winkler_scene()
+    kw = dict(fidelity="linear/moving_force", dt=2e-4, n_elements=scene.rail.n_elements,
+              progress=False, output_every=50, x_start=0.3)
+    short = tw.simulate(scene, 100.0, distance=20.0, **kw)
+    long = tw.simulate(scene, 100.0, distance=200.0, **kw)
+    assert long.x_wheel[-1] == pytest.approx(200.3)
+    for r, dist in ((short, 20.0), (long, 200.0)):
+        n_steps = round(dist / 100.0 / 2e-4)
+        assert r.t.size == n_steps // 50 + 1
+    assert long.settings.n_elements == short.settings.n_elements == scene.rail.n_elements
+
+
+def test_window_runs_are_bit_identical():
+    scene = tw.Scene.ballasted_track(window=tw.Window(5, 5))
+    kw = dict(fidelity="linear/hertz", distance=5.0, x_start=1.0, progress=False)
+    a, b = tw.simulate(scene, V, **kw), tw.simulate(scene, V, **kw)
+    np.testing.assert_array_equal(a.normal_force, b.normal_force)
+
+
+def test_window_validation():
+    with pytest.raises(ValueError, match="Window.bays_behind"):
+        tw.Window(bays_behind=0)
+    scene = tw.Scene.ballasted_track(window=tw.Window(5, 5))
+    with pytest.raises(ValueError, match="linear levels"):
+        tw.simulate(scene, V, distance=1.0, x_start=1.0, progress=False)
+    with pytest.raises(ValueError, match="n_modes"):
+        tw.simulate(scene, V, distance=1.0, x_start=1.0, fidelity="linear/hertz", n_modes=10)
+    with pytest.raises(ValueError, match="Rail.length"):
+        dc.replace(scene, rail=dc.replace(scene.rail, length=6.0))
+    with pytest.raises(ValueError, match="Supports.positions"):
+        dc.replace(scene, supports=dc.replace(scene.supports, positions=(1.0, 2.0)))
+    with pytest.raises(ValueError, match="multiple"):
+        tw.simulate(scene, V, distance=1.0, x_start=1.0, fidelity="linear/hertz",
+                    n_elements=scene.rail.n_elements + 1)
+    with pytest.raises(ValueError, match="x_end or distance"):
+        tw.simulate(scene, V, distance=1.0, x_end=3.0, fidelity="linear/hertz")
+
+
+def test_cli_distance_runs_on_a_window(capsys):
+    """``run --distance`` is the window run of the API (the same forces, bit for bit) and
+    prints per-100-m statistics; --window without --distance is refused."""
+    from trackwheel import cli
+
+    args = ["run", "--track", "ballasted", "--speed-kmh", "300", "--distance", "3",
+            "--window", "5,5", "--irregularity", "sine:3,1e-4"]
+    assert cli.main(args) == 0
+    out = capsys.readouterr().out
+    assert "travelling window of 5 + 5 bays" in out and "per 100 m" in out
+    scene = dc.replace(tw.Scene.ballasted_track(window=tw.Window(5, 5)),
+                       irregularity=tw.Irregularity.sine(3.0, 1e-4))
+    r = tw.simulate(scene, V, fidelity="linear/hertz", distance=3.0, x_start=0.3,
+                    progress=False)
+    assert f"{r.normal_force.max() / 1e3:.2f} kN" in out
+    assert cli.main(["run", "--speed-kmh", "300", "--window", "5,5"]) == 2
+    assert "--window needs --distance" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def smooth_run():
+    """30 m of the smooth ballasted preset at 300 km/h on a window of 20 + 20 bays."""
+    scene = tw.Scene.ballasted_track(window=tw.Window(20, 20))
+    return tw.simulate(scene, V, fidelity="linear/hertz", distance=30.0, x_start=0.3,
+                       progress=False)
+
+
+def test_steady_state_mean_force_is_the_static_load(smooth_run):
+    """Momentum balance: in a bay-periodic steady state the wheel's vertical velocity is
+    periodic, so its mean acceleration over whole bays is zero and the mean contact force is
+    the static load P = F + M g. Tolerance 1e-4 P: the resampling of the kept samples at 128
+    per bay (linear interpolation, a 0.6 m bay in about 210 samples here) and what is left of
+    the transient (bay-to-bay differences below tol = 1e-3 of the scale, alternating)."""
+    s = tw.steady_state(smooth_run)
+    assert s.mean == pytest.approx(P_STATIC, rel=1e-4)
+    assert 0.0 < s.t_from < smooth_run.t[-1] and s.n_bays >= 10
+    assert s.bay_difference < 1e-3
+    assert s.sleeper_frequency == pytest.approx(V / 0.6)
+    np.testing.assert_allclose(s.harmonics[0], V / 0.6 * np.arange(1, 5))
+    # the sleeper-passing force: the first harmonic carries most of the bay's variation
+    assert s.harmonics[1][0] > 0.5 * s.amplitude > 0.0
+    a = tw.analyse(smooth_run, steady=True)
+    assert a.t[0] >= s.t_from and a.t.size < smooth_run.t.size
+
+
+def test_steady_state_recovers_known_harmonics(smooth_run):
+    """A synthetic bay-periodic signal N = P + a1 cos(2 pi X/d) + a3 sin(6 pi X/d) under a
+    transient 5 kN exp(-t/0.02 s): the harmonics come back to 1e-3 of a1 (the resampling
+    error of 128 samples per bay on samples about 3 mm apart), the steady part starts where
+    the transient is below tol x scale: 5 kN exp(-t/0.02) < 1e-3 x 70 kN at t > 0.085 s, so
+    within one bay (7.2 ms) after that."""
+    r = smooth_run
+    x, t, d = r.x_wheel, r.t, 0.6
+    a1, a3 = 500.0, 80.0
+    N = (P_STATIC + a1 * np.cos(2 * np.pi * x / d) + a3 * np.sin(6 * np.pi * x / d)
+         + 5e3 * np.exp(-t / 0.02))
+    s = tw.steady_state(dc.replace(r, normal_force=N))
+    amps = s.harmonics[1]
+    np.testing.assert_allclose(amps, [a1, 0.0, a3, 0.0], atol=1e-3 * a1)
+    t_settle = 0.02 * math.log(5e3 / (1e-3 * (P_STATIC + a1)))
+    assert t_settle - 0.0075 <= s.t_from <= t_settle + 2 * d / V
+
+
+def test_steady_state_refuses_an_unsettled_run(smooth_run):
+    # a drift of 5 kN over the run's 50 bays: 100 N per bay, above tol x scale = 70 N, so no
+    # three bays agree with the last one
+    N = P_STATIC + 5e3 * smooth_run.x_wheel / 30.0
+    with pytest.raises(ValueError, match="does not settle"):
+        tw.steady_state(dc.replace(smooth_run, normal_force=N))
+
+
+def test_bogie_on_a_window_equals_the_fixed_track():
+    """A bogie (two wheels 2.5 m apart, the window spans its wheelbase: 20 + 1 + 5 + 20 bays)
+    over 10 m of the smooth preset at 300 km/h against a 60 m fixed rail: each wheel's contact
+    force agrees within 1e-3 of its static load from 4 m on (the start transient's reflections
+    from the window's ends, up to 1.2e-3 in the first metre, have died out)."""
+    veh = tw.Vehicle.bogie()
+    fixed = dc.replace(tw.Scene.ballasted_track(length=60.0), vehicle=veh)
+    window = fixed.windowed(tw.Window(20, 20))
+    assert window.rail.length == pytest.approx(46 * 0.6)
+    kw = dict(x_start=20.1, x_end=30.1, fidelity="linear/hertz", progress=False)
+    rf = tw.simulate(fixed, V, n_elements=fixed.rail.n_elements, **kw)
+    rw = tw.simulate(window, V, n_elements=window.rail.n_elements, dt=rf.settings.dt, **kw)
+    loads = np.asarray(veh.static_loads(fixed.gravity))
+    stretch = rw.x_wheel[:, 0] >= 24.1
+    err = np.abs(rw.normal_force - rf.normal_force)[stretch].max(axis=0)
+    assert (err < 1e-3 * loads).all()
