@@ -129,8 +129,6 @@ def test_window_validation():
     with pytest.raises(ValueError, match="Window.bays_behind"):
         tw.Window(bays_behind=0)
     scene = tw.Scene.ballasted_track(window=tw.Window(5, 5))
-    with pytest.raises(ValueError, match="linear levels"):
-        tw.simulate(scene, V, distance=1.0, x_start=1.0, progress=False)
     with pytest.raises(ValueError, match="n_modes"):
         tw.simulate(scene, V, distance=1.0, x_start=1.0, fidelity="linear/hertz", n_modes=10)
     with pytest.raises(ValueError, match="Rail.length"):

@@ -469,9 +469,6 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
                          f"'ancf/hertz'")
     if not linear:
         _kernel.require_euler(scene, f"fidelity={fidelity!r}")
-    if scene.window is not None and not linear:
-        raise ValueError(f"Scene.window (the travelling window) runs on the linear levels "
-                         f"('linear/hertz', 'linear/sprung', ...), not fidelity = {fidelity!r}")
     if scene.window is not None and n_modes is not None:
         raise ValueError("Scene.window needs all coordinates: n_modes = None")
     energy = v.boolean("energy", energy)
@@ -480,9 +477,12 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     window = None if scene.window is None else window_params(scene, ne, x0)
     profile_end = None if window is None else (
         x0 + speed * t_end + scene.active_vehicle.span[1] + scene.rail.length)
-    model = _kernel.rail_model(scene, ne, profile_end)
-    init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
-    h = _time_step(scene, dt, integrator, linear, model, init, x0)
+    # the full path reads the profile in the rail coordinate s = X - X_w of the start window
+    # (the kernel shifts it as the window travels); the linear path reads it at X
+    s0 = 0.0 if window is None or linear else window.origin
+    model = _kernel.rail_model(scene, ne, profile_end, s0)
+    init = None if linear else _initial_state(scene, model, speed, x0 - s0, start, drop_height)
+    h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
     n_steps = _steps(h, t_end, dt is None)
     output_every = _output_every(output_every, n_steps, energy)
     settings = RunSettings(
