@@ -224,7 +224,10 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         docs: Model § The travelling window) ``x_end`` and ``distance`` are not bounded by the
         rail: kilometres cost the same per metre and keep only the decimated samples in
         memory; there the default run is one window length, and every wheel starts at X >= 0
-        (default: the rear wheel in the middle of the first bay).
+        (default: the rear wheel in the middle of the first bay). The window runs at every
+        fidelity level (the full model with either integrator; the linear levels with all
+        coordinates, ``n_modes = None``); ``x_wheel`` and ``contact_s`` stay in the track
+        coordinate X.
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
         beyond.
     rho_inf : generalized-alpha spectral radius at infinite frequency, in [0, 1] (1: no numerical
