@@ -13,10 +13,12 @@ returned arrays. Cases:
 - ``fra5 1 km``: FRA class 5 (seed 0), the issue's target (< 60 s on one core); its rail profile
   is a cubic spline table over the kilometre (1 mm samples, 32 MB), built before the run.
 
-The full ANCF path is not windowed (docs: Model § The travelling window), so it has no case.
-Writes ``window.csv`` next to itself.
+The same cases on the full model (``fidelity="full"``: the ANCF rail, the rolling contact,
+generalized-alpha; same window, mesh and step) make the group ``full``; its target is 1 km of
+FRA class 5 in under 5 minutes. Writes ``window.csv`` (linear) and ``window_full.csv`` (full)
+next to itself; an argument picks one group:
 
-    PYTHONPATH=python python benchmarks/window.py
+    PYTHONPATH=python python benchmarks/window.py [linear|full]
 """
 
 from __future__ import annotations
@@ -38,11 +40,11 @@ if kw.pop("fra5"):
     scene = dc.replace(scene, irregularity=tw.Irregularity.random(spectra.fra(5), seed=0))
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0 = time.perf_counter()
-r = tw.simulate(scene, tw.kmh(300), fidelity="linear/hertz", x_start=0.3, progress=False, **kw)
+r = tw.simulate(scene, tw.kmh(300), x_start=0.3, progress=False, **kw)
 wall = time.perf_counter() - t0
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 out = sum(v.nbytes for v in vars(r).values() if isinstance(v, np.ndarray))
-print(json.dumps(dict(steps=r.steps, samples=len(r.t), us_per_step=1e6 * r.wall_time / r.steps,
+print(json.dumps(dict(steps=r.steps, samples=len(r.t), newton=r.newton_iterations / r.steps, us_per_step=1e6 * r.wall_time / r.steps,
                       call_s=wall, baseline_mib=base / 1024, peak_mib=peak / 1024,
                       output_mib=out / 2**20, f_max_kn=float(r.normal_force.max()) / 1e3)))
 """
@@ -53,11 +55,23 @@ CASES = [
     ("smooth 5 km", dict(distance=5000.0, output_every=20, fra5=False)),
     ("fra5 1 km", dict(distance=1000.0, fra5=True)),
 ]
+#: the full model's cases: the 5 km run last (about 10 minutes)
+FULL_ORDER = ["smooth 100 m", "smooth 1 km", "fra5 1 km", "smooth 5 km"]
+GROUPS = {
+    "linear": ("window.csv", [(n, dict(kw, fidelity="linear/hertz")) for n, kw in CASES]),
+    "full": ("window_full.csv", [(n, dict(kw, fidelity="full"))
+                                 for o in FULL_ORDER for n, kw in CASES if n == o]),
+}
 
 
-def main():
+def main(groups=("linear", "full")):
+    for g in groups:
+        run_group(*GROUPS[g])
+
+
+def run_group(csv_name, cases):
     rows = []
-    for name, kw in CASES:
+    for name, kw in cases:
         p = subprocess.run([sys.executable, "-c", CASE, json.dumps(kw)], capture_output=True,
                            text=True, check=True)
         d = json.loads(p.stdout.strip().splitlines()[-1])
@@ -68,9 +82,9 @@ def main():
         print(f"{name:14s} {d['steps']:>8d} steps {d['samples']:>7d} samples: "
               f"{d['us_per_step']:.1f} us/step, call {d['call_s']:.1f} s; peak RSS "
               f"{d['peak_mib']:.1f} MiB (growth {row['growth_mib']:.1f}, output "
-              f"{d['output_mib']:.1f} MiB)", flush=True)
-    write_csv("window.csv", rows)
+              f"{d['output_mib']:.1f} MiB) [{kw['fidelity']}]", flush=True)
+        write_csv(csv_name, rows)  # after every case: a long group keeps what it measured
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:] or ("linear", "full"))

@@ -7,8 +7,9 @@
 namespace trackwheel {
 
 namespace {
-// Centre line and running surface at s.
-void surface_at(const RailModel& rail, const Eigen::VectorXd& e, double s, ContactPoint& pt) {
+// Centre line and running surface at s; the profile read at x + profile_shift.
+void surface_at(const RailModel& rail, const Eigen::VectorXd& e, double s, double profile_shift,
+                ContactPoint& pt) {
   pt.mp = rail.locate(s);
   pt.r = rail.position(e, pt.mp);
   pt.rs = rail.slope(e, pt.mp);
@@ -18,7 +19,7 @@ void surface_at(const RailModel& rail, const Eigen::VectorXd& e, double s, Conta
   pt.pss = pt.rss;
   pt.lifted = !rail.profile().empty();
   if (!pt.lifted) return;
-  pt.profile = rail.profile()(pt.r.x());
+  pt.profile = rail.profile()(pt.r.x() + profile_shift);
   const ProfileValue& R = pt.profile;
   pt.p.y() += R.r;
   pt.ps.y() += R.rx * pt.rs.x();
@@ -27,13 +28,13 @@ void surface_at(const RailModel& rail, const Eigen::VectorXd& e, double s, Conta
 }  // namespace
 
 ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
-                                const Eigen::Vector2d& RA, double s_guess) {
+                                const Eigen::Vector2d& RA, double s_guess, double profile_shift) {
   ContactPoint pt;
   const double L = rail.params().length;
   double s = std::min(std::max(s_guess, 0.0), L);
   const double tol = 1e-13 * L;
   for (int it = 0; it < 50; ++it) {
-    surface_at(rail, e, s, pt);
+    surface_at(rail, e, s, profile_shift, pt);
     const Eigen::Vector2d d = RA - pt.p;
     const double f = d.dot(pt.ps);
     const double fs = -pt.ps.squaredNorm() + d.dot(pt.pss);
@@ -55,7 +56,7 @@ ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
     throw std::runtime_error(msg.str());
   }
   pt.s = s;
-  surface_at(rail, e, s, pt);
+  surface_at(rail, e, s, profile_shift, pt);
   const Eigen::Vector2d d = RA - pt.p;
   pt.rho = d.norm();
   pt.n = d / pt.rho;

@@ -65,9 +65,12 @@ struct ContactPoint {
   bool converged = false;
 };
 
-// Newton search for s*, starting from s_guess. Throws std::runtime_error if it fails.
+// Newton search for s*, starting from s_guess. Throws std::runtime_error if it fails. The rail's
+// profile is read at x + profile_shift (a travelling window: the window's travel since the
+// start, the profile being given in the start window's rail coordinate).
 ContactPoint find_contact_point(const RailModel& rail, const Eigen::VectorXd& e,
-                                const Eigen::Vector2d& RA, double s_guess);
+                                const Eigen::Vector2d& RA, double s_guess,
+                                double profile_shift = 0.0);
 
 struct ContactForce {
   double delta = 0.0;      // penetration rho0 - rho [m]

@@ -89,7 +89,7 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
   Watchdog wd;
   for (int w = 0; w < model.n_wheels(); ++w) {
     const WheelParams& p = model.wheels[w];
-    xs.push_back(sys.x_at(w, 0.0));
+    xs.push_back(sys.s_at(w, 0.0));  // the rail coordinate
     ys.push_back(st.wheels[w].y);
     wd.energy_cap += 100.0 * std::max(p.total_load(), 1.0) * p.radius;
     wd.y0.push_back(st.wheels[w].y);

@@ -1,8 +1,62 @@
 #include "full_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "statics.hpp"
+
 namespace trackwheel {
+
+// The window's shift maps over the full rail coordinates (a fixed coordinate has no departure:
+// it maps nowhere and stays at rest) and its rest state, the nonlinear rail at rest under its
+// own weight on its supports, computed once.
+FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
+                         const Divergence& div)
+    : sys_(sys), st_(st), ev_(ev), acc_(acc), out_(out), div_(div) {
+  const WindowParams& wp = sys.settings().window;
+  if (!wp.active()) return;
+  const RailModel& rail = sys.rail();
+  std::vector<int> map(rail.n_dof());
+  for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
+  win_ = WindowShift(rail, wp, map, rail.n_dof(), sys.sleepers().size());
+  const StaticResult rest = solve_track_static(rail);
+  e_st_ = rest.e;
+  z_st_ = rest.z;
+}
+
+void FullStepper::shift_full(Eigen::VectorXd& v, const Eigen::VectorXd* rest) const {
+  if (rest != nullptr) v -= *rest;
+  win_.shift(v);
+  if (rest != nullptr) v += *rest;
+}
+
+void FullStepper::shift_sleepers(Eigen::VectorXd& z, const Eigen::VectorXd* rest) const {
+  if (z.size() == 0) return;
+  if (rest != nullptr) z -= *rest;
+  win_.shift_sleepers(z);
+  if (rest != nullptr) z += *rest;
+}
+
+// What moves is the departure from the rest state (the ANCF x coordinates: the displacement,
+// not the position), so the fresh bay joins at rest and the window's ends keep their own sag;
+// the wheels' rail coordinates and warm starts drop by a bay with the origin's step.
+bool FullStepper::shift_window(double t1) {
+  if (!win_.active()) return false;
+  const WindowParams& wp = win_.params();
+  bool moved = false;
+  for (;;) {
+    double rear = sys_.s_at(0, t1);
+    for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.s_at(w, t1));
+    if (rear < wp.hold) return moved;
+    shift_full(st_.e, &e_st_);
+    shift_full(st_.edot);
+    shift_sleepers(st_.z, &z_st_);
+    shift_sleepers(st_.zdot);
+    for (WheelState& ws : st_.wheels) ws.s -= wp.bay;
+    sys_.set_origin(sys_.origin() + wp.bay);
+    moved = true;
+  }
+}
 
 void FullStepper::record_sample(double t) {
   Recording& rec = out_.rec;
@@ -19,7 +73,7 @@ void FullStepper::record_sample(double t) {
     rec.push(Field::ydot_wheel, ws.ydot);
     rec.push(Field::theta, ws.theta);
     rec.push(Field::thetadot, ws.thetadot);
-    rec.push(Field::contact_s, pt.s);
+    rec.push(Field::contact_s, pt.s + sys_.origin());  // X of the contact point
     rec.push(Field::y_contact, pt.r.y());
     rec.push(Field::normal_force, we.cf.N);
     rec.push(Field::tangential_force, lambda);

@@ -1,17 +1,18 @@
 // What both full-path integrators share: the run's state, its evaluation and accelerations
-// (owned by simulate()), the watchdog's view of them and the recorder of one output sample.
+// (owned by simulate()), the watchdog's view of them, the recorder of one output sample and the
+// travelling window's shift of the state.
 #pragma once
 
 #include "system.hpp"
 #include "time_loop.hpp"
+#include "window.hpp"
 
 namespace trackwheel {
 
 class FullStepper : public Stepper {
  public:
   FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
-              const Divergence& div)
-      : sys_(sys), st_(st), ev_(ev), acc_(acc), out_(out), div_(div) {}
+              const Divergence& div);
   bool finite() const override { return finite_state(st_); }
   double vibration_energy() const override {
     return trackwheel::vibration_energy(sys_.model(), st_);
@@ -21,12 +22,23 @@ class FullStepper : public Stepper {
   void record_sample(double t);
 
  protected:
+  // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
+  // point (window.hpp): the departures of e and z from the rest state, their rates and each
+  // wheel's contact warm start; true if it moved. The integrator shifts its own history with
+  // shift_full / shift_sleepers.
+  bool shift_window(double t1);
+  // v <- shift(v - rest) + rest over the full rail coordinates (rest empty: v's own shift)
+  void shift_full(Eigen::VectorXd& v, const Eigen::VectorXd* rest = nullptr) const;
+  void shift_sleepers(Eigen::VectorXd& z, const Eigen::VectorXd* rest = nullptr) const;
+
   System& sys_;
   SimState& st_;
   Eval& ev_;
   Accel& acc_;
   SimOutput& out_;
   const Divergence& div_;
+  WindowShift win_;
+  Eigen::VectorXd e_st_, z_st_;  // the window's rest state under its own weight (no wheel)
 };
 
 }  // namespace trackwheel

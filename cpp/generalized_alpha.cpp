@@ -162,6 +162,7 @@ int GeneralizedAlpha::commit_slip_states(Accel& x, SimState& s1, bool& changed) 
 
 void GeneralizedAlpha::step(long n) {
   const double t1 = n * h_;
+  if (shift_window(t1)) shift_history();
   s0_ = st_;  // members: the copies reuse their storage, nothing is allocated per step
   acc0_ = acc_;
   for (int attempt = 0; attempt < 4; ++attempt) {
@@ -199,6 +200,19 @@ void GeneralizedAlpha::step(long n) {
     std::swap(acc_, x_);
     return;
   }
+}
+
+// The window moved: the accelerations, their algorithmic counterparts and the predictor's history
+// move with the state (departures from rest are zero there already); the cached matrix holds
+// the rail's tangent at the unshifted state, so it is rebuilt, the rail part too.
+void GeneralizedAlpha::shift_history() {
+  shift_full(acc_.edd);
+  shift_full(a_e_);
+  shift_full(prev_.edd);
+  shift_sleepers(acc_.zdd);
+  shift_sleepers(a_z_);
+  shift_sleepers(prev_.zdd);
+  have_matrix_ = false;
 }
 
 void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r,

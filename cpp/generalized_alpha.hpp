@@ -44,6 +44,7 @@ class GeneralizedAlpha : public FullStepper {
   bool matrix_is_stale(const SimState& s1, int it) const;
   void rebuild_matrix(long n, const SimState& s1, const Accel& x, int it);
   int commit_slip_states(Accel& x, SimState& s1, bool& changed);
+  void shift_history();
 
   GACoefficients c_;
   double h_, cq_, cv_;

@@ -10,6 +10,7 @@ namespace trackwheel {
 System::System(const Model& model, const SimSettings& set)
     : model_(model),
       set_(set),
+      origin_(set.window.active() ? set.window.origin : 0.0),
       nf_(model.rail.n_free()),
       nw_(model.n_wheels()),
       nb_(model.n_bodies()),
@@ -36,7 +37,9 @@ void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
   for (int w = 0; w < nw_; ++w) {
     WheelEval& we = ev.w[w];
     we.x = x_at(w, t);
-    we.pt = find_contact_point(rail(), st.e, Eigen::Vector2d(we.x, st.wheels[w].y), st.wheels[w].s);
+    const double shift = origin_ - (set_.window.active() ? set_.window.origin : 0.0);
+    we.pt = find_contact_point(rail(), st.e, Eigen::Vector2d(we.x - origin_, st.wheels[w].y),
+                               st.wheels[w].s, shift);
   }
   contact_terms(st, jac, ev);
   rail().internal_force(st.e, &st.edot, ev.Qint);

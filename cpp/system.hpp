@@ -70,9 +70,16 @@ class System {
   int vehicle_index(int i) const {
     return i < nw_ ? kBorderPerWheel * i + kY : kBorderPerWheel * nw_ + i - nw_;
   }
+  // Wheel w's track coordinate X_A at t [m] (outputs) and its rail coordinate s = X_A - X_w
+  // on a travelling window of origin X_w (X_A on a fixed rail) [m].
   double x_at(int w, double t) const {
     return set_.x_start + model_.wheels[w].x_offset + set_.speed * t;
   }
+  double s_at(int w, double t) const { return x_at(w, t) - origin_; }
+  // The travelling window's origin X_w [m] (0 on a fixed rail); the rail's profile is given in
+  // the rail coordinate of the start window (X_w at t = 0), so it is read shifted by the travel.
+  double origin() const { return origin_; }
+  void set_origin(double x) { origin_ = x; }
 
   // Contact search (warm start from each wheel's s), contact forces and rolling kinematics
   // (with their Jacobians if jac), and the rail's internal forces.
@@ -137,6 +144,7 @@ class System {
 
   const Model& model_;
   const SimSettings& set_;
+  double origin_ = 0.0;  // window origin X_w [m]
   int nf_, nw_, nb_;
   VehicleMatrices vm_;
   std::vector<double> static_load_;

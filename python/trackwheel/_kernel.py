@@ -27,10 +27,11 @@ WHEEL_ARC_STEP = 5e-4
 
 @lru_cache(maxsize=64)
 def rail_model(scene: Scene, n_elements: int | None = None,
-               profile_end: float | None = None) -> _core.RailModel:
+               profile_end: float | None = None, profile_shift: float = 0.0) -> _core.RailModel:
     """The kernel's rail of ``scene`` on ``n_elements`` (None: the scene's); its profile covers
     the track coordinates [0, ``profile_end``] [m] (None: the rail, [0, L]; a travelling
-    window's run covers the track it passes)."""
+    window's run covers the track it passes), read at the rail's x = X - ``profile_shift``
+    (the full path's travelling window: the start window's origin X_w [m])."""
     r = scene.rail
     p = _core.RailParams()
     p.length = r.length
@@ -54,7 +55,7 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
         s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
         s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
-    return _core.RailModel(p, s, profile(scene, profile_end))
+    return _core.RailModel(p, s, profile(scene, profile_end, profile_shift))
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:
@@ -76,9 +77,10 @@ def require_euler(scene: Scene, what: str) -> None:
             "Rail.beam='euler' or a 'linear/...' fidelity level")
 
 
-def profile(scene: Scene, end: float | None = None) -> _core.Profile:
+def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core.Profile:
     """The scene's rail profile as the kernel's piecewise cubic over [0, L] (or [0, ``end``]
-    [m]; none: empty), patch-filtered if ``scene.contact.patch_filter``.
+    [m]; none: empty), patch-filtered if ``scene.contact.patch_filter``, as a function of
+    X - ``shift`` [m].
 
     Raises ValueError where the profile curves upwards more sharply than the wheel (r'' >=
     1/rho0, e.g. a dipped joint's cusp): the wheel would bridge the dip on two points, which
@@ -106,7 +108,7 @@ def profile(scene: Scene, end: float | None = None) -> _core.Profile:
             "the wheel would bridge it on two points, which one contact point cannot represent; "
             "allowed: r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to "
             "average it over the contact patch)")
-    return _core.Profile(x0, h, spline.c)
+    return _core.Profile(x0 - shift, h, spline.c)
 
 
 def wheel_params(scene: Scene) -> _core.WheelParams:

@@ -224,7 +224,10 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         docs: Model § The travelling window) ``x_end`` and ``distance`` are not bounded by the
         rail: kilometres cost the same per metre and keep only the decimated samples in
         memory; there the default run is one window length, and every wheel starts at X >= 0
-        (default: the rear wheel in the middle of the first bay).
+        (default: the rear wheel in the middle of the first bay). The window runs at every
+        fidelity level (the full model with either integrator; the linear levels with all
+        coordinates, ``n_modes = None``); ``x_wheel`` and ``contact_s`` stay in the track
+        coordinate X.
     output_every : keep every n-th step; default: all steps up to 100 000 samples, decimated
         beyond.
     rho_inf : generalized-alpha spectral radius at infinite frequency, in [0, 1] (1: no numerical
@@ -469,9 +472,6 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
                          f"'ancf/hertz'")
     if not linear:
         _kernel.require_euler(scene, f"fidelity={fidelity!r}")
-    if scene.window is not None and not linear:
-        raise ValueError(f"Scene.window (the travelling window) runs on the linear levels "
-                         f"('linear/hertz', 'linear/sprung', ...), not fidelity = {fidelity!r}")
     if scene.window is not None and n_modes is not None:
         raise ValueError("Scene.window needs all coordinates: n_modes = None")
     energy = v.boolean("energy", energy)
@@ -480,9 +480,12 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     window = None if scene.window is None else window_params(scene, ne, x0)
     profile_end = None if window is None else (
         x0 + speed * t_end + scene.active_vehicle.span[1] + scene.rail.length)
-    model = _kernel.rail_model(scene, ne, profile_end)
-    init = None if linear else _initial_state(scene, model, speed, x0, start, drop_height)
-    h = _time_step(scene, dt, integrator, linear, model, init, x0)
+    # the full path reads the profile in the rail coordinate s = X - X_w of the start window
+    # (the kernel shifts it as the window travels); the linear path reads it at X
+    s0 = 0.0 if window is None or linear else window.origin
+    model = _kernel.rail_model(scene, ne, profile_end, s0)
+    init = None if linear else _initial_state(scene, model, speed, x0 - s0, start, drop_height)
+    h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
     n_steps = _steps(h, t_end, dt is None)
     output_every = _output_every(output_every, n_steps, energy)
     settings = RunSettings(
