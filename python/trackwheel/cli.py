@@ -347,8 +347,9 @@ def _add_run(sub) -> None:
     g.add_argument("--distance", type=_positive_float, metavar="M",
                    help="run this many metres on a travelling window of the --track (the rail "
                         "becomes --window bays that move with the wheel): any distance at the "
-                        "same cost per metre; default --fidelity linear/hertz (the window runs "
-                        "on the linear levels); prints contact-force statistics per 100 m")
+                        "same cost per metre; default --fidelity linear/hertz (the fastest; "
+                        "--fidelity full runs the nonlinear model on the window); prints "
+                        "contact-force statistics per 100 m")
     g.add_argument("--window", type=_window_spec, metavar="BEHIND,AHEAD",
                    help="with --distance: whole sleeper bays behind the rear wheel's bay and "
                         "ahead of the leading wheel's (default 20,20)")

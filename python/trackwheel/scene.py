@@ -338,7 +338,8 @@ class Window:
     its own weight joins at the front. Needs a track periodic in its bay (equal supports every
     ``Supports.spacing``, ``Supports.positions`` not given) and, so that the rail's ends do not
     reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
-    the ``linear/...`` fidelity levels.
+    every fidelity level, the full model with either integrator (there the window's axial
+    motion makes the tangential force ring; docs: Model § The travelling window).
     """
 
     bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
