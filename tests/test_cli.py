@@ -607,3 +607,17 @@ def test_track_commands_have_help_without_timings(command, capsys):
     text = " ".join(capsys.readouterr().out.split())
     assert "usage: trackwheel" in text and "--beam" in text
     assert not re.search(r"\b(minutes?|hours?|seconds)\b|about \d+ ?s\b|µs", text), text
+
+
+def test_a_reader_leaving_the_pipe_ends_the_command_quietly():
+    """`trackwheel ... | head` closes the pipe while the command still writes: the command stops
+    with exit code 1 and no traceback (Python ignores SIGPIPE, so the write raises
+    BrokenPipeError, and the interpreter's final flush of stdout would raise it again)."""
+    code = ("import sys, time; from trackwheel.cli import main; time.sleep(0.5); "
+            "sys.exit(main(['eigen', '--n-modes', '6']))")
+    with subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE) as p:
+        p.stdout.close()  # the reader leaves before the first line
+        err = p.stderr.read().decode()
+        assert p.wait(timeout=120) == 1
+    assert "Traceback" not in err and "BrokenPipe" not in err, err

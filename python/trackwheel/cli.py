@@ -1205,6 +1205,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return args.run(args, args.parser)
     except SystemExit as exc:  # argparse: --help/--version (0) and usage errors (2)
         return exc.code if isinstance(exc.code, int) else 1
+    except BrokenPipeError:  # the reader left (`trackwheel run ... | head`): stop quietly
+        # the interpreter flushes stdout again at exit: point it at devnull so that it can
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
 
 
 if __name__ == "__main__":
