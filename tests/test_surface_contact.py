@@ -171,7 +171,7 @@ def test_iteration_matrix_with_a_rail_profile_matches_central_differences(law, s
     curvature 8e-3 1/m, slope 6e-4) against central differences of the residual, as
     tests/test_system.py does on the smooth rail (same steps, same 1e-6 tolerance; measured
     6e-9 and 1e-8): the profile's slope and curvature enter the contact geometry's Jacobian."""
-    from test_system import DT, _probe_case
+    from test_system import DT, _probe_case, central_difference_error
 
     model, wheels, contact, s, st = _probe_case(law, slide, 1,
                                                 irregularity=tw.Irregularity.sine(0.5, 5e-5))
@@ -186,11 +186,5 @@ def test_iteration_matrix_with_a_rail_profile_matches_central_differences(law, s
     x0, J = p0["start"], p0["matrix"]
     h = np.full(len(x0), 1e3)
     h[model.n_free + 2] = 1.0  # the multiplier lambda [N]
-    cols = []
-    for i in range(len(x0)):
-        xp, xm = x0.copy(), x0.copy()
-        xp[i] += h[i]
-        xm[i] -= h[i]
-        cols.append(-(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h[i]))
-    err = np.max(np.abs(J - np.stack(cols, axis=1)), axis=0) / np.max(np.abs(J), axis=0)
+    err = central_difference_error(R, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 import pytest
+from test_system import central_difference_error
 
 import trackwheel as tw
 from trackwheel import _core, _kernel
@@ -205,15 +206,7 @@ def test_iteration_matrix_with_bodies_matches_central_differences(preset):
     assert len(x0) == nf + 3 * nw + 2 * nb
     h = np.full(len(x0), 1e3)
     h[nf + 2:nf + 3 * nw:3] = 1.0
-    cols = []
-    for i in range(len(x0)):
-        xp, xm = x0.copy(), x0.copy()
-        xp[i] += h[i]
-        xm[i] -= h[i]
-        cols.append(-(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h[i]))
-    J_fd = np.stack(cols, axis=1)
-    scale = np.max(np.abs(J), axis=0)
-    err = np.max(np.abs(J - J_fd), axis=0) / scale
+    err = central_difference_error(R, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
     # the suspensions couple each wheel's Y row with its bogie's z and phi
     ob = nf + 3 * nw
