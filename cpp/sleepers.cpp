@@ -103,14 +103,8 @@ void Sleepers::set_coefficients(double cm, double cv, double cq) {
 void Sleepers::condense_matrix(const std::vector<int>& map, BandMatrix& K) const {
   for (int j = 0; j < size(); ++j) {
     const double c = a_(j) * a_(j) / D_(j);
-    for (int a = 0; a < 4; ++a) {
-      const int i = map[index(j, a)];
-      if (i < 0) continue;
-      for (int b = 0; b < 4; ++b) {
-        const int k = map[index(j, b)];
-        if (k >= 0) K.add(i, k, -c * weight(j, a) * weight(j, b));
-      }
-    }
+    for_each_pad_pair(j, map,
+                      [&](int i, int k, double wa, double wb) { K.add(i, k, -c * wa * wb); });
   }
 }
 
@@ -145,14 +139,7 @@ void Sleepers::coupling_blocks(const std::vector<int>& map, int n, Eigen::Matrix
 void Sleepers::uncondense_dense(const std::vector<int>& map, Eigen::MatrixXd& K) const {
   for (int j = 0; j < size(); ++j) {
     const double c = a_(j) * a_(j) / D_(j);
-    for (int a = 0; a < 4; ++a) {
-      const int i = map[index(j, a)];
-      if (i < 0) continue;
-      for (int b = 0; b < 4; ++b) {
-        const int k = map[index(j, b)];
-        if (k >= 0) K(i, k) += c * weight(j, a) * weight(j, b);
-      }
-    }
+    for_each_pad_pair(j, map, [&](int i, int k, double wa, double wb) { K(i, k) += c * wa * wb; });
   }
 }
 

@@ -90,6 +90,19 @@ class Sleepers {
   double weight(int j, int a) const { return pt_[j].h.n[a]; }
 
  private:
+  // f(i, k, w_a, w_b) for the rail unknowns i, k (over map) of sleeper j's pad and their
+  // shape-function weights: the 4 x 4 block of the rank-one term s_j s_j^T.
+  template <class F>
+  void for_each_pad_pair(int j, const std::vector<int>& map, F f) const {
+    for (int a = 0; a < 4; ++a) {
+      const int i = map[index(j, a)];
+      if (i < 0) continue;
+      for (int b = 0; b < 4; ++b) {
+        const int k = map[index(j, b)];
+        if (k >= 0) f(i, k, weight(j, a), weight(j, b));
+      }
+    }
+  }
   std::vector<MeshPoint> pt_;
   std::vector<double> m_, kp_, cp_, kb_, cb_;
   double g_ = 0.0;
