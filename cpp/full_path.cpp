@@ -24,19 +24,6 @@ FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOut
   z_st_ = rest.z;
 }
 
-void FullStepper::shift_full(Eigen::VectorXd& v, const Eigen::VectorXd* rest) const {
-  if (rest != nullptr) v -= *rest;
-  win_.shift(v);
-  if (rest != nullptr) v += *rest;
-}
-
-void FullStepper::shift_sleepers(Eigen::VectorXd& z, const Eigen::VectorXd* rest) const {
-  if (z.size() == 0) return;
-  if (rest != nullptr) z -= *rest;
-  win_.shift_sleepers(z);
-  if (rest != nullptr) z += *rest;
-}
-
 // What moves is the departure from the rest state (the ANCF x coordinates: the displacement,
 // not the position), so the fresh bay joins at rest and the window's ends keep their own sag;
 // the wheels' rail coordinates and warm starts drop by a bay with the origin's step.
@@ -48,10 +35,10 @@ bool FullStepper::shift_window(double t1) {
     double rear = sys_.s_at(0, t1);
     for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.s_at(w, t1));
     if (rear < wp.hold) return moved;
-    shift_full(st_.e, &e_st_);
-    shift_full(st_.edot);
-    shift_sleepers(st_.z, &z_st_);
-    shift_sleepers(st_.zdot);
+    win_.shift(st_.e, &e_st_);
+    win_.shift(st_.edot);
+    win_.shift_sleepers(st_.z, &z_st_);
+    win_.shift_sleepers(st_.zdot);
     for (WheelState& ws : st_.wheels) ws.s -= wp.bay;
     sys_.set_origin(sys_.origin() + wp.bay);
     moved = true;

@@ -25,11 +25,8 @@ class FullStepper : public Stepper {
   // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
   // point (window.hpp): the departures of e and z from the rest state, their rates and each
   // wheel's contact warm start; true if it moved. The integrator shifts its own history with
-  // shift_full / shift_sleepers.
+  // win_.shift / win_.shift_sleepers.
   bool shift_window(double t1);
-  // v <- shift(v - rest) + rest over the full rail coordinates (rest empty: v's own shift)
-  void shift_full(Eigen::VectorXd& v, const Eigen::VectorXd* rest = nullptr) const;
-  void shift_sleepers(Eigen::VectorXd& z, const Eigen::VectorXd* rest = nullptr) const;
 
   System& sys_;
   SimState& st_;

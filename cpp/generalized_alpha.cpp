@@ -206,12 +206,12 @@ void GeneralizedAlpha::step(long n) {
 // move with the state (departures from rest are zero there already); the cached matrix holds
 // the rail's tangent at the unshifted state, so it is rebuilt, the rail part too.
 void GeneralizedAlpha::shift_history() {
-  shift_full(acc_.edd);
-  shift_full(a_e_);
-  shift_full(prev_.edd);
-  shift_sleepers(acc_.zdd);
-  shift_sleepers(a_z_);
-  shift_sleepers(prev_.zdd);
+  win_.shift(acc_.edd);
+  win_.shift(a_e_);
+  win_.shift(prev_.edd);
+  win_.shift_sleepers(acc_.zdd);
+  win_.shift_sleepers(a_z_);
+  win_.shift_sleepers(prev_.zdd);
   have_matrix_ = false;
 }
 

@@ -531,16 +531,12 @@ void LinearStepper::shift_window(double t1) {
     double rear = Xl(0, t1);
     for (int w = 1; w < nw_; ++w) rear = std::min(rear, Xl(w, t1));
     if (rear < wp.hold) return;
-    q_ -= q_st_;
-    win_.shift(q_);
-    q_ += q_st_;
+    win_.shift(q_, &q_st_);
     win_.shift(qd_);
     win_.shift(qdd_);
     win_.shift(a_);
     if (!sl_.empty()) {
-      z_ -= z_st_;
-      win_.shift_sleepers(z_);
-      z_ += z_st_;
+      win_.shift_sleepers(z_, &z_st_);
       win_.shift_sleepers(zd_);
       win_.shift_sleepers(zdd_);
       win_.shift_sleepers(az_);

@@ -29,11 +29,23 @@ class WindowShift {
               int n_sleepers);
   bool active() const { return p_.active(); }
   const WindowParams& params() const { return p_; }
-  // v(k) <- v(source(k)), the value one bay ahead, or 0 where that is beyond the front.
-  void shift(Eigen::VectorXd& v) const { apply(src_, v, buf_); }
-  void shift_sleepers(Eigen::VectorXd& z) const { apply(zsrc_, z, buf_); }
+  // v(k) <- v(source(k)), the value one bay ahead, or 0 where that is beyond the front; with
+  // rest, the departure moves: v <- rest + shift(v - rest).
+  void shift(Eigen::VectorXd& v, const Eigen::VectorXd* rest = nullptr) const {
+    shift_departure(src_, v, rest);
+  }
+  void shift_sleepers(Eigen::VectorXd& z, const Eigen::VectorXd* rest = nullptr) const {
+    if (z.size() > 0) shift_departure(zsrc_, z, rest);
+  }
 
  private:
+  void shift_departure(const std::vector<int>& src, Eigen::VectorXd& v,
+                       const Eigen::VectorXd* rest) const {
+    if (rest != nullptr) v -= *rest;
+    apply(src, v, buf_);
+    if (rest != nullptr) v += *rest;
+  }
+
   WindowParams p_;
   std::vector<int> src_;   // per vector index: the index one bay ahead (-1: beyond the front)
   std::vector<int> zsrc_;  // per sleeper
