@@ -1,11 +1,13 @@
 """Issue 12: how much the absorbing end zones reflect, per 100 Hz band and per frequency.
 
-1. Pulse (tests/test_long_track.py's method): a 0.3 ms Hann force pulse at mid-rail between two
-   end zones 2.25 m away, on the paper's rail and supports (0.5 m bays, undamped); the reflected
-   wave is the difference from the same pulse on a rail 80 m longer. Per 100 Hz band, the
-   reflected over the incident energy of the 25 ms record, per end [dB], with the record cut off
-   bluntly (as the test did before) and with its second half tapered (cosine, as the test does
-   now), for plain ends and 10 m and 20 m zones.
+1. Pulse (tests/test_long_track.py's method): a 0.3 ms Hann force pulse 2.25 m from one end
+   zone and 10 m from the other, on the paper's rail and supports (0.5 m bays, undamped),
+   recorded 1 m from the source towards the near zone; the reflected wave is the difference from
+   the same pulse on a rail 40 m longer on the near side, the incident wave that rail's record.
+   Per 100 Hz band, reflected over incident energy of the 25 ms record [dB], the record's second
+   half tapered (cosine). Besides, the former test's measurement ("before": source midway between
+   two zones, recorded at the source, the record cut off bluntly, a quarter of the energy ratio
+   per end) on the former default zones (30 dB design, ABSORBING_ATTENUATION = 30).
 2. Bloch waves: the zone's own reflection coefficient, frequency by frequency. The steady-state
    response to a harmonic force (the kernel's M, C, K) at four consecutive supports between source
    and zone is split into the four Bloch waves of one undamped bay (textbook Hermite beam
@@ -30,23 +32,31 @@ from scipy.sparse.linalg import splu, spsolve
 
 import trackwheel as tw
 from trackwheel.eigen import vertical_matrices
+from trackwheel.scene import ABSORBING_ATTENUATION
 
 KATO = tw.Scene.kato2005()
 H, DT, TAU, WINDOW = 0.0625, 1e-5, 3e-4, 0.025  # element [m], step [s], pulse [s], record [s]
-GAP, EXTRA, BAY = 2.25, 40.0, 0.5  # source to zone, reference extension, support spacing [m]
+GAP, RECEIVER, FAR, EXTRA = 2.25, 1.0, 10.0, 40.0  # as in tests/test_long_track.py [m]
+BAY = 0.5  # support spacing [m]
 EDGES = np.arange(100.0, 3001.0, 100.0)  # band edges [Hz]
 
 
-def rail_scene(length, zone=None):
+def rail_scene(length, zone=None, design=ABSORBING_ATTENUATION):
+    """The paper's rail and supports, ``length`` long, with end zones designed for ``design`` dB
+    (c_max scales with it: Rail.absorbing_damping)."""
     rail = dataclasses.replace(KATO.rail, length=length, n_elements=round(length / H),
                                absorbing_ends=tw.AbsorbingEnds(zone) if zone else None)
+    if zone:
+        c = rail.absorbing_damping * design / ABSORBING_ATTENUATION
+        rail = dataclasses.replace(rail, absorbing_ends=tw.AbsorbingEnds(zone, c))
     return dataclasses.replace(KATO, rail=rail, gravity=0.0, rail_gravity=False)
 
 
-def pulse_response(scene, x_source, n_steps):
-    """Displacement [m] at x_source under a unit Hann force pulse there (trapezoidal rule)."""
+def pulse_response(scene, x_source, x_receiver, n_steps):
+    """Displacement [m] at x_receiver under a unit Hann force pulse at x_source (trapezoidal
+    rule)."""
     M, C, K, dofs = vertical_matrices(scene)
-    i = int(np.flatnonzero(dofs == 4 * round(x_source / H) + 1)[0])
+    i, j = (int(np.flatnonzero(dofs == 4 * round(x / H) + 1)[0]) for x in (x_source, x_receiver))
     lu = splu((K + 2 / DT * C + 4 / DT**2 * M).tocsc())
     u, ud, udd = (np.zeros(M.shape[0]) for _ in range(3))
     out = np.zeros(n_steps + 1)
@@ -57,7 +67,7 @@ def pulse_response(scene, x_source, n_steps):
         udn = 2 / DT * (un - u) - ud
         udd = 4 / DT**2 * (un - u) - 4 / DT * ud - udd
         u, ud = un, udn
-        out[k] = u[i]
+        out[k] = u[j]
     return out
 
 
@@ -68,17 +78,29 @@ def band_energy(x):
     return np.array([e[(f >= a) & (f < b)].sum() for a, b in zip(EDGES[:-1], EDGES[1:])])
 
 
-def pulses(zone):
-    """(reference, zoned) records for zones of length ``zone`` (None: plain pinned ends)."""
-    n, length = round(WINDOW / DT), 2 * ((zone or 10.0) + GAP)
-    ref = pulse_response(rail_scene(length + 2 * EXTRA, zone or 10.0), EXTRA + length / 2, n)
-    return ref, pulse_response(rail_scene(length, zone), length / 2, n)
+def one_zone(zone, design=ABSORBING_ATTENUATION, ends=True):
+    """(reference, response) records of the test's one-near-zone measurement."""
+    n, length, x = round(WINDOW / DT), 2 * zone + GAP + FAR, zone + GAP
+    ref = pulse_response(rail_scene(length + EXTRA, zone, design), EXTRA + x, EXTRA + x - RECEIVER,
+                         n)
+    return ref, pulse_response(rail_scene(length, zone if ends else None, design), x,
+                               x - RECEIVER, n)
 
 
-def reflection_db(ref, zoned, taper):
-    """Reflected over incident energy per band and end [dB] (the two ends reflect alike)."""
-    w = tukey(2 * ref.size, 0.5)[ref.size:] if taper else 1.0
-    return 10 * np.log10(band_energy(w * (zoned - ref)) / band_energy(w * ref) / 4)
+def former_measurement(zone, design):
+    """The former test's: two zones GAP from the source, recorded there, a blunt record, per
+    end a quarter of the energy ratio [dB]."""
+    n, length = round(WINDOW / DT), 2 * (zone + GAP)
+    ref = pulse_response(rail_scene(length + 2 * EXTRA, zone, design), EXTRA + length / 2,
+                         EXTRA + length / 2, n)
+    zoned = pulse_response(rail_scene(length, zone, design), length / 2, length / 2, n)
+    return 10 * np.log10(band_energy(zoned - ref) / band_energy(ref) / 4)
+
+
+def reflection_db(ref, response):
+    """Reflected over incident energy per band [dB], the records' second half tapered."""
+    w = tukey(2 * ref.size, 0.5)[ref.size:]
+    return 10 * np.log10(band_energy(w * (response - ref)) / band_energy(w * ref))
 
 
 # ------------------------------------------------------------------------------- Bloch waves
@@ -122,9 +144,10 @@ def support_dampers(scene, dofs, zone, cmax):
     return coo_matrix((c, (rows, rows)), shape=(dofs.size, dofs.size)).tocsr()
 
 
-def zone_reflection(freqs, zone, at_supports=False):
-    """|R| of one end zone per frequency, and the decomposition's relative residual."""
-    scene = rail_scene(2 * (zone + GAP), zone)
+def zone_reflection(freqs, zone, at_supports=False, design=ABSORBING_ATTENUATION):
+    """|R| of one end zone per frequency, the decomposition's relative residual, and the
+    least-decaying right-going wave's decay per bay [Np] (0 where a wave travels)."""
+    scene = rail_scene(2 * (zone + GAP), zone, design)
     cmax = scene.rail.absorbing_damping
     if at_supports:
         scene = rail_scene(scene.rail.length)
@@ -153,41 +176,48 @@ def zone_reflection(freqs, zone, at_supports=False):
     return np.array(out)
 
 
-def main():
+def pulse_table():
+    ref10, z10 = one_zone(10.0)
+    ref30, z30 = one_zone(10.0, design=30.0)
+    ref20, z20 = one_zone(20.0)
+    plain = one_zone(10.0, ends=False)[1]
+    e = band_energy(ref10)
+    cols = {"incident [dB re max]": 10 * np.log10(e / e.max()),
+            "before: 10 m 30 dB, former measure": former_measurement(10.0, 30.0),
+            "10 m 30 dB": reflection_db(ref30, z30),
+            f"after: 10 m {ABSORBING_ATTENUATION:.0f} dB": reflection_db(ref10, z10),
+            f"20 m {ABSORBING_ATTENUATION:.0f} dB": reflection_db(ref20, z20),
+            "plain ends": reflection_db(ref10, plain)}
+    print("reflected / incident energy per 100 Hz band [dB] (zone length, design attenuation)")
+    print("band [Hz]  " + " | ".join(cols))
     rows = []
-    ref10, z10 = pulses(10.0)
-    ref20, z20 = pulses(20.0)
-    _, plain = pulses(None)
-    cols = {"reference energy [dB re max]": 10 * np.log10(band_energy(ref10) / band_energy(ref10).max()),
-            "plain, blunt": reflection_db(ref10, plain, False),
-            "plain, tapered": reflection_db(ref10, plain, True),
-            "10 m, blunt": reflection_db(ref10, z10, False),
-            "10 m, tapered": reflection_db(ref10, z10, True),
-            "20 m, tapered": reflection_db(ref20, z20, True)}
-    print("reflected / incident energy per 100 Hz band and end [dB]")
-    print("band [Hz]   " + " | ".join(cols))
     for k, a in enumerate(EDGES[:-1]):
         vals = {name: round(float(c[k]), 1) for name, c in cols.items()}
         rows.append({"band_low_hz": a, "band_high_hz": a + 100} | vals)
         print(f"{a:4.0f}-{a + 100:4.0f}  " + "  ".join(f"{x:6.1f}" for x in vals.values()))
     write_csv("absorbing_reflection.csv", rows)
 
+
+def bloch_table():
     freqs = np.array([1000, 1500, 1800, 1900, 1950, 2000, 2050, 2100, 2125, 2140, 2160, 2180,
                       2200, 2220, 2250, 2300, 2350, 2400, 2500, 2600, 2800, 3000.0])
-    cases = {f"rail {z:.0f} m": zone_reflection(freqs, z) for z in (10.0, 20.0, 40.0, 80.0)}
+    cases = {"rail 10 m 30 dB": zone_reflection(freqs, 10.0, design=30.0)}
+    cases |= {f"rail {z:.0f} m": zone_reflection(freqs, z) for z in (10.0, 20.0, 40.0, 80.0)}
     cases["supports 10 m"] = zone_reflection(freqs, 10.0, at_supports=True)
-    print("\none zone's reflection |R| per frequency [dB] (Bloch decomposition; max residual "
-          f"{max(c[:, 1].max() for c in cases.values()):.0e}); stop band: decay per bay > 1e-3")
-    print("f [Hz]  " + "  ".join(f"{n:>13s}" for n in cases) + "  decay/bay")
-    brows = []
+    print(f"\none zone's reflection |R| per frequency [dB], design {ABSORBING_ATTENUATION:.0f} dB "
+          "unless said (Bloch decomposition; largest residual "
+          f"{max(c[:, 1].max() for c in cases.values()):.0e})")
+    print("f [Hz]  " + "  ".join(f"{n:>15s}" for n in cases) + "  decay/bay [Np]")
+    rows = []
     for k, f in enumerate(freqs):
         vals = {n: round(float(20 * np.log10(c[k, 0])), 1) for n, c in cases.items()}
         decay = cases["rail 10 m"][k, 2]
-        brows.append({"f_hz": f} | vals | {"bloch_decay_per_bay": round(float(decay), 4)})
-        print(f"{f:6.0f}  " + "  ".join(f"{x:13.1f}" for x in vals.values())
+        rows.append({"f_hz": f} | vals | {"bloch_decay_per_bay": round(float(decay), 4)})
+        print(f"{f:6.0f}  " + "  ".join(f"{x:15.1f}" for x in vals.values())
               + f"  {decay:9.4f}{'  stop band' if decay > 1e-3 else ''}")
-    write_csv("absorbing_reflection_bloch.csv", brows)
+    write_csv("absorbing_reflection_bloch.csv", rows)
 
 
 if __name__ == "__main__":
-    main()
+    pulse_table()
+    bloch_table()
