@@ -52,7 +52,7 @@ class AbsorbingEnds:
     On periodic supports of spacing d the zones reflect near the stop band at the pinned-pinned
     frequency (where the bending wavenumber k nears pi / d) unless they are several beat lengths
     1 / |k - pi / d| long: on the paper's track 10 m zones reflect less than -30 dB except in
-    1.95-2.39 kHz, 20 m zones except in 2.03-2.32 kHz (up to -5 dB at the stop band's edges,
+    1.95-2.39 kHz, 20 m zones except in 2.04-2.32 kHz (up to -5 dB at the stop band's edges,
     2.15 and 2.21 kHz). The dampers act on the rail, which moves at the pinned-pinned frequency
     where the supports do not (dampers at the supports would let those waves through).
     """
