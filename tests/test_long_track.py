@@ -130,9 +130,10 @@ BANDS = np.arange(100.0, 3001.0, 100.0)
 #: under 400 Hz)
 LOWEST = 500.0
 #: Bands [Hz] around the stop band of the 0.5 m bays (2147-2210 Hz, at the pinned-pinned
-#: frequency) that a zone of the given length cannot absorb to 30 dB (docs: Model § Long tracks
-#: and absorbing ends): where the zone's own reflection (benchmarks/absorbing_reflection.py,
-#: Bloch-wave decomposition) exceeds -30 dB, 1950-2385 Hz for 10 m and 2035-2315 Hz for 20 m
+#: frequency) that a zone of the given length cannot absorb to 30 dB
+#: (docs: Model § Long tracks and absorbing ends): where the zone's own reflection
+#: (benchmarks/absorbing_reflection.py, Bloch-wave decomposition) exceeds -30 dB, 1950-2385 Hz
+#: for 10 m and 2035-2315 Hz for 20 m
 SLOW = {10.0: (1900.0, 2400.0), 20.0: (2000.0, 2300.0)}
 
 
