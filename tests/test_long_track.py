@@ -143,8 +143,8 @@ def records(zone, ends=True):
     the same rail with plain pinned ends), and on the rail EXTRA longer on the near side with the
     same zones (the reference). The two rails differ only beyond the near zone, so the
     difference of the records is the near zone's reflection alone (what the far zone reflects is
-    the same in both; what the near one reflects and the far one sends back again is 1e-4 of it
-    in energy), and at RECEIVER the source's near field is down to e^(-k RECEIVER) (8 % at 500 Hz,
+    the same in both; what the near one reflects and the far one sends back again is down by the
+    far zone's own reflection, 1e-3 in energy), and at RECEIVER the source's near field is down to e^(-k RECEIVER) (8 % at 500 Hz,
     less above: k^4 = (m omega^2 - k_f) / EI), so the reference's record is the incident wave."""
     n, length, x = round(WINDOW / DT), 2 * zone + GAP + FAR, zone + GAP
     zones = tw.AbsorbingEnds(zone)
