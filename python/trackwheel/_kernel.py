@@ -43,6 +43,11 @@ def rail_model(scene: Scene, n_elements: int | None = None,
     p.n_gauss = r.n_gauss
     p.gravity = scene.gravity if scene.rail_gravity else 0.0
     p.pin_far_end = r.far_end == "pinned"
+    if r.beam == "timoshenko":
+        # the full path's shear-deformable ANCF element; the linear path takes its own
+        # Timoshenko matrices from beam_params and reads only the mesh and supports from here
+        p.shear_stiffness = r.shear_stiffness
+        p.rotary_inertia = r.rotary_inertia
     if r.absorbing_ends is not None:
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
