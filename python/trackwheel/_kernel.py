@@ -72,16 +72,6 @@ def beam_params(scene: Scene) -> _core.BeamParams:
     return b
 
 
-def require_euler(scene: Scene, what: str) -> None:
-    """Raise ValueError if the scene asks for a Timoshenko rail where the nonlinear ANCF rail
-    (Euler-Bernoulli) runs."""
-    if scene.rail.beam != "euler":
-        raise ValueError(
-            f"Rail.beam='{scene.rail.beam}' is supported by the linear levels, receptance and "
-            f"eigen of the linear track; the full ANCF model ({what}) is Euler-Bernoulli: use "
-            "Rail.beam='euler' or a 'linear/...' fidelity level")
-
-
 def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core.Profile:
     """The scene's rail profile as the kernel's piecewise cubic over [0, L] (or [0, ``end``]
     [m]; none: empty), patch-filtered if ``scene.contact.patch_filter``, as a function of

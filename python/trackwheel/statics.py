@@ -86,7 +86,6 @@ def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> St
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.number("x_wheel", x_wheel, low=0.0, high=scene.rail.length, unit="m")
-    _kernel.require_euler(scene, "static")
     ne = _mesh(scene, n_elements)
     model = _kernel.rail_model(scene, ne)
     d = _core.static_solve(model, _kernel.wheel_params(scene), _kernel.contact_params(scene), x)
