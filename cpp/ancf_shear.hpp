@@ -1,4 +1,5 @@
-// Planar shear-deformable ANCF beam element (docs: Model § Shear-deformable rail).
+// Planar shear-deformable ANCF beam element (docs: Model, section "Shear-deformable rail
+// (Timoshenko)").
 //
 // Nodal coordinates e_i = [x, y, d_x, d_y] as the cable's, but d is the director of the
 // cross-section (its normal; d = r_s when the section does not shear). Element vector

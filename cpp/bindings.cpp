@@ -155,6 +155,14 @@ ProgressFn python_progress(py::object progress) {
   };
 }
 
+// The RailModel validates its own section; a ShearSection built directly is checked here (the
+// element divides by kGA and l).
+void check_shear_section(const ShearSection& c) {
+  if (!(c.length > 0 && c.kGA > 0 && std::isfinite(c.kGA) && c.n_gauss >= 1 && c.n_gauss <= 10))
+    throw std::invalid_argument(
+        "ShearSection: length must be > 0 m, kGA finite > 0 N, n_gauss in [1, 10]");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -213,13 +221,17 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("rhoI", &ShearSection::rhoI, "rotary inertia per length [kg m]")
       .def_readwrite("exact_curvature", &ShearSection::exact_curvature)
       .def_readwrite("n_gauss", &ShearSection::n_gauss);
-  m.def("shear_mass", &shear_mass, "Shear-deformable element mass matrix (8x8) [kg]");
+  m.def(
+      "shear_mass",
+      [](const ShearSection& c) {
+        check_shear_section(c);
+        return shear_mass(c);
+      },
+      "Shear-deformable element mass matrix (8x8) [kg]");
   m.def(
       "shear_elastic",
       [](const ShearSection& c, const Vec8& e) {
-        if (!(c.length > 0 && c.kGA > 0 && c.n_gauss >= 1 && c.n_gauss <= 10))
-          throw std::invalid_argument(
-              "ShearSection: length and kGA must be > 0, n_gauss in [1, 10]");
+        check_shear_section(c);
         Vec8 Q;
         Mat8 K;
         double U;

@@ -1,6 +1,6 @@
 // The rail: planar ANCF cable elements (Euler-Bernoulli) or shear-deformable ANCF elements
-// (ancf_shear.hpp, Timoshenko) on discrete elastic supports (docs: Model § Scene, § Rail,
-// § Shear-deformable rail).
+// (ancf_shear.hpp, Timoshenko) on discrete elastic supports (docs: Model § Scene, § Rail, and
+// the section "Shear-deformable rail (Timoshenko)").
 //
 // RailModel is immutable after construction (mesh, section, constant mass matrix, supports,
 // gravity load, boundary conditions). Algorithms take it by const reference together with

@@ -197,7 +197,8 @@ def _dense_vertical_frequencies(scene: tw.Scene) -> np.ndarray:
 
 def test_pinned_pinned_frequency_of_the_full_model():
     """The first bending mode of a bare 0.5 m span of the full model's rail: within 0.5 % of the
-    lower root of the Timoshenko frequency equation (MODEL.md 11; 20 elements, FE error ~1e-3),
+    lower root of the Timoshenko frequency equation (docs: Model, section "Shear-deformable rail
+    (Timoshenko)"; 20 elements, FE error ~1e-3),
     and far from the Euler-Bernoulli 2.15 kHz."""
     from trackwheel.fidelity import pinned_pinned_frequencies
 
