@@ -96,6 +96,25 @@ def test_tangent_matches_central_differences(exact, i_state):
 
 
 @pytest.mark.parametrize("exact", [True, False])
+@pytest.mark.parametrize("i_state", range(len(STATES)))
+def test_time_loop_force_equals_the_checked_force(exact, i_state):
+    """The rail's internal force (the time loop's force-only pass, written out through r_s, d
+    and d_s) is the force checked above: a one-element bare rail against shear_elastic, to
+    round-off (1e-12 of |Q|; same formulas, other order of operations)."""
+    c = shear_section(exact=exact)
+    p = _core.RailParams()
+    p.length, p.EA, p.EI, p.rhoA, p.n_elements = L_EL, c.EA, c.EI, c.rhoA, 1
+    p.exact_curvature, p.n_gauss = exact, c.n_gauss
+    p.shear_stiffness, p.rotary_inertia = c.kGA, c.rhoI
+    model = _core.RailModel(p, _core.SupportParams())
+    Q, U = model.internal_force(STATES[i_state])
+    Q_ref, _, U_ref = _core.shear_elastic(c, STATES[i_state])
+    assert rel(Q, Q_ref) < 1e-12
+    assert U == pytest.approx(U_ref, rel=1e-12)
+    np.testing.assert_array_equal(model.mass_dense(), _core.shear_mass(c))
+
+
+@pytest.mark.parametrize("exact", [True, False])
 @pytest.mark.parametrize("angle, shift", [(0.0, (3.0, -1.0)), (0.7, (0.0, 0.0)),
                                           (-2.1, (1.7, 0.4)), (math.pi, (5.0, 0.0))])
 def test_rigid_motion_gives_zero_force_and_energy(exact, angle, shift):
