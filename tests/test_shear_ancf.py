@@ -247,6 +247,38 @@ def test_full_model_frequencies_equal_the_linear_timoshenko_track():
     np.testing.assert_allclose(sp, d, rtol=1e-9)
 
 
+def test_linearised_full_rail_has_the_linear_tracks_receptance():
+    """The full model's rail linearised at the straight reference (eigen.vertical_matrices: its
+    band M, C, K over the vertical coordinates, with support dampers and graded absorbing end
+    zones through the w functions) gives the linear Timoshenko track's receptance
+    (tw.receptance, its own IIE matrices), point and transfer, to round-off (1e-9; the solves
+    differ: dense here, banded there)."""
+    from trackwheel.eigen import vertical_matrices
+
+    s = tw.Scene.kato2005()
+    s = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko",
+                                      absorbing_ends=tw.AbsorbingEnds(1.0)),
+                   supports=dc.replace(s.supports, damping=2e5))
+    M, C, K, dofs = (x.toarray() if hasattr(x, "toarray") else x for x in vertical_matrices(s))
+    model = _kernel.rail_model(s)
+
+    def coupling(x):
+        out = np.zeros(len(dofs))
+        for j, i in enumerate(dofs):
+            unit = np.zeros(model.n_dof)
+            unit[i] = 1.0
+            out[j] = model.positions(unit, [x])[0, 1]
+        return out
+
+    se, sr = coupling(2.1), coupling(3.3)
+    freqs = np.array([50.0, 800.0, 1500.0])
+    w = 2 * np.pi * freqs
+    full = np.array([[sr_ @ np.linalg.solve(K + 1j * wi * C - wi**2 * M, se)
+                      for sr_ in (se, sr)] for wi in w])
+    lin = np.stack([tw.receptance(s, 2.1, freqs), tw.receptance(s, 2.1, freqs, 3.3)], axis=1)
+    np.testing.assert_allclose(full, lin, rtol=1e-9)
+
+
 def _damped(beam: str) -> tw.Scene:
     s = tw.Scene.kato2005()
     return dc.replace(s, supports=dc.replace(s.supports, damping=2e5),
