@@ -155,6 +155,14 @@ ProgressFn python_progress(py::object progress) {
   };
 }
 
+// The RailModel validates its own section; a ShearSection built directly is checked here (the
+// element divides by kGA and l).
+void check_shear_section(const ShearSection& c) {
+  if (!(c.length > 0 && c.kGA > 0 && std::isfinite(c.kGA) && c.n_gauss >= 1 && c.n_gauss <= 10))
+    throw std::invalid_argument(
+        "ShearSection: length must be > 0 m, kGA finite > 0 N, n_gauss in [1, 10]");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -203,6 +211,36 @@ PYBIND11_MODULE(_core, m) {
     return py::make_tuple(Eigen::Vector4d(h.n), Eigen::Vector4d(h.ns), Eigen::Vector4d(h.nss));
   });
 
+  py::class_<ShearSection>(m, "ShearSection")
+      .def(py::init<>())
+      .def_readwrite("length", &ShearSection::length, "element length l [m]")
+      .def_readwrite("EA", &ShearSection::EA, "axial stiffness [N]")
+      .def_readwrite("EI", &ShearSection::EI, "bending stiffness [N m^2]")
+      .def_readwrite("kGA", &ShearSection::kGA, "shear stiffness kappa G A [N]")
+      .def_readwrite("rhoA", &ShearSection::rhoA, "mass per length [kg/m]")
+      .def_readwrite("rhoI", &ShearSection::rhoI, "rotary inertia per length [kg m]")
+      .def_readwrite("exact_curvature", &ShearSection::exact_curvature)
+      .def_readwrite("n_gauss", &ShearSection::n_gauss);
+  m.def(
+      "shear_mass",
+      [](const ShearSection& c) {
+        check_shear_section(c);
+        return shear_mass(c);
+      },
+      "Shear-deformable element mass matrix (8x8) [kg]");
+  m.def(
+      "shear_elastic",
+      [](const ShearSection& c, const Vec8& e) {
+        check_shear_section(c);
+        Vec8 Q;
+        Mat8 K;
+        double U;
+        shear_elastic(c, e, &Q, &K, &U);
+        return py::make_tuple(Q, K, U);
+      },
+      "Shear-deformable element: elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy "
+      "U [J]");
+
   py::class_<RailParams>(m, "RailParams")
       .def(py::init<>())
       .def_readwrite("length", &RailParams::length)
@@ -216,7 +254,11 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("pin_far_end", &RailParams::pin_far_end)
       .def_readwrite("absorbing_length", &RailParams::absorbing_length, "L_z [m]")
       .def_readwrite("absorbing_damping", &RailParams::absorbing_damping,
-                     "c_max at the rail ends [N s/m^2]");
+                     "c_max at the rail ends [N s/m^2]")
+      .def_readwrite("shear_stiffness", &RailParams::shear_stiffness,
+                     "kappa G A [N]; 0: Euler-Bernoulli cable, > 0: shear-deformable element")
+      .def_readwrite("rotary_inertia", &RailParams::rotary_inertia,
+                     "rho I [kg m] (shear-deformable element only)");
   py::class_<SupportParams>(m, "SupportParams")
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)

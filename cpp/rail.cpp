@@ -65,6 +65,13 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
             "support damping must be >= 0 N s/m");
   }
   check_layers(sup_);
+  require(std::isfinite(p_.shear_stiffness) && p_.shear_stiffness >= 0,
+          "shear_stiffness must be >= 0 N (0: Euler-Bernoulli)");
+  require(std::isfinite(p_.rotary_inertia) && p_.rotary_inertia >= 0,
+          "rotary_inertia must be >= 0 kg m");
+  require(p_.shear() || p_.rotary_inertia == 0.0,
+          "rotary_inertia must be 0 kg m with shear_stiffness = 0 (the Euler-Bernoulli rail "
+          "has no rotary inertia)");
 
   sec_.length = p_.length / p_.n_elements;
   sec_.EA = p_.EA;
@@ -72,8 +79,16 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   sec_.rhoA = p_.rhoA;
   sec_.exact_curvature = p_.exact_curvature;
   sec_.n_gauss = p_.n_gauss;
-  Me_ = cable_mass(sec_);
-  quad_ = make_quadrature(sec_);
+  if (p_.shear()) {
+    shear_sec_ = ShearSection{sec_.length,        p_.EA,     p_.EI,
+                              p_.shear_stiffness, p_.rhoA,   p_.rotary_inertia,
+                              p_.exact_curvature, p_.n_gauss};
+    Me_ = shear_mass(shear_sec_);
+    shear_quad_ = make_shear_quadrature(shear_sec_);
+  } else {
+    Me_ = cable_mass(sec_);
+    quad_ = make_quadrature(sec_);
+  }
 
   // boundary conditions
   const int nd = n_dof();
@@ -107,7 +122,8 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   }
   add_absorbing_ends();
 
-  // consistent gravity load -int rhoA g S_y^T ds
+  // consistent gravity load -int rhoA g S_y^T ds (the shear element's w functions have the
+  // same integrals as the Hermite functions: the phi terms integrate to zero)
   Qg_ = Eigen::VectorXd::Zero(nd);
   const double l = sec_.length;
   const double nint[4] = {0.5 * l, l * l / 12.0, 0.5 * l, -l * l / 12.0};
@@ -136,7 +152,7 @@ void RailModel::add_absorbing_ends() {
         const double X = a + (b - a) * gx[g];
         const double d = std::min(X, p_.length - X);
         const double c = cmax * std::pow(std::max(1.0 - d / Lz, 0.0), 2);
-        const HermiteValues h = hermite((X - x0) / l, l);
+        const HermiteValues h = centre_line((X - x0) / l);
         for (int i = 0; i < 4; ++i)
           for (int k = 0; k < 4; ++k)
             Ce(2 * i + 1, 2 * k + 1) += (b - a) * gw[g] * c * h.n[i] * h.n[k];
@@ -164,7 +180,7 @@ MeshPoint RailModel::locate(double s) const {
   el = std::min(std::max(el, 0), p_.n_elements - 1);
   mp.element = el;
   mp.xi = std::min(std::max((s - el * sec_.length) / sec_.length, 0.0), 1.0);
-  mp.h = hermite(mp.xi, sec_.length);
+  mp.h = centre_line(mp.xi);
   return mp;
 }
 
@@ -182,6 +198,17 @@ Eigen::Vector2d RailModel::curvature_vector(const Eigen::VectorXd& e, const Mesh
   Eigen::Vector2d r = Eigen::Vector2d::Zero();
   for (int a = 0; a < 4; ++a) r += p.h.nss[a] * e.segment<2>(p.dof0() + 2 * a);
   return r;
+}
+
+HermiteValues RailModel::centre_line(double xi) const {
+  return p_.shear() ? shear_centre_line(shear_sec_, xi) : hermite(xi, sec_.length);
+}
+
+void RailModel::element_elastic(const Vec8& ee, Vec8* Q, Mat8* K, double* U) const {
+  if (p_.shear())
+    shear_elastic(shear_sec_, ee, Q, K, U, &shear_quad_);
+  else
+    cable_elastic(sec_, ee, Q, K, U, &quad_);
 }
 
 void RailModel::add_element_block(int el, const Mat8& Ke, double scale, BandMatrix& K) const {
@@ -205,7 +232,7 @@ void RailModel::internal_force(const Eigen::VectorXd& e, const Eigen::VectorXd* 
   for (int el = 0; el < p_.n_elements; ++el) {
     double Ue = 0.0;
     const Vec8 ee = e.segment<8>(4 * el);
-    cable_elastic(sec_, ee, &Qe, nullptr, energy ? &Ue : nullptr, &quad_);
+    element_elastic(ee, &Qe, nullptr, energy ? &Ue : nullptr);
     Q.segment<8>(4 * el) += Qe;
     U += Ue;
   }
@@ -229,7 +256,7 @@ void RailModel::add_tangent(const Eigen::VectorXd& e, double scale, BandMatrix& 
   Mat8 Ke;
   for (int el = 0; el < p_.n_elements; ++el) {
     const Vec8 ee = e.segment<8>(4 * el);
-    cable_elastic(sec_, ee, nullptr, &Ke, nullptr, &quad_);
+    element_elastic(ee, nullptr, &Ke, nullptr);
     add_element_block(el, Ke, scale, K);
   }
   K.add_scaled(scale, Ks_);
@@ -240,7 +267,7 @@ Eigen::MatrixXd RailModel::tangent_dense(const Eigen::VectorXd& e) const {
   Mat8 Ke;
   for (int el = 0; el < p_.n_elements; ++el) {
     const Vec8 ee = e.segment<8>(4 * el);
-    cable_elastic(sec_, ee, nullptr, &Ke, nullptr, &quad_);
+    element_elastic(ee, nullptr, &Ke, nullptr);
     K.block<8, 8>(4 * el, 4 * el) += Ke;
   }
   for (size_t j = 0; j < support_points_.size(); ++j) {

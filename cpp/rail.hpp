@@ -1,10 +1,13 @@
-// The rail: planar ANCF cable elements on discrete elastic supports (docs: Model § Scene, § Rail).
+// The rail: planar ANCF cable elements (Euler-Bernoulli) or shear-deformable ANCF elements
+// (ancf_shear.hpp, Timoshenko) on discrete elastic supports (docs: Model § Scene, § Rail, and
+// the section "Shear-deformable rail (Timoshenko)").
 //
 // RailModel is immutable after construction (mesh, section, constant mass matrix, supports,
 // gravity load, boundary conditions). Algorithms take it by const reference together with
 // state vectors; mutable buffers live in the caller's workspace.
 //
-// Coordinates: full vector e (n_dof = 4 (n_elements + 1)), node-major [x, y, x_s, y_s].
+// Coordinates: full vector e (n_dof = 4 (n_elements + 1)), node-major [x, y, x_s, y_s] (the
+// shear element: [x, y, d_x, d_y], d the cross-section's director).
 // Boundary conditions (simply supported ends): x = 0 and y = 0 at s = 0, y = 0 at s = L; the far
 // end is a roller in x unless pin_far_end. Fixed coordinates keep their reference values; all
 // matrices used in solves are over the free coordinates (numbered in the same order, so an
@@ -16,6 +19,7 @@
 #include <vector>
 
 #include "ancf_cable.hpp"
+#include "ancf_shear.hpp"
 #include "banded.hpp"
 #include "profile.hpp"
 
@@ -37,6 +41,11 @@ struct RailParams {
   // (1 - d / absorbing_length)^2 per length at distance d from the end. 0: none.
   double absorbing_length = 0.0;   // L_z [m], 0 <= 2 L_z <= L
   double absorbing_damping = 0.0;  // c_max at the rail ends [N s/m^2]
+  // Shear deformation (Timoshenko): kappa G A > 0 selects the shear-deformable element, whose
+  // nodal d is the cross-section's director; 0 is the Euler-Bernoulli cable (d = r_s).
+  double shear_stiffness = 0.0;  // kappa G A [N], >= 0
+  double rotary_inertia = 0.0;   // rho I [kg m], >= 0; 0 unless shear_stiffness > 0
+  bool shear() const { return shear_stiffness > 0.0; }
 };
 
 struct SupportParams {
@@ -53,7 +62,7 @@ struct SupportParams {
 struct MeshPoint {
   int element = 0;  // element index
   double xi = 0.0;  // local coordinate in [0, 1]
-  HermiteValues h;  // shape functions at xi
+  HermiteValues h;  // the centre line's shape functions at xi (r = sum h.n[a] e_a)
   int dof0() const { return 4 * element; }
 };
 
@@ -67,6 +76,7 @@ class RailModel {
   const RailParams& params() const { return p_; }
   const SupportParams& supports() const { return sup_; }
   const CableSection& section() const { return sec_; }
+  const ShearSection& shear_section() const { return shear_sec_; }  // if params().shear()
   const Profile& profile() const { return profile_; }
   int n_nodes() const { return p_.n_elements + 1; }
   int n_dof() const { return 4 * n_nodes(); }
@@ -109,6 +119,8 @@ class RailModel {
   Profile profile_;
   CableSection sec_;
   CableQuadrature quad_;
+  ShearSection shear_sec_{};
+  ShearQuadrature shear_quad_;
   Mat8 Me_;
   std::vector<int> full_to_free_, free_to_full_;
   std::vector<MeshPoint> support_points_;
@@ -117,6 +129,8 @@ class RailModel {
   Eigen::VectorXd Qg_;
   void add_element_block(int el, const Mat8& Ke, double scale, BandMatrix& K) const;
   void add_absorbing_ends();
+  HermiteValues centre_line(double xi) const;  // the element's centre-line functions at xi
+  void element_elastic(const Vec8& ee, Vec8* Q, Mat8* K, double* U) const;
 };
 
 }  // namespace trackwheel

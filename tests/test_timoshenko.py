@@ -1,6 +1,7 @@
 """The Timoshenko rail of the linear track (docs: Model, section "Shear-deformable rail
 (Timoshenko)"): the IIE element against its energy and closed forms, the pinned-pinned frequency
-against the Timoshenko frequency equation, the thin-beam limit, and the full path's refusal."""
+against the Timoshenko frequency equation and the thin-beam limit (the full model's
+shear-deformable ANCF rail: tests/test_shear_ancf.py)."""
 
 from __future__ import annotations
 
@@ -147,17 +148,6 @@ def test_linear_simulation_takes_the_beam_theory():
     assert dt_ < de < 0
 
 
-@pytest.mark.parametrize("call", ["simulate", "static"])
-def test_full_ancf_path_refuses_timoshenko(call):
-    s = tw.Scene.kato2005()
-    st = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko"))
-    with pytest.raises(ValueError, match="Rail.beam='timoshenko' is supported by the linear"):
-        if call == "simulate":
-            tw.simulate(st, 30.0, x_start=2.0, x_end=2.1)
-        else:
-            tw.static(st, 2.5)
-
-
 def test_rail_beam_validation():
     with pytest.raises(ValueError, match="Rail.beam"):
         tw.Rail(beam="rayleigh")
@@ -172,7 +162,7 @@ def test_rail_beam_validation():
 def test_shear_judgement_compares_the_two_beams():
     """adequacy's shear column: the pinned-pinned closed forms (those of the span test above)
     and the relative differences of the linear/hertz runs with each beam, as separate runs give
-    them; a Timoshenko scene's ANCF levels run on the Euler-Bernoulli rail instead of failing."""
+    them; a Timoshenko scene's ANCF levels run on the shear-deformable ANCF rail."""
     from trackwheel.analysis import analyse
     from trackwheel.fidelity import shear_judgement
 

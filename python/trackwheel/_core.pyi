@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -48,6 +48,64 @@ class CableSection:
         """
     @rhoA.setter
     def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ShearSection:
+    exact_curvature: bool
+    def __init__(self) -> None:
+        ...
+    @property
+    def EA(self) -> float:
+        """
+        axial stiffness [N]
+        """
+    @EA.setter
+    def EA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def EI(self) -> float:
+        """
+        bending stiffness [N m^2]
+        """
+    @EI.setter
+    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def kGA(self) -> float:
+        """
+        shear stiffness kappa G A [N]
+        """
+    @kGA.setter
+    def kGA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def length(self) -> float:
+        """
+        element length l [m]
+        """
+    @length.setter
+    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_gauss(self) -> int:
+        ...
+    @n_gauss.setter
+    def n_gauss(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rhoA(self) -> float:
+        """
+        mass per length [kg/m]
+        """
+    @rhoA.setter
+    def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rhoI(self) -> float:
+        """
+        rotary inertia per length [kg m]
+        """
+    @rhoI.setter
+    def rhoI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class RailParams:
     exact_curvature: bool
@@ -111,6 +169,22 @@ class RailParams:
         ...
     @rhoA.setter
     def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotary_inertia(self) -> float:
+        """
+        rho I [kg m] (shear-deformable element only)
+        """
+    @rotary_inertia.setter
+    def rotary_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shear_stiffness(self) -> float:
+        """
+        kappa G A [N]; 0: Euler-Bernoulli cable, > 0: shear-deformable element
+        """
+    @shear_stiffness.setter
+    def shear_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class SupportParams:
     def __init__(self) -> None:
@@ -937,6 +1011,14 @@ def receptance(rail: RailModel, beam: BeamParams, x: typing.SupportsFloat | typi
 def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"], arg6: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     """
     Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
+    """
+def shear_elastic(arg0: ShearSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
+    """
+    Shear-deformable element: elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy U [J]
+    """
+def shear_mass(arg0: ShearSection) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"]:
+    """
+    Shear-deformable element mass matrix (8x8) [kg]
     """
 def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """

@@ -43,6 +43,11 @@ def rail_model(scene: Scene, n_elements: int | None = None,
     p.n_gauss = r.n_gauss
     p.gravity = scene.gravity if scene.rail_gravity else 0.0
     p.pin_far_end = r.far_end == "pinned"
+    if r.beam == "timoshenko":
+        # the full path's shear-deformable ANCF element; the linear path takes its own
+        # Timoshenko matrices from beam_params and reads only the mesh and supports from here
+        p.shear_stiffness = r.shear_stiffness
+        p.rotary_inertia = r.rotary_inertia
     if r.absorbing_ends is not None:
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
@@ -65,16 +70,6 @@ def beam_params(scene: Scene) -> _core.BeamParams:
         b.shear_stiffness = scene.rail.shear_stiffness
         b.rotary_inertia = scene.rail.rotary_inertia
     return b
-
-
-def require_euler(scene: Scene, what: str) -> None:
-    """Raise ValueError if the scene asks for a Timoshenko rail where the nonlinear ANCF rail
-    (Euler-Bernoulli) runs."""
-    if scene.rail.beam != "euler":
-        raise ValueError(
-            f"Rail.beam='{scene.rail.beam}' is supported by the linear levels, receptance and "
-            f"eigen of the linear track; the full ANCF model ({what}) is Euler-Bernoulli: use "
-            "Rail.beam='euler' or a 'linear/...' fidelity level")
 
 
 def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core.Profile:

@@ -2,9 +2,10 @@
 
 The rail is the ANCF rail linearised about the straight reference, which is exactly an
 Euler-Bernoulli Hermite beam in y (and a cubic bar in x, whose modes are reported apart in
-``axial_frequencies``); with ``Rail(beam="timoshenko")`` it is the linear track's Timoshenko
-beam (docs: Model, section "Shear-deformable rail (Timoshenko)"), whose mode shapes carry the section rotation psi in
-the slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
+``axial_frequencies``); with ``Rail(beam="timoshenko")`` it is the shear-deformable ANCF rail
+linearised, which is exactly the linear track's Timoshenko (IIE) beam in y (docs: Model, section
+"Shear-deformable rail (Timoshenko)"), its mode shapes carrying the section rotation psi in the
+slope slots. The wheel is the mass M on the contact spring k (linearised Hertz),
 attached to the rail at the wheel position X through the element shape functions, so X need not
 be a node. Layered supports add one DOF per sleeper (mass m_s between the pad and the ballast
 springs). ``K x = omega^2 M x`` is solved for each position by one of two methods:
@@ -14,8 +15,8 @@ springs). ``K x = omega^2 M x`` is solved for each position by one of two method
   ``MAX_DENSE_EIGEN_DOF`` coordinates;
 - ``"sparse"``: the lowest modes only, by shift-invert Lanczos (ARPACK through
   :func:`scipy.sparse.linalg.eigsh`) on the banded K and M the kernel exports (rail, wheel,
-  sleepers), O(n) memory and time per mode; the Euler-Bernoulli rail with one wheel only (a
-  vehicle and the Timoshenko rail take the dense method);
+  sleepers), O(n) memory and time per mode; one wheel only (a vehicle takes the dense
+  method);
 
 ``"auto"`` takes the sparse method above ``AUTO_SPARSE_DOF`` coordinates where it can.
 """
@@ -114,15 +115,14 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
     model = _kernel.rail_model(scene, _mesh(scene, n_elements))
-    if scene.vehicle is not None or scene.rail.beam != "euler":
-        _dense_only(method, scene)
     if scene.vehicle is not None:
+        _dense_only(method)
         return _vehicle_eigen(scene, x, n_modes, model.n_nodes - 1, n_axial)
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
     n_x = sum(1 for i in model.free_to_full if i % 2 == 0)
     n = n_y + 1 + n_sleepers
-    sparse = scene.rail.beam == "euler" and _sparse(method, n)
+    sparse = _sparse(method, n)
     # ARPACK finds at most n - 1 modes of an n x n problem
     n_modes = v.integer("n_modes", n_modes, low=1, high=n - 1 if sparse else n)
     # at most the n_x axial modes the mesh has (one element has only one or two)
@@ -132,13 +132,10 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
                for xi in x]
         freqs = np.array([f for f, _ in res])
         shapes = np.array([s for _, s in res])
-    elif scene.rail.beam == "euler":
+    else:
         _check_dense(n)
         freqs, shapes = _core.vertical_modes(model, scene.wheel.mass, scene.contact_stiffness,
                                              x.tolist(), n_modes)
-    else:
-        _check_dense(n)
-        freqs, shapes = _timoshenko_modes(scene, model, x, n_modes)
     axial = np.empty(0)
     if n_axial and _sparse(method, n_x):
         axial = _sparse_modes(model, 0, n_axial)[0]
@@ -159,12 +156,6 @@ def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None =
     model = _kernel.rail_model(scene, _mesh(scene, n_elements))
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n = n_y + (len(scene.support_positions) if scene.supports.layered else 0)
-    if scene.rail.beam != "euler":
-        _dense_only(method, scene)
-        _check_dense(n)
-        n_modes = v.integer("n_modes", n_modes, low=1, high=n)
-        freqs, _ = _core.track_modes(model, _kernel.beam_params(scene), 0.0, 0.0, [0.0], n_modes)
-        return np.asarray(freqs).ravel()
     sparse = _sparse(method, n)
     n_modes = v.integer("n_modes", n_modes, low=1, high=n - 1 if sparse else n)
     if sparse:
@@ -198,11 +189,10 @@ def _sparse(method: str, n: int) -> bool:
     return method == "sparse" or (method == "auto" and n > AUTO_SPARSE_DOF)
 
 
-def _dense_only(method: str, scene: Scene) -> None:
+def _dense_only(method: str) -> None:
     v.choice("method", method, set(METHODS))
     if method == "sparse":
-        what = "a vehicle" if scene.vehicle is not None else "Rail(beam='timoshenko')"
-        raise ValueError(f"method='sparse' is not available with {what}; allowed: "
+        raise ValueError("method='sparse' is not available with a vehicle; allowed: "
                          "method='dense' or 'auto'")
 
 
@@ -262,10 +252,6 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
     """:func:`eigen` for a vehicle: K q = omega^2 M q over [rail vertical coords, u, sleepers'
     z_j (layered supports)]."""
     from scipy.linalg import eigh
-
-    if scene.rail.beam != "euler":
-        raise ValueError(f"eigen with a vehicle takes Rail(beam='euler') (the ANCF rail "
-                         f"linearised), got beam = {scene.rail.beam!r}")
 
     veh = scene.active_vehicle
     model = _kernel.rail_model(scene, ne)
@@ -367,16 +353,3 @@ def _couplings(model, e0, vert, xs) -> np.ndarray:
         unit[i] = 1.0
         S[:, j] = np.asarray(model.positions(unit, list(xs)))[:, 1]
     return S
-
-
-def _timoshenko_modes(scene: Scene, model, x: np.ndarray, n_modes: int):
-    """The linear track's modes with the Timoshenko rail, shapes scattered into the ANCF
-    numbering: the deflection w in the y slot, the section rotation psi in the slope slot."""
-    freqs, per_pos = _core.track_modes(model, _kernel.beam_params(scene), scene.wheel.mass,
-                                       scene.contact_stiffness, x.tolist(), n_modes)
-    y_dofs = [i for i in model.free_to_full if i % 2 == 1]
-    shapes = np.zeros((len(per_pos), model.n_dof + 1, n_modes))
-    for p, s in enumerate(per_pos):
-        shapes[p, y_dofs, :] = np.asarray(s)[:-1]
-        shapes[p, -1, :] = np.asarray(s)[-1]
-    return freqs, shapes

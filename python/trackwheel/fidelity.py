@@ -55,7 +55,9 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     more than 1 dB off the profile's shortest wavelength
     (:func:`trackwheel.irregularity.filter_matters`).
 
-    The levels run on the Euler-Bernoulli rail (the full ANCF model's). With ``shear`` (default),
+    The levels run on the scene's beam theory (``Rail(beam="timoshenko")``: the shear-deformable
+    ANCF rail on the full and "ancf/..." levels, the linear Timoshenko beam on the "linear/..."
+    ones). With ``shear`` (default),
     ``df.attrs["shear"]`` says whether the rail's shear deformation matters for the scene
     (:func:`shear_judgement`): the pinned-pinned frequencies of both beam theories and the
     largest relative differences of the headline outputs between the "linear/hertz" level run
@@ -76,8 +78,6 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
         v.choice("levels", lv, set(FIDELITY_LEVELS))
     v.choice("reference", reference, set(FIDELITY_LEVELS))
     v.boolean("shear", shear)
-    judged_scene = scene
-    scene = dataclasses.replace(scene, rail=dataclasses.replace(scene.rail, beam="euler"))
     run_levels = (reference,) + tuple(lv for lv in levels if lv != reference)
     # every level on the same mesh and step: the derived defaults unless given
     defaults = default_settings(scene)
@@ -117,7 +117,7 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
         df.attrs["vehicle"] = veh
         df.attrs["vehicle_recommended"] = veh.attrs["recommended"]
     if shear:
-        df.attrs["shear"] = shear_judgement(judged_scene, speeds, tol=tol, **simulate_kwargs)
+        df.attrs["shear"] = shear_judgement(scene, speeds, tol=tol, **simulate_kwargs)
     return df
 
 

@@ -88,8 +88,8 @@ class Rail:
     #: graded viscous end zones that absorb waves leaving the rail, or None (the paper's rail)
     absorbing_ends: AbsorbingEnds | None = None
     #: "euler" (Euler-Bernoulli) or "timoshenko" (shear deformation and rotary inertia: the
-    #: linear levels, receptance and eigen analysis of the linear track; the full ANCF model is
-    #: Euler-Bernoulli and refuses "timoshenko")
+    #: shear-deformable ANCF rail of the full model, statics and eigen analysis, and the
+    #: Timoshenko beam of the linear levels and receptance)
     beam: str = "euler"
     #: kappa, shear coefficient of the section [-], in (0, 1] (about 0.4 for a rail's vertical
     #: bending; used with beam="timoshenko")

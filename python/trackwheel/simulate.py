@@ -46,9 +46,11 @@ __all__ = [
 #: Model fidelity levels, most to least detailed (issue 7). "full" is the paper's model: the
 #: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
 #: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
-#: levels use the linear rail (Euler-Bernoulli, or Timoshenko with ``Rail(beam="timoshenko")``) with constant matrices (factorised once, or modal
-#: with ``n_modes``) and a vertical contact at X_A: a moving force P, a moving mass (rigid
-#: contact), a sprung wheel (linear bilateral contact spring k) or a Hertzian wheel (unilateral).
+#: levels use the linear rail with constant matrices (factorised once, or modal with ``n_modes``)
+#: and a vertical contact at X_A: a moving force P, a moving mass (rigid contact), a sprung wheel
+#: (linear bilateral contact spring k) or a Hertzian wheel (unilateral). Every level takes the
+#: scene's beam theory: ``Rail(beam="timoshenko")`` is the shear-deformable ANCF rail on the
+#: "full" and "ancf/..." levels and the linear Timoshenko beam on the "linear/..." ones.
 FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
                    "linear/moving_mass", "linear/moving_force")
 
@@ -470,8 +472,6 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
         raise ValueError(f"Wheel.brake_torque > 0 needs the wheel's rotation, which fidelity = "
                          f"{fidelity!r} does not model; use 'full', 'ancf/sprung' or "
                          f"'ancf/hertz'")
-    if not linear:
-        _kernel.require_euler(scene, f"fidelity={fidelity!r}")
     if scene.window is not None and n_modes is not None:
         raise ValueError("Scene.window needs all coordinates: n_modes = None")
     energy = v.boolean("energy", energy)

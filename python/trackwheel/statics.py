@@ -86,7 +86,6 @@ def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> St
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.number("x_wheel", x_wheel, low=0.0, high=scene.rail.length, unit="m")
-    _kernel.require_euler(scene, "static")
     ne = _mesh(scene, n_elements)
     model = _kernel.rail_model(scene, ne)
     d = _core.static_solve(model, _kernel.wheel_params(scene), _kernel.contact_params(scene), x)
@@ -99,14 +98,13 @@ def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> St
 
 def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> QuasiStatic:
     """The quasi-static line y_qs(X) [m] at each wheel position X [m] (vectorised; each solve
-    warm-starts from the previous one). A Timoshenko rail's is the linear track's (the ANCF
-    statics are Euler-Bernoulli): :func:`linear_quasi_static`."""
+    warm-starts from the previous one), on the full model's rail (with
+    ``Rail(beam="timoshenko")`` the shear-deformable ANCF rail; the linear track's line is
+    :func:`linear_quasi_static`)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
     ne = _mesh(scene, n_elements)
-    if scene.rail.beam != "euler":
-        return _linear_quasi_static(scene, x, ne)
     model = _kernel.rail_model(scene, ne)
     d = _core.quasi_static(model, _kernel.wheel_params(scene), _kernel.contact_params(scene),
                            x.tolist())
@@ -181,17 +179,3 @@ def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = Non
     modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
     return np.asarray(_core.linear_static_line(model, _kernel.beam_params(scene),
                                                  scene.static_load, x.tolist(), modes))
-
-
-def _linear_quasi_static(scene: Scene, x: np.ndarray, ne: int) -> QuasiStatic:
-    """The linear track's quasi-static line: the load P at X, the wheel on its static contact
-    compression (linear spring P/k, or Hertz (P/C_H)^(2/3))."""
-    y = linear_quasi_static(scene, x, n_elements=ne)
-    P = scene.static_load
-    c = scene.contact
-    if c.law == "linear":
-        comp = P / scene.contact_stiffness
-    else:
-        comp = (P / (c.stiffness if c.stiffness is not None else scene.hertz_constant)) ** (2 / 3)
-    return QuasiStatic(positions=x, y_contact=y, y_wheel=y + scene.wheel.radius - comp,
-                       contact_s=x.copy(), normal_force=np.full(x.size, P))
