@@ -216,7 +216,9 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("pin_far_end", &RailParams::pin_far_end)
       .def_readwrite("absorbing_length", &RailParams::absorbing_length, "L_z [m]")
       .def_readwrite("absorbing_damping", &RailParams::absorbing_damping,
-                     "c_max at the rail ends [N s/m^2]");
+                     "c_max at the rail ends [N s/m^2]")
+      .def_readwrite("absorbing_axial_damping", &RailParams::absorbing_axial_damping,
+                     "c_max,x on the axial motion at the rail ends [N s/m^2]");
   py::class_<SupportParams>(m, "SupportParams")
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)

@@ -37,6 +37,9 @@ struct RailParams {
   // (1 - d / absorbing_length)^2 per length at distance d from the end. 0: none.
   double absorbing_length = 0.0;   // L_z [m], 0 <= 2 L_z <= L
   double absorbing_damping = 0.0;  // c_max at the rail ends [N s/m^2]
+  // The same zones' dampers on the rail's axial motion x, graded alike: c_x(d) =
+  // absorbing_axial_damping (1 - d / absorbing_length)^2 per length. 0: the zones damp y only.
+  double absorbing_axial_damping = 0.0;  // c_max,x at the rail ends [N s/m^2]
 };
 
 struct SupportParams {

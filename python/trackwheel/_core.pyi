@@ -67,6 +67,14 @@ class RailParams:
     def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def absorbing_axial_damping(self) -> float:
+        """
+        c_max,x on the axial motion at the rail ends [N s/m^2]
+        """
+    @absorbing_axial_damping.setter
+    def absorbing_axial_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def absorbing_damping(self) -> float:
         """
         c_max at the rail ends [N s/m^2]

@@ -46,15 +46,41 @@ class AbsorbingEnds:
     takes the c_max of :attr:`Rail.absorbing_damping`. The zone should be at least about two
     bending wavelengths long at the lowest frequency to absorb (10 m: from about 300 Hz for a
     UIC60-like rail). The statics are unaffected (dampers carry no static load).
+
+    The zones damp the rail's axial motion x too, graded alike, ``c_x(d) = c_max,x (1 - d /
+    L_z)^2`` (the full ANCF model; the linear levels have no axial motion):
+    ``axial_damping=None`` takes c_max,x from the rail's axial wave impedance
+    (:meth:`axial_c_max`), 0 switches it off.
     """
 
     length: float  #: L_z, zone length at each end [m]; several support bays
     damping: float | None = None  #: c_max, damping per length at the rail ends [N s/m^2]
+    #: c_max,x, axial damping per length at the rail ends [N s/m^2]; None: :meth:`axial_c_max`
+    axial_damping: float | None = None
 
     def __post_init__(self):
         v.positive("AbsorbingEnds.length", self.length, "m")
         if self.damping is not None:
             v.number("AbsorbingEnds.damping", self.damping, low=0.0, unit="N s/m^2")
+        if self.axial_damping is not None:
+            v.number("AbsorbingEnds.axial_damping", self.axial_damping, low=0.0,
+                     unit="N s/m^2")
+
+    def axial_c_max(self, axial_stiffness: float, mass_per_length: float) -> float:
+        """c_max,x [N s/m^2]: ``axial_damping``, or the damping that attenuates axial waves by
+        ABSORBING_ATTENUATION = A dB on the way through the zone and back.
+
+        Axial waves are not dispersive: with a viscous foundation c_x per length the bar's
+        dispersion EA k^2 = m omega^2 - i omega c_x gives, for c_x << m omega, a decay
+        Im k = c_x / (2 Z) per metre at every frequency, Z = sqrt(EA m) = m c_L the axial wave
+        impedance [N s/m] (EA = ``axial_stiffness`` [N], m = ``mass_per_length`` [kg/m]).
+        Through the zone and back, int c_x = 2 c_max,x L_z / 3, so the amplitude falls by
+        exp(-c_max,x L_z / (3 Z)); setting that to 10^(-A/20) gives
+        c_max,x = 3 ln(10^(A/20)) Z / L_z."""
+        if self.axial_damping is not None:
+            return self.axial_damping
+        loss = math.log(10.0 ** (ABSORBING_ATTENUATION / 20.0))
+        return 3.0 * loss * math.sqrt(axial_stiffness * mass_per_length) / self.length
 
 
 @dataclass(frozen=True)
