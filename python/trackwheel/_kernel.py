@@ -46,8 +46,7 @@ def rail_model(scene: Scene, n_elements: int | None = None,
     if r.absorbing_ends is not None:
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
-        p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness,
-                                                                 r.mass_per_length)
+        p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness)
     s = _core.SupportParams()
     pos = scene.support_positions
     s.position = list(pos)
