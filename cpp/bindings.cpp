@@ -230,9 +230,16 @@ PYBIND11_MODULE(_core, m) {
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
       .def(py::init<>())
-      .def(py::init([](double x0, double dx, const Eigen::Matrix<double, 4, Eigen::Dynamic>& c) {
-             // c: scipy PPoly coefficients, shape (4, m), highest power first
-             std::vector<double> v(c.data(), c.data() + c.size());
+      .def(py::init([](double x0, double dx,
+                       py::array_t<double, py::array::c_style | py::array::forcecast> c) {
+             // c: scipy PPoly coefficients, shape (4, m), highest power first; read in place
+             // into the kernel's interval-major table (one copy: a km of profile is 32 MB)
+             if (c.ndim() != 2 || c.shape(0) != 4)
+               throw std::invalid_argument("profile coefficients must have shape (4, m)");
+             const auto a = c.unchecked<2>();
+             std::vector<double> v(4 * static_cast<std::size_t>(a.shape(1)));
+             for (py::ssize_t i = 0; i < a.shape(1); ++i)
+               for (py::ssize_t k = 0; k < 4; ++k) v[4 * i + k] = a(k, i);
              return Profile(x0, dx, std::move(v));
            }),
            py::arg("x0"), py::arg("dx"), py::arg("coefficients"))
