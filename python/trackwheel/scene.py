@@ -373,8 +373,10 @@ class Window:
     its own weight joins at the front. Needs a track periodic in its bay (equal supports every
     ``Supports.spacing``, ``Supports.positions`` not given) and, so that the rail's ends do not
     reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
-    every fidelity level, the full model with either integrator (there the window's axial
-    motion makes the tangential force ring; docs: Model § The travelling window).
+    every fidelity level, the full model with either integrator (there give the rail
+    absorbing ends, :class:`AbsorbingEnds`, of several bays: they damp its axial motion, which
+    each shift knocks; without them the tangential force rings; docs: Model § The travelling
+    window).
     """
 
     bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
