@@ -375,8 +375,8 @@ class Window:
     reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
     every fidelity level, the full model with either integrator (there give the rail
     absorbing ends, :class:`AbsorbingEnds`, of several bays: they damp its axial motion, which
-    each shift knocks; without them the tangential force rings; docs: Model § The travelling
-    window).
+    each shift knocks; without them the tangential force rings;
+    docs: Model § The travelling window).
     """
 
     bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
