@@ -19,13 +19,18 @@ generalized-alpha; same window, mesh and step) make the group ``full``; there th
 them the window's shifts make the tangential force ring and Newton's iterations grow with the
 distance); its target is 1 km of FRA class 5 in under 5 minutes.
 
+The group ``memory`` runs FRA class 5 over 100 m, 1 km and 5 km once each on the linear path
+(one sample kept every 20 steps): the rail profile's spline table covers the distance run
+(32 MB per km in the kernel), so the peak RSS grows by that table, and by the Python side's
+work space while it is built (``window_memory.csv``).
+
 The cases of a group run one after the other, ``--repeat`` times in turn (default 5; the full
 group's 5 km case once, last: about 10 minutes), so that the machine's load shifts every case
 alike; the CSV holds per case the median, the least and the largest time per step. Writes
 ``window.csv`` (linear) and ``window_full.csv`` (full) next to itself; an argument picks one
 group:
 
-    PYTHONPATH=python python benchmarks/window.py [linear|full] [--repeat N]
+    PYTHONPATH=python python benchmarks/window.py [linear|full|memory] [--repeat N]
 """
 
 from __future__ import annotations
@@ -67,8 +72,13 @@ CASES = [
 ]
 #: the full model's cases repeated; its 5 km case (about 10 minutes) runs once, after them
 FULL_REPEATED = ["smooth 100 m", "smooth 1 km", "fra5 1 km"]
+#: the rail profile's memory against the distance: FRA class 5 over 100 m, 1 km and 5 km, once
+MEMORY = [(f"fra5 {name}", dict(distance=dist, output_every=20, fra5=True,
+                                 fidelity="linear/hertz"))
+          for name, dist in (("100 m", 100.0), ("1 km", 1000.0), ("5 km", 5000.0))]
 GROUPS = {
     "linear": ("window.csv", [(n, dict(kw, fidelity="linear/hertz")) for n, kw in CASES], []),
+    "memory": ("window_memory.csv", [], MEMORY),
     "full": ("window_full.csv",
              [(n, dict(kw, fidelity="full")) for n, kw in CASES if n in FULL_REPEATED],
              [(n, dict(kw, fidelity="full")) for n, kw in CASES if n == "smooth 5 km"]),

@@ -173,6 +173,11 @@ class Profile:
     @typing.overload
     def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, coefficients: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
+    @typing.overload
+    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, n_intervals: typing.SupportsInt | typing.SupportsIndex, chunks: collections.abc.Iterable) -> None:
+        """
+        The table from an iterable of (4, m_k) coefficient arrays, m_k summing to n_intervals
+        """
     @property
     def empty(self) -> bool:
         ...

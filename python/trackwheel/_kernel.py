@@ -96,8 +96,20 @@ def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core
     end = scene.rail.length if end is None else end
     if scene.contact.patch_filter:
         x0, h, c, worst, at = _filtered_table(irr, end, dx, contact_half_width(scene))
-    else:  # chunk by chunk: memory the table's own at any distance
-        x0, h, c, worst, at = irr.spline_table(0.0, end, dx)
+        table = _core.Profile(x0 - shift, h, c)
+    else:  # chunk by chunk into the kernel: no whole-table array in Python
+        x0, h, n = irr.spline_grid(0.0, end, dx)
+        worst, at = -math.inf, x0
+
+        def chunks():
+            nonlocal worst, at
+            for _, c, w, x in irr.spline_chunks(0.0, end, dx):
+                if w > worst:
+                    worst, at = w, x
+                yield c
+                del c  # the kernel has copied it
+
+        table = _core.Profile(x0 - shift, h, n - 1, chunks())
     if worst >= 1.0 / scene.wheel.radius:
         raise ValueError(
             f"Scene.irregularity curves upwards by {worst:.3g} 1/m at X = {at:.4g} m, more "
@@ -105,7 +117,7 @@ def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core
             "bridge it on two points, which one contact point cannot represent; allowed: "
             "r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to average it "
             "over the contact patch)")
-    return _core.Profile(x0 - shift, h, c)
+    return table
 
 
 def _filtered_table(irr, end: float, dx: float, half_width: float):

@@ -415,23 +415,41 @@ class Irregularity:
         curvature [1/m], its X [m]) with c of shape (4, n - 1) holding scipy's PPoly
         coefficients (highest power first) of each interval, and the largest r'' of the spline
         at its knots (where a cubic's r'' is extreme on a grid this fine) and where it is.
+        Assembled from :meth:`spline_chunks`."""
+        x0, h, n = self.spline_grid(x_min, x_max, dx)
+        c = np.empty((4, n - 1))
+        worst, at = -math.inf, x0
+        for i0, cc, w, x in self.spline_chunks(x_min, x_max, dx, chunk=chunk):
+            c[:, i0:i0 + cc.shape[1]] = cc
+            if w > worst:
+                worst, at = w, x
+        return x0, h, c, worst, at
 
-        Built ``chunk`` intervals at a time so that memory is the table's own and a
-        distance-independent work space: each chunk's spline is fitted on the chunk extended
-        by SPLINE_OVERLAP knots at both sides (not-a-knot at the profile's true ends). A cubic
-        spline's dependence on a far sample decays by a factor 2 - sqrt(3) = 0.27 per knot
-        (the tridiagonal system's decay), 0.27^40 < 1e-22 over the overlap, so the chunks join
-        to round-off of the one spline through all samples; with a single chunk (up to
-        ``chunk`` intervals) it is that spline, bit for bit. The samples are those of
-        :meth:`table`, bit for bit (the same grid X_i = x_min + i (x_max - x_min)/(n - 1))."""
+    def spline_grid(self, x_min: float, x_max: float, dx: float) -> tuple[float, float, int]:
+        """(x0 [m], h [m], n) of :meth:`spline_table`'s knots X_i = x0 + i h, i < n."""
+        n = self._grid_size(x_min, x_max, dx)
+        x_min, x_max = float(x_min), float(x_max)
+        return x_min, (x_min + (x_max - x_min) / (n - 1)) - x_min, n
+
+    def spline_chunks(self, x_min: float, x_max: float, dx: float, *,
+                      chunk: int = SPLINE_CHUNK):
+        """:meth:`spline_table` ``chunk`` intervals at a time, for building the table without
+        holding more than one chunk: yields (i0, c, worst [1/m], its X [m]) per chunk, c of
+        shape (4, m) the coefficients of intervals i0..i0 + m - 1, worst the largest r'' at the
+        chunk's knots (and at the last knot, in the last chunk).
+
+        Each chunk's spline is fitted on the chunk extended by SPLINE_OVERLAP knots at both
+        sides (not-a-knot at the profile's true ends). A cubic spline's dependence on a far
+        sample decays by a factor 2 - sqrt(3) = 0.27 per knot (the tridiagonal system's
+        decay), 0.27^40 < 1e-22 over the overlap, so the chunks join to round-off of the one
+        spline through all samples; with a single chunk it is that spline, bit for bit. The
+        samples are those of :meth:`table`, bit for bit (the same grid X_i = x_min + i
+        (x_max - x_min)/(n - 1))."""
         from scipy.interpolate import CubicSpline
 
-        n = self._grid_size(x_min, x_max, dx)
-        step = (x_max - x_min) / (n - 1)
-        h = (x_min + step) - x_min
+        x_min, h, n = self.spline_grid(x_min, x_max, dx)
+        step = (float(x_max) - x_min) / (n - 1)
         chunk = v.integer("chunk", chunk, low=1)
-        c = np.empty((4, n - 1))
-        worst, at = -math.inf, x_min
         for i0 in range(0, n - 1, chunk):
             i1 = min(i0 + chunk, n - 1)  # intervals [i0, i1), knots i0..i1
             j0, j1 = max(0, i0 - SPLINE_OVERLAP), min(n, i1 + 1 + SPLINE_OVERLAP)
@@ -441,16 +459,16 @@ class Irregularity:
                 xs[-1] = x_max
             knots = x_min + h * idx
             spline = CubicSpline(knots, self(xs))
-            c[:, i0:i1] = spline.c[:, i0 - j0:i1 - j0]
+            c = spline.c[:, i0 - j0:i1 - j0]
             # r'' at a knot is 2 c_2 of its interval, at the last knot the last interval's end
-            k = int(np.argmax(spline.c[1, i0 - j0:i1 - j0]))
-            if 2.0 * spline.c[1, i0 - j0 + k] > worst:
-                worst, at = 2.0 * spline.c[1, i0 - j0 + k], float(knots[i0 - j0 + k])
+            k = int(np.argmax(c[1]))
+            worst, at = 2.0 * c[1, k], float(knots[i0 - j0 + k])
             if i1 == n - 1:
                 end = float(spline(knots[-1], 2))
                 if end > worst:
                     worst, at = end, float(knots[-1])
-        return x_min, h, c, worst, at
+            yield i0, c, worst, at
+            del spline, c  # one chunk's spline alive at a time
 
     def shortest_wavelength(self) -> float:
         """The shortest wavelength [m] the profile holds, to judge the contact filter
