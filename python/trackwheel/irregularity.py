@@ -462,7 +462,7 @@ class Irregularity:
             c = spline.c[:, i0 - j0:i1 - j0]
             # r'' at a knot is 2 c_2 of its interval, at the last knot the last interval's end
             k = int(np.argmax(c[1]))
-            worst, at = 2.0 * c[1, k], float(knots[i0 - j0 + k])
+            worst, at = float(2.0 * c[1, k]), float(knots[i0 - j0 + k])
             if i1 == n - 1:
                 end = float(spline(knots[-1], 2))
                 if end > worst:
