@@ -163,6 +163,18 @@ void check_shear_section(const ShearSection& c) {
         "ShearSection: length must be > 0 m, kGA finite > 0 N, n_gauss in [1, 10]");
 }
 
+using PpolyArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Appends scipy PPoly coefficients c (shape (4, m), highest power first) to the kernel's
+// interval-major profile table, read in place (a km of profile is 32 MB: no temporary copy).
+void append_ppoly(const PpolyArray& c, std::vector<double>& v) {
+  if (c.ndim() != 2 || c.shape(0) != 4)
+    throw std::invalid_argument("profile coefficients must have shape (4, m)");
+  const auto a = c.unchecked<2>();
+  for (py::ssize_t i = 0; i < a.shape(1); ++i)
+    for (py::ssize_t k = 0; k < 4; ++k) v.push_back(a(k, i));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -258,7 +270,9 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("shear_stiffness", &RailParams::shear_stiffness,
                      "kappa G A [N]; 0: Euler-Bernoulli cable, > 0: shear-deformable element")
       .def_readwrite("rotary_inertia", &RailParams::rotary_inertia,
-                     "rho I [kg m] (shear-deformable element only)");
+                     "rho I [kg m] (shear-deformable element only)")
+      .def_readwrite("absorbing_axial_damping", &RailParams::absorbing_axial_damping,
+                     "c_max,x on the axial motion at the rail ends [N s/m^2]");
   py::class_<SupportParams>(m, "SupportParams")
       .def(py::init<>())
       .def_readwrite("position", &SupportParams::position)
@@ -270,12 +284,29 @@ PYBIND11_MODULE(_core, m) {
   py::class_<Profile>(m, "Profile",
                       "Running-surface profile r(X): piecewise cubic on a uniform grid")
       .def(py::init<>())
-      .def(py::init([](double x0, double dx, const Eigen::Matrix<double, 4, Eigen::Dynamic>& c) {
+      .def(py::init([](double x0, double dx, const PpolyArray& c) {
              // c: scipy PPoly coefficients, shape (4, m), highest power first
-             std::vector<double> v(c.data(), c.data() + c.size());
+             std::vector<double> v;
+             v.reserve(4 * static_cast<std::size_t>(c.ndim() == 2 ? c.shape(1) : 0));
+             append_ppoly(c, v);
              return Profile(x0, dx, std::move(v));
            }),
            py::arg("x0"), py::arg("dx"), py::arg("coefficients"))
+      .def(py::init([](double x0, double dx, py::ssize_t n_intervals, py::iterable chunks) {
+             // the table chunk by chunk: no whole-table array on the Python side
+             if (n_intervals < 1) throw std::invalid_argument("profile n_intervals must be >= 1");
+             std::vector<double> v;
+             v.reserve(4 * static_cast<std::size_t>(n_intervals));
+             for (py::handle h : chunks) append_ppoly(py::cast<PpolyArray>(h), v);
+             if (v.size() != 4 * static_cast<std::size_t>(n_intervals))
+               throw std::invalid_argument(
+                   "profile chunks hold " + std::to_string(v.size() / 4) +
+                   " intervals, n_intervals = " + std::to_string(n_intervals));
+             return Profile(x0, dx, std::move(v));
+           }),
+           py::arg("x0"), py::arg("dx"), py::arg("n_intervals"), py::arg("chunks"),
+           "The table from an iterable of (4, m_k) coefficient arrays, m_k summing to "
+           "n_intervals")
       .def_property_readonly("empty", &Profile::empty)
       .def(
           "__call__",

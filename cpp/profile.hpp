@@ -11,6 +11,7 @@
 // 0): the Python side makes the grid cover the whole rail.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 namespace trackwheel {
@@ -28,15 +29,17 @@ class Profile {
   // r = c3 u^3 + c2 u^2 + c1 u + c0, u = X - X_i (scipy's PPoly order, interval-major).
   Profile(double x0, double dx, std::vector<double> coefs);
 
-  bool empty() const { return c_.empty(); }
-  int n_intervals() const { return static_cast<int>(c_.size() / 4); }
+  bool empty() const { return !c_; }
+  int n_intervals() const { return c_ ? static_cast<int>(c_->size() / 4) : 0; }
   double x0() const { return x0_; }
   double dx() const { return dx_; }
   ProfileValue operator()(double x) const;
 
  private:
   double x0_ = 0.0, dx_ = 1.0;
-  std::vector<double> c_;
+  // shared, never changed: a profile over kilometres (32 MB per km at 1 mm) is not copied
+  // where the rail model takes its profile or a model is copied
+  std::shared_ptr<const std::vector<double>> c_;
 };
 
 }  // namespace trackwheel

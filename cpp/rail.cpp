@@ -131,12 +131,14 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
     for (int a = 0; a < 4; ++a) Qg_(4 * el + 2 * a + 1) -= p_.rhoA * p_.gravity * nint[a];
 }
 
-// C_e = int c(X) S_y^T S_y dX over the part of each element inside an end zone, c(d) = c_max
-// (1 - d/L_z)^2 at distance d from the nearer end. Integrated by Gauss over the overlap only,
-// so the integrand (degree 2 + 6) is a polynomial there and 5 points are exact.
+// C_e = int (c(X) S_y^T S_y + c_x(X) S_x^T S_x) dX over the part of each element inside an end
+// zone, c(d) = c_max (1 - d/L_z)^2 and c_x(d) = c_max,x (1 - d/L_z)^2 at distance d from the
+// nearer end. Integrated by Gauss over the overlap only, so the integrand (degree 2 + 6) is a
+// polynomial there and 5 points are exact.
 void RailModel::add_absorbing_ends() {
-  const double Lz = p_.absorbing_length, cmax = p_.absorbing_damping;
-  if (Lz <= 0.0 || cmax <= 0.0) return;
+  const double Lz = p_.absorbing_length, cy = p_.absorbing_damping, cx = p_.absorbing_axial_damping;
+  require(std::isfinite(cx) && cx >= 0, "absorbing_axial_damping must be >= 0 N s/m^2");
+  if (Lz <= 0.0 || (cy <= 0.0 && cx <= 0.0)) return;
   double gx[5], gw[5];
   gauss_points(5, gx, gw);
   const double l = sec_.length;
@@ -151,11 +153,14 @@ void RailModel::add_absorbing_ends() {
       for (int g = 0; g < 5; ++g) {
         const double X = a + (b - a) * gx[g];
         const double d = std::min(X, p_.length - X);
-        const double c = cmax * std::pow(std::max(1.0 - d / Lz, 0.0), 2);
+        const double grade = std::pow(std::max(1.0 - d / Lz, 0.0), 2);
+        const double c = cy * grade, c_x = cx * grade;
         const HermiteValues h = centre_line((X - x0) / l);
         for (int i = 0; i < 4; ++i)
-          for (int k = 0; k < 4; ++k)
+          for (int k = 0; k < 4; ++k) {
             Ce(2 * i + 1, 2 * k + 1) += (b - a) * gw[g] * c * h.n[i] * h.n[k];
+            Ce(2 * i, 2 * k) += (b - a) * gw[g] * c_x * h.n[i] * h.n[k];
+          }
       }
     }
     if (Ce.isZero(0.0)) continue;

@@ -46,6 +46,9 @@ struct RailParams {
   double shear_stiffness = 0.0;  // kappa G A [N], >= 0
   double rotary_inertia = 0.0;   // rho I [kg m], >= 0; 0 unless shear_stiffness > 0
   bool shear() const { return shear_stiffness > 0.0; }
+  // The same zones' dampers on the rail's axial motion x, graded alike: c_x(d) =
+  // absorbing_axial_damping (1 - d / absorbing_length)^2 per length. 0: the zones damp y only.
+  double absorbing_axial_damping = 0.0;  // c_max,x at the rail ends [N s/m^2]
 };
 
 struct SupportParams {

@@ -230,10 +230,40 @@ def test_limits_and_zone_validation_name_the_parameter():
         dataclasses.replace(KATO.rail, absorbing_ends=tw.AbsorbingEnds(3.0))
     with pytest.raises(ValueError, match="AbsorbingEnds.damping"):
         tw.AbsorbingEnds(1.0, damping=-1.0)
+    with pytest.raises(ValueError, match="AbsorbingEnds.axial_damping"):
+        tw.AbsorbingEnds(1.0, axial_damping=-1.0)
     with pytest.raises(TypeError, match="Rail.absorbing_ends"):
         dataclasses.replace(KATO.rail, absorbing_ends=1.0)
     with pytest.raises(ValueError, match="method"):
         tw.eigen(KATO, [2.5], method="lanczos")
+
+
+def test_iteration_matrix_with_absorbing_ends_matches_central_differences():
+    """The end zones' dampers, vertical and axial, enter the full path's forces and its
+    generalized-alpha iteration matrix (gamma' h C) alike: the matrix against central
+    differences of the residual on the paper's rail with 1 m zones (the probe of
+    tests/test_system.py, its step and its 1e-6 tolerance), and the zones' axial entries are
+    really there (the x columns inside a zone differ from the plain rail's)."""
+    from test_system import DT, _probe_case, central_difference_error
+    from trackwheel import _core, _kernel
+
+    model, wheels, contact, s, st = _probe_case("hertz", False, 1)
+    zoned = _kernel.rail_model(long_scene(5.0, 20, ends=tw.AbsorbingEnds(1.0)), 20)
+
+    def R(m, x=None):
+        return _core.ga_probe(m, wheels, contact, s, st, DT, x)
+
+    p0 = R(zoned)
+    x0, J = p0["start"], p0["matrix"]
+    h = np.full(len(x0), 1e3)
+    h[zoned.n_free + 2] = 1.0  # the multiplier lambda [N]
+    err = central_difference_error(lambda x: R(zoned, x), x0, J, h)
+    assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
+    free = np.asarray(zoned.free_to_full)
+    axial_in_zone = np.flatnonzero((free % 4 == 0) & (free // 4 * 0.25 < 1.0))
+    assert axial_in_zone.size > 0
+    plain = R(model)["matrix"]
+    assert np.all(np.abs(J - plain)[:, axial_in_zone].max(axis=0) > 0.0)
 
 
 def test_absorbing_ends_leave_the_statics_unchanged():

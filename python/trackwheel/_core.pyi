@@ -125,6 +125,14 @@ class RailParams:
     def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def absorbing_axial_damping(self) -> float:
+        """
+        c_max,x on the axial motion at the rail ends [N s/m^2]
+        """
+    @absorbing_axial_damping.setter
+    def absorbing_axial_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def absorbing_damping(self) -> float:
         """
         c_max at the rail ends [N s/m^2]
@@ -237,8 +245,13 @@ class Profile:
     def __init__(self) -> None:
         ...
     @typing.overload
-    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, coefficients: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, n]"]) -> None:
+    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, coefficients: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
+    @typing.overload
+    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, n_intervals: typing.SupportsInt | typing.SupportsIndex, chunks: collections.abc.Iterable) -> None:
+        """
+        The table from an iterable of (4, m_k) coefficient arrays, m_k summing to n_intervals
+        """
     @property
     def empty(self) -> bool:
         ...

@@ -51,6 +51,7 @@ def rail_model(scene: Scene, n_elements: int | None = None,
     if r.absorbing_ends is not None:
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
+        p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness)
     s = _core.SupportParams()
     pos = scene.support_positions
     s.position = list(pos)
@@ -84,26 +85,47 @@ def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core
     irr = scene.irregularity
     if irr is None or not irr.parts:
         return _core.Profile()
-    from scipy.interpolate import CubicSpline
-
     from .irregularity import contact_half_width
 
     dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
-    a = contact_half_width(scene) if scene.contact.patch_filter else None
     end = scene.rail.length if end is None else end
-    x0, h, r = irr.table(0.0, end, dx, half_width=a)
+    if scene.contact.patch_filter:
+        x0, h, c, worst, at = _filtered_table(irr, end, dx, contact_half_width(scene))
+        table = _core.Profile(x0 - shift, h, c)
+    else:  # chunk by chunk into the kernel: no whole-table array in Python
+        x0, h, n = irr.spline_grid(0.0, end, dx)
+        worst, at = -math.inf, x0
+
+        def chunks():
+            nonlocal worst, at
+            for _, c, w, x in irr.spline_chunks(0.0, end, dx):
+                if w > worst:
+                    worst, at = w, x
+                yield c
+                del c  # the kernel has copied it
+
+        table = _core.Profile(x0 - shift, h, n - 1, chunks())
+    if worst >= 1.0 / scene.wheel.radius:
+        raise ValueError(
+            f"Scene.irregularity curves upwards by {worst:.3g} 1/m at X = {at:.4g} m, more "
+            f"than the wheel's 1/rho0 = {1 / scene.wheel.radius:.3g} 1/m: the wheel would "
+            "bridge it on two points, which one contact point cannot represent; allowed: "
+            "r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to average it "
+            "over the contact patch)")
+    return table
+
+
+def _filtered_table(irr, end: float, dx: float, half_width: float):
+    """:meth:`Irregularity.spline_table`'s tuple for the patch-filtered profile, the spline
+    through all samples at once (the filter's running integral spans the whole table)."""
+    from scipy.interpolate import CubicSpline
+
+    x0, h, r = irr.table(0.0, end, dx, half_width=half_width)
     x = x0 + h * np.arange(r.size)
     spline = CubicSpline(x, r)
     curvature = spline(x, 2)
     worst = int(np.argmax(curvature))
-    if curvature[worst] >= 1.0 / scene.wheel.radius:
-        raise ValueError(
-            f"Scene.irregularity curves upwards by {curvature[worst]:.3g} 1/m at X = "
-            f"{x[worst]:.4g} m, more than the wheel's 1/rho0 = {1 / scene.wheel.radius:.3g} 1/m: "
-            "the wheel would bridge it on two points, which one contact point cannot represent; "
-            "allowed: r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to "
-            "average it over the contact patch)")
-    return _core.Profile(x0 - shift, h, spline.c)
+    return x0, h, spline.c, float(curvature[worst]), float(x[worst])
 
 
 def wheel_params(scene: Scene) -> _core.WheelParams:

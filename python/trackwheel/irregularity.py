@@ -37,6 +37,10 @@ _SPECTRA = (FRASpectrum, GermanSpectrum, ChinaSpectrum, ThirdOctaveSpectrum)
 #: Default number of spectral-sum components per decade of Omega [-].
 COMPONENTS_PER_DECADE = 100
 _CHUNK = 2048  # X values evaluated at once (bounds the (chunk, n) work array)
+#: :meth:`Irregularity.spline_table` fits the spline this many intervals at a time [-], each
+#: chunk extended by SPLINE_OVERLAP knots at both sides [-]
+SPLINE_CHUNK = 1 << 16
+SPLINE_OVERLAP = 40
 
 
 def _x(x) -> np.ndarray:
@@ -371,6 +375,10 @@ class Irregularity:
     # sampling ------------------------------------------------------------------------------
     def grid(self, x_min: float, x_max: float, dx: float) -> np.ndarray:
         """Uniform X [m] from x_min to x_max inclusive, spacing <= dx (n = ceil(span/dx) + 1)."""
+        return np.linspace(x_min, x_max, self._grid_size(x_min, x_max, dx))
+
+    @staticmethod
+    def _grid_size(x_min: float, x_max: float, dx: float) -> int:
         x_min = v.number("x_min", x_min, unit="m")
         x_max = v.number("x_max", x_max, low=x_min, low_open=True, unit="m")
         dx = v.positive("dx", dx, "m")
@@ -378,7 +386,7 @@ class Irregularity:
         if n > 50_000_000:
             raise ValueError(f"dx = {dx} m gives {n} points on [{x_min}, {x_max}] m; "
                              "allowed at most 5e7")
-        return np.linspace(x_min, x_max, n)
+        return n
 
     def table(self, x_min: float, x_max: float, dx: float, *, half_width: float | None = None
               ) -> tuple[float, float, np.ndarray]:
@@ -399,6 +407,68 @@ class Irregularity:
         xf, rf = contact_filter(xe, self(xe), a)
         first = int(np.searchsorted(xf, x[0] - 0.5 * h))
         return float(x[0]), h, rf[first:first + x.size]
+
+    def spline_table(self, x_min: float, x_max: float, dx: float, *,
+                     chunk: int = SPLINE_CHUNK) -> tuple[float, float, np.ndarray, float, float]:
+        """The kernel's rail profile: the not-a-knot cubic spline through the samples of
+        :meth:`table` (unfiltered) at the knots X_i = x0 + i h, as (x0 [m], h [m], c, worst
+        curvature [1/m], its X [m]) with c of shape (4, n - 1) holding scipy's PPoly
+        coefficients (highest power first) of each interval, and the largest r'' of the spline
+        at its knots (where a cubic's r'' is extreme on a grid this fine) and where it is.
+        Assembled from :meth:`spline_chunks`."""
+        x0, h, n = self.spline_grid(x_min, x_max, dx)
+        c = np.empty((4, n - 1))
+        worst, at = -math.inf, x0
+        for i0, cc, w, x in self.spline_chunks(x_min, x_max, dx, chunk=chunk):
+            c[:, i0:i0 + cc.shape[1]] = cc
+            if w > worst:
+                worst, at = w, x
+        return x0, h, c, worst, at
+
+    def spline_grid(self, x_min: float, x_max: float, dx: float) -> tuple[float, float, int]:
+        """(x0 [m], h [m], n) of :meth:`spline_table`'s knots X_i = x0 + i h, i < n."""
+        n = self._grid_size(x_min, x_max, dx)
+        x_min, x_max = float(x_min), float(x_max)
+        return x_min, (x_min + (x_max - x_min) / (n - 1)) - x_min, n
+
+    def spline_chunks(self, x_min: float, x_max: float, dx: float, *,
+                      chunk: int = SPLINE_CHUNK):
+        """:meth:`spline_table` ``chunk`` intervals at a time, for building the table without
+        holding more than one chunk: yields (i0, c, worst [1/m], its X [m]) per chunk, c of
+        shape (4, m) the coefficients of intervals i0..i0 + m - 1, worst the largest r'' at the
+        chunk's knots (and at the last knot, in the last chunk).
+
+        Each chunk's spline is fitted on the chunk extended by SPLINE_OVERLAP knots at both
+        sides (not-a-knot at the profile's true ends). A cubic spline's dependence on a far
+        sample decays by a factor 2 - sqrt(3) = 0.27 per knot (the tridiagonal system's
+        decay), 0.27^40 < 1e-22 over the overlap, so the chunks join to round-off of the one
+        spline through all samples; with a single chunk it is that spline, bit for bit. The
+        samples are those of :meth:`table`, bit for bit (the same grid X_i = x_min + i
+        (x_max - x_min)/(n - 1))."""
+        from scipy.interpolate import CubicSpline
+
+        x_min, h, n = self.spline_grid(x_min, x_max, dx)
+        step = (float(x_max) - x_min) / (n - 1)
+        chunk = v.integer("chunk", chunk, low=1)
+        for i0 in range(0, n - 1, chunk):
+            i1 = min(i0 + chunk, n - 1)  # intervals [i0, i1), knots i0..i1
+            j0, j1 = max(0, i0 - SPLINE_OVERLAP), min(n, i1 + 1 + SPLINE_OVERLAP)
+            idx = np.arange(j0, j1)
+            xs = idx * step + x_min  # np.linspace's arithmetic, its last value exact
+            if j1 == n:
+                xs[-1] = x_max
+            knots = x_min + h * idx
+            spline = CubicSpline(knots, self(xs))
+            c = spline.c[:, i0 - j0:i1 - j0]
+            # r'' at a knot is 2 c_2 of its interval, at the last knot the last interval's end
+            k = int(np.argmax(c[1]))
+            worst, at = float(2.0 * c[1, k]), float(knots[i0 - j0 + k])
+            if i1 == n - 1:
+                end = float(spline(knots[-1], 2))
+                if end > worst:
+                    worst, at = end, float(knots[-1])
+            yield i0, c, worst, at
+            del spline, c  # one chunk's spline alive at a time
 
     def shortest_wavelength(self) -> float:
         """The shortest wavelength [m] the profile holds, to judge the contact filter

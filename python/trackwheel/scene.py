@@ -28,6 +28,12 @@ MAX_ELEMENTS = v.MAX_ELEMENTS
 #: 3 kHz), so the design carries the margin.
 ABSORBING_MAX_FREQUENCY = 3000.0
 ABSORBING_ATTENUATION = 40.0
+#: The axial zones' own design (:meth:`AbsorbingEnds.axial_c_max`): axial waves lose
+#: ABSORBING_AXIAL_ATTENUATION [dB] from ABSORBING_AXIAL_MIN_FREQUENCY up (measured with 30 dB).
+ABSORBING_AXIAL_ATTENUATION = 30.0
+#: ... from this frequency [Hz] up: the sleeper-passing frequency v / d_s is 93-139 Hz at
+#: 200-300 km/h on 0.6 m bays, where a travelling window's shifts knock its axial modes.
+ABSORBING_AXIAL_MIN_FREQUENCY = 100.0
 
 #: Standard gravity used by the paper's scene [m/s^2]: F = 47040 N is 4800 kg x 9.8 m/s^2.
 GRAVITY = 9.8
@@ -55,15 +61,45 @@ class AbsorbingEnds:
     1.95-2.39 kHz, 20 m zones except in 2.04-2.32 kHz (up to -5 dB at the stop band's edges,
     2.15 and 2.21 kHz). The dampers act on the rail, which moves at the pinned-pinned frequency
     where the supports do not (dampers at the supports would let those waves through).
+
+    The zones damp the rail's axial motion x too, graded alike, ``c_x(d) = c_max,x (1 - d /
+    L_z)^2`` (the full ANCF model; the linear levels have no axial motion):
+    ``axial_damping=None`` takes c_max,x from the rail's axial stiffness and the zone length
+    (:meth:`axial_c_max`), 0 switches it off.
     """
 
     length: float  #: L_z, zone length at each end [m]; several support bays
     damping: float | None = None  #: c_max, damping per length at the rail ends [N s/m^2]
+    #: c_max,x, axial damping per length at the rail ends [N s/m^2]; None: :meth:`axial_c_max`
+    axial_damping: float | None = None
 
     def __post_init__(self):
         v.positive("AbsorbingEnds.length", self.length, "m")
         if self.damping is not None:
             v.number("AbsorbingEnds.damping", self.damping, low=0.0, unit="N s/m^2")
+        if self.axial_damping is not None:
+            v.number("AbsorbingEnds.axial_damping", self.axial_damping, low=0.0,
+                     unit="N s/m^2")
+
+    def axial_c_max(self, axial_stiffness: float) -> float:
+        """c_max,x [N s/m^2]: ``axial_damping``, or the damping that attenuates axial waves
+        down to ``f_min`` = ABSORBING_AXIAL_MIN_FREQUENCY by ABSORBING_AXIAL_ATTENUATION = A dB on
+        the way through the zone and back.
+
+        A viscous foundation c_x per length turns the bar's dispersion into
+        EA k^2 = m omega^2 - i omega c_x. Where c_x >> m omega (the zone at the low
+        frequencies a travelling window's shifts excite: c_x / (m omega) is about 70 at 100 Hz
+        for a 4.8 m zone on UIC60) the wave diffuses, Im k = sqrt(omega c_x / (2 EA)), weakest
+        at the lowest frequency (above it, up to the light-damping limit c_x / (2 sqrt(EA m)),
+        stronger). Through the graded zone and back, int sqrt(c_x) = sqrt(c_max,x) L_z / 2, so
+        the amplitude falls by exp(-sqrt(omega c_max,x / (2 EA)) L_z); setting that to
+        10^(-A/20) at f_min gives c_max,x = 2 EA ln(10^(A/20))^2 / (2 pi f_min L_z^2)
+        (EA = ``axial_stiffness`` [N])."""
+        if self.axial_damping is not None:
+            return self.axial_damping
+        loss = math.log(10.0 ** (ABSORBING_AXIAL_ATTENUATION / 20.0))
+        omega = 2.0 * math.pi * ABSORBING_AXIAL_MIN_FREQUENCY
+        return 2.0 * axial_stiffness * loss**2 / (omega * self.length**2)
 
 
 @dataclass(frozen=True)
@@ -347,8 +383,10 @@ class Window:
     its own weight joins at the front. Needs a track periodic in its bay (equal supports every
     ``Supports.spacing``, ``Supports.positions`` not given) and, so that the rail's ends do not
     reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
-    every fidelity level, the full model with either integrator (there the window's axial
-    motion makes the tangential force ring; docs: Model § The travelling window).
+    every fidelity level, the full model with either integrator (there give the rail
+    absorbing ends, :class:`AbsorbingEnds`, of several bays: they damp its axial motion, which
+    each shift knocks; without them the tangential force rings;
+    docs: Model § The travelling window).
     """
 
     bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
