@@ -29,7 +29,7 @@ def _fra5():
     return tw.Irregularity.random(spectra.fra(5), seed=3, wavelengths=(3.0, 50.0))
 
 
-@pytest.mark.parametrize("absorbing", [None, 4.8])
+@pytest.mark.parametrize("absorbing", [0.0, 4.8])
 def test_window_equals_long_fixed_track(absorbing):
     """12 m of FRA class 5 at 300 km/h on a window of 20 + 1 + 20 bays (24.6 m, 20 shifts)
     against a 60 m fixed rail whose ends are 20 m behind the start and 28 m beyond the end:
@@ -37,15 +37,15 @@ def test_window_equals_long_fixed_track(absorbing):
     corresponding 1e-3 P / k_H of the wheel) over the last 4 m. The first metres differ by up to
     8e-3 P: the start (static equilibrium at speed) and the irregularity send waves along the
     rail, which the window cuts 12 m from the wheel (its ends pin what reaches them, and each
-    shift drops the rear bay's motion); they have died out by 8 m. With absorbing end zones of
-    8 bays in the window's rail (``Rail.absorbing_ends``: the damping band is the same after a
-    shift) the same holds."""
+    shift drops the rear bay's motion); they have died out by 8 m. With the window's default
+    absorbing end zones of 8 bays (``Window.absorbing_length``: the damping band is the same
+    after a shift) and without them (0) the same holds."""
     irr = _fra5()
     fixed = dc.replace(tw.Scene.ballasted_track(length=60.0), irregularity=irr)
-    window = dc.replace(tw.Scene.ballasted_track(window=tw.Window(20, 20)), irregularity=irr)
-    if absorbing is not None:
-        window = dc.replace(window, rail=dc.replace(
-            window.rail, absorbing_ends=tw.AbsorbingEnds(length=absorbing)))
+    window = dc.replace(tw.Scene.ballasted_track(
+        window=tw.Window(20, 20, absorbing_length=absorbing)), irregularity=irr)
+    zone = window.rail.absorbing_ends
+    assert (zone is None) if absorbing == 0 else zone.length == pytest.approx(8 * 0.6)
     kw = dict(x_start=20.1, x_end=32.1, fidelity="linear/hertz", progress=False)
     rf = tw.simulate(fixed, V, n_elements=fixed.rail.n_elements, **kw)
     rw = tw.simulate(window, V, n_elements=window.rail.n_elements, dt=rf.settings.dt, **kw)
@@ -89,18 +89,18 @@ def test_full_path_window_axial_motion_equals_long_fixed_track():
     rail's axial waves (5 km/s, no axial support) carry that knock through the whole window.
     End zones that damp the axial motion too (``AbsorbingEnds``, c_max,x designed for 30 dB
     from 100 Hz) absorb it: 15 m of smooth ballasted track at 300 km/h on a window of
-    20 + 1 + 20 bays with 8-bay zones (25 shifts) against a 60 m fixed rail with the same zones
+    20 + 1 + 20 bays with its default 8-bay zones (25 shifts) against a 60 m fixed rail with the same zones
     (its ends 20 m behind the start and 25 m beyond the end). The tangential force (the rolling
     constraint's multiplier) agrees within 1e-3 of the static load from 5 m on, the criterion
     the normal force meets above (measured 3.3e-4 P; without the axial damping the window's
     rings with a peak-to-peak growing to 2.4 kN, 2e-2 P), and the modified Newton needs no
     more iterations per step than on the fixed rail within 10 % (measured 0.3 %; without the
     axial damping 58 % more). Iterations are counts, the same on any machine."""
-    zones = tw.AbsorbingEnds(length=8 * 0.6)
+    window = tw.Scene.ballasted_track(window=tw.Window(20, 20))  # its default 8-bay zones
+    zones = window.rail.absorbing_ends
+    assert zones.length == pytest.approx(8 * 0.6)
     fixed = tw.Scene.ballasted_track(length=60.0)
     fixed = dc.replace(fixed, rail=dc.replace(fixed.rail, absorbing_ends=zones))
-    window = tw.Scene.ballasted_track(window=tw.Window(20, 20))
-    window = dc.replace(window, rail=dc.replace(window.rail, absorbing_ends=zones))
     kw = dict(x_start=20.1, x_end=35.1, progress=False)
     rf = tw.simulate(fixed, V, n_elements=fixed.rail.n_elements, **kw)
     rw = tw.simulate(window, V, n_elements=window.rail.n_elements, dt=rf.settings.dt, **kw)
@@ -284,7 +284,11 @@ def test_window_runs_are_bit_identical(fidelity):
 def test_window_validation():
     with pytest.raises(ValueError, match="Window.bays_behind"):
         tw.Window(bays_behind=0)
+    with pytest.raises(ValueError, match=r"Window.absorbing_length = -1.0 .*\[0.0, inf\] m"):
+        tw.Window(absorbing_length=-1.0)
     scene = tw.Scene.ballasted_track(window=tw.Window(5, 5))
+    # the zones stay off the vehicle's bays: 5 bays each, not the 8 of 4.8 m
+    assert scene.rail.absorbing_ends.length == pytest.approx(5 * 0.6)
     with pytest.raises(ValueError, match="n_modes"):
         tw.simulate(scene, V, distance=1.0, x_start=1.0, fidelity="linear/hertz", n_modes=10)
     with pytest.raises(ValueError, match="Rail.length"):

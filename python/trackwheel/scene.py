@@ -383,18 +383,32 @@ class Window:
     its own weight joins at the front. Needs a track periodic in its bay (equal supports every
     ``Supports.spacing``, ``Supports.positions`` not given) and, so that the rail's ends do not
     reflect, enough damping in the track (layered supports) or bays to let waves decay. Runs on
-    every fidelity level, the full model with either integrator (there give the rail
-    absorbing ends, :class:`AbsorbingEnds`, of several bays: they damp its axial motion, which
-    each shift knocks; without them the tangential force rings;
-    docs: Model § The travelling window).
+    every fidelity level, the full model with either integrator.
+
+    The window's rail has absorbing end zones (:class:`AbsorbingEnds`) of about
+    ``absorbing_length`` at each end (:meth:`zone_bays` whole bays) unless the scene's rail
+    brings its own: they absorb the waves leaving the window and, on the full model, damp the
+    rail's axial motion, which each shift knocks (without them the tangential force rings;
+    docs: Model § The travelling window). ``absorbing_length=0`` leaves the rail's ends as they
+    are.
     """
 
     bays_behind: int = 20  #: whole bays behind the rearmost wheel's bay [-], 1..1000
     bays_ahead: int = 20  #: whole bays ahead of the leading wheel's bay [-], 1..1000
+    #: length of each absorbing end zone [m], >= 0 (8 bays of the ballasted preset)
+    absorbing_length: float = 4.8
 
     def __post_init__(self):
         v.integer("Window.bays_behind", self.bays_behind, low=1, high=1000)
         v.integer("Window.bays_ahead", self.bays_ahead, low=1, high=1000)
+        v.number("Window.absorbing_length", self.absorbing_length, low=0.0, unit="m")
+
+    def zone_bays(self, spacing: float) -> int:
+        """Whole bays of ``spacing`` [m] in each absorbing end zone: ``absorbing_length``
+        rounded up, at most ``bays_behind`` and ``bays_ahead`` (the zones stay off the
+        vehicle's bays) [-]."""
+        return min(math.ceil(self.absorbing_length / spacing - 1e-9), self.bays_behind,
+                   self.bays_ahead)
 
     def n_bays(self, span: float, spacing: float) -> int:
         """Bays of the window for wheels spanning ``span`` [m] on bays of ``spacing`` [m]."""
@@ -497,7 +511,8 @@ class Scene:
     def windowed(self, window: Window | None) -> "Scene":
         """This scene on the travelling ``window`` (None: the scene without one, its rail as
         given): the rail's length becomes ``window.length`` for the vehicle's span, with as many
-        elements per bay as the scene's mesh has (at least one)."""
+        elements per bay as the scene's mesh has (at least one), and absorbing end zones of
+        ``window.zone_bays`` bays unless the rail has its own."""
         from dataclasses import replace
 
         if window is None:
@@ -514,6 +529,8 @@ class Scene:
                              f"elements each need {n_el} elements; allowed at most "
                              f"{MAX_ELEMENTS}: fewer Window.bays_behind/bays_ahead")
         rail = replace(self.rail, length=window.length(front - rear, d), n_elements=n_el)
+        if window.zone_bays(d) > 0 and rail.absorbing_ends is None:
+            rail = replace(rail, absorbing_ends=AbsorbingEnds(window.zone_bays(d) * d))
         return replace(self, rail=rail, window=window)
 
     @property
