@@ -890,9 +890,10 @@ def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
     _print_warnings(caught, "run")
     N = np.atleast_2d(np.asarray(r.normal_force).T).T  # (samples, wheels)
     x = np.asarray(r.x_wheel).reshape(len(r.t), -1)[:, 0]
-    w = scene.window
+    w, zones = scene.window, scene.rail.absorbing_ends
+    ends = f", {zones.length:g} m absorbing ends" if zones is not None else ""
     print(f"scene          : {_scene_name(scene, args)} on a travelling window of "
-          f"{w.bays_behind} + {w.bays_ahead} bays ({scene.rail.length:g} m), "
+          f"{w.bays_behind} + {w.bays_ahead} bays ({scene.rail.length:g} m{ends}), "
           f"{kw['fidelity']}")
     print(f"run            : {x[-1] - x[0]:.1f} m at {args.speed_kmh:g} km/h, {r.steps} steps "
           f"in {r.wall_time:.1f} s ({1e6 * r.wall_time / max(r.steps, 1):.1f} us/step)")
