@@ -97,6 +97,8 @@ ROLL = "cpp/rolling.cpp"
 RAIL = "cpp/rail.cpp"
 EIG = "cpp/eigen_analysis.cpp"
 ANA = "python/trackwheel/analysis.py"
+SHEAR = "cpp/ancf_shear.cpp"
+SCENE = "python/trackwheel/scene.py"
 
 #: The mutations. Keep the old texts short and specific: they must be unique in their file. The
 #: kernel's shared pieces (contact law, generalized-alpha coefficients, time loop) are mutated
@@ -217,6 +219,19 @@ MUTANTS: list[Mutant] = [
     M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(position);",
       "const MeshPoint mp = rail.locate(position + 0.05);",
       "eigen analysis attaches the wheel 5 cm from where it is asked"),
+    # --- the shear-deformable rail, the axial end zones and the window's default zones
+    M("shear-force-shear-term", SHEAR, "fs = wl * c.kGA * gamma;", "fs = 0.9 * wl * c.kGA * gamma;",
+      "shear-deformable element's time-loop force: shear force 10 % low (Jacobian path unchanged)"),
+    M("shear-jacobian-d2gamma", SHEAR, "*K += (sb * kappa) * d2k + (ss * gamma) * d2gam;",
+      "*K += (sb * kappa) * d2k;",
+      "shear-deformable element's Jacobian without the shear angle's Hessian term"),
+    M("shear-rotary-inertia", SHEAR, "c.rhoI * P.transpose() * P",
+      "0.0 * c.rhoI * P.transpose() * P",
+      "shear-deformable element's mass without the rotary inertia rho I"),
+    M("absorbing-axial", RAIL, "gw[g] * c_x * h.n[i] * h.n[k]", "gw[g] * 0.0 * c_x * h.n[i] * h.n[k]",
+      "absorbing end zones without their axial dampers"),
+    M("window-default-zones", SCENE, "absorbing_length: float = 4.8",
+      "absorbing_length: float = 0.0", "the travelling window without its default end zones"),
 ]
 
 
