@@ -348,19 +348,8 @@ def _passage(scene: Scene, speed: float, x_start, x_end, duration,
     if scene.vehicle is not None:
         return _vehicle_passage(scene, speed, x_start, x_end, duration, rear, front)
     x0 = start_position(scene, x_start)
-    if duration is not None:
-        t_end = v.number("duration", duration, low=0.0, low_open=True, unit="s")
-        if x0 + speed * t_end > L:
-            raise ValueError(f"duration = {duration} s takes the wheel to "
-                             f"X = {x0 + speed * t_end:.4g} m, beyond the rail end {L} m")
-        return x0, t_end
-    if speed == 0.0:
-        raise ValueError("speed = 0: give duration [s] (x_end cannot be reached)")
-    x1 = default_end(scene, x0) if x_end is None else v.number(
-        "x_end", x_end, low=0.0, high=L, unit="m")
-    if x1 <= x0:
-        raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m")
-    return x0, (x1 - x0) / speed
+    x1 = default_end(scene, x0) if x_end is None and duration is None else x_end
+    return x0, _time_to_end(scene, speed, x0, x1, duration, (0.0, L), 0.0)
 
 
 def _vehicle_passage(scene: Scene, speed: float, x_start, x_end, duration, rear: float,
@@ -375,21 +364,32 @@ def _vehicle_passage(scene: Scene, speed: float, x_start, x_end, duration, rear:
                          f"rail ({L} m): lengthen Scene.rail.length")
     x0 = default_start(scene) - rear if x_start is None else v.number(
         "x_start", x_start, low=lo, high=hi, unit="m")
+    x1 = (max(default_end(scene, x0 + front) - front, x0)
+          if x_end is None and duration is None else x_end)
+    return x0, _time_to_end(scene, speed, x0, x1, duration, (lo, hi), front)
+
+
+def _time_to_end(scene: Scene, speed: float, x0: float, x_end, duration,
+                 allowed: tuple[float, float], front: float) -> float:
+    """Simulated time [s] from X_0 = ``x0`` to ``x_end`` (validated in ``allowed`` [m]) or for
+    ``duration`` [s], checking that the leading wheel, ``front`` [m] ahead of X_0, stays on
+    the rail."""
+    lo, hi = allowed
+    L, who = scene.rail.length, "wheel" if scene.vehicle is None else "leading wheel"
     if duration is not None:
         t_end = v.number("duration", duration, low=0.0, low_open=True, unit="s")
         if x0 + speed * t_end > hi:
-            raise ValueError(f"duration = {duration} s takes the leading wheel to X = "
+            raise ValueError(f"duration = {duration} s takes the {who} to X = "
                              f"{x0 + front + speed * t_end:.4g} m, beyond the rail end {L} m")
-        return x0, t_end
+        return t_end
     if speed == 0.0:
         raise ValueError("speed = 0: give duration [s] (x_end cannot be reached)")
-    x1 = max(default_end(scene, x0 + front) - front, x0) if x_end is None else v.number(
-        "x_end", x_end, low=lo, high=hi, unit="m")
+    x1 = v.number("x_end", x_end, low=lo, high=hi, unit="m")
     if x1 <= x0:
-        raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m (the rail "
-                         f"leaves the vehicle no room to move; allowed x range [{lo:.4g}, "
-                         f"{hi:.4g}] m)")
-    return x0, (x1 - x0) / speed
+        room = ("" if scene.vehicle is None else " (the rail leaves the vehicle no room to "
+                f"move; allowed x range [{lo:.4g}, {hi:.4g}] m)")
+        raise ValueError(f"x_end = {x1} m must be greater than x_start = {x0} m{room}")
+    return (x1 - x0) / speed
 
 
 def _time_step(scene: Scene, dt, integrator: str, linear: bool, model, init, x0: float) -> float:
