@@ -96,23 +96,24 @@ def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core
     irr = scene.irregularity
     if irr is None or not irr.parts:
         return _core.Profile()
-    from .irregularity import SPLINE_CHUNK, contact_half_width
+    from . import irregularity
 
     dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
     end = scene.rail.length if end is None else end
     if scene.contact.patch_filter:
-        x0, h, c, worst, at = _filtered_table(irr, end, dx, contact_half_width(scene))
+        x0, h, c, worst, at = _filtered_table(irr, end, dx, irregularity.contact_half_width(scene))
         _check_curvature(scene, worst, at)
         return _core.Profile(x0 - shift, h, c)
     x0, h, n = irr.spline_grid(0.0, end, dx)
+    chunk = irregularity.SPLINE_CHUNK  # read here: tests shrink it
 
     def chunks():
-        for _, c, worst, at in irr.spline_chunks(0.0, end, dx):
+        for _, c, worst, at in irr.spline_chunks(0.0, end, dx, chunk=chunk):
             _check_curvature(scene, worst, at)
             yield c
             del c  # the kernel has copied it
 
-    if n - 1 > STREAM_MIN_CHUNKS * SPLINE_CHUNK:
+    if n - 1 > STREAM_MIN_CHUNKS * chunk:
         return _core.Profile(x0 - shift, h, n - 1, chunks, stream_retention(scene))
     # chunk by chunk into the kernel: no whole-table array in Python
     return _core.Profile(x0 - shift, h, n - 1, chunks())
