@@ -1,5 +1,6 @@
 #include "profile.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,15 @@ void check_coefficients(const std::vector<double>& coefs) {
     throw std::invalid_argument("profile coefficients must hold 4 values per interval (>= 1)");
   for (double c : coefs)
     if (!std::isfinite(c)) throw std::invalid_argument("profile coefficients must be finite");
+}
+
+// r, r', r'' of the cubic c (c3, c2, c1, c0) at u = X - X_i
+ProfileValue cubic(const double* c, double u) {
+  ProfileValue v;
+  v.r = ((c[0] * u + c[1]) * u + c[2]) * u + c[3];
+  v.rx = (3.0 * c[0] * u + 2.0 * c[1]) * u + c[2];
+  v.rxx = 6.0 * c[0] * u + 2.0 * c[1];
+  return v;
 }
 
 }  // namespace
@@ -42,8 +52,6 @@ Profile::Profile(double x0, double dx, int n_intervals, ChunkOpener open, double
   s_->rewind = rewind;
   s_->n_total = n_intervals;
   s_->retention = retention;
-  s_->furthest = -INFINITY;
-  s_->next = s_->open();
 }
 
 int Profile::n_intervals() const {
@@ -53,78 +61,108 @@ int Profile::n_intervals() const {
 
 int Profile::loaded_intervals() const {
   if (!s_) return n_intervals();
-  return s_->end - s_->first;
+  std::lock_guard<std::mutex> lock(s_->mutex);
+  int n = 0;
+  for (const auto& [id, c] : s_->cursors) n += c.loaded.load();
+  return n;
 }
 
-int Profile::peak_loaded_intervals() const { return s_ ? s_->peak : n_intervals(); }
+int Profile::peak_loaded_intervals() const {
+  if (!s_) return n_intervals();
+  std::lock_guard<std::mutex> lock(s_->mutex);
+  int n = 0;
+  for (const auto& [id, c] : s_->cursors) n = std::max(n, c.peak.load());
+  return n;
+}
 
-void Profile::load_through(int i) const {
+Profile::Cursor& Profile::cursor() const {
   Stream& s = *s_;
-  while (s.end <= i) {
-    std::vector<double> c = s.next();
-    if (c.empty())
-      throw std::runtime_error("profile stream ended after " + std::to_string(s.end) +
+  bool fresh = false;
+  Cursor* c = nullptr;
+  {
+    // the source is opened outside the lock: opening takes the GIL, which a thread waiting
+    // here may hold
+    std::lock_guard<std::mutex> lock(s.mutex);
+    if (!s.rewind && !s.cursors.empty() && !s.cursors.count(std::this_thread::get_id()))
+      throw std::runtime_error("a one-pass profile stream is read by one thread only");
+    auto [it, inserted] = s.cursors.try_emplace(std::this_thread::get_id());
+    c = &it->second;
+    fresh = inserted;
+  }
+  if (fresh) {
+    c->furthest = -INFINITY;
+    c->next = s.open();
+  }
+  return *c;
+}
+
+void Profile::load_through(Cursor& c, int i) const {
+  const Stream& s = *s_;
+  while (c.end <= i) {
+    std::vector<double> v = c.next();
+    if (v.empty())
+      throw std::runtime_error("profile stream ended after " + std::to_string(c.end) +
                                " intervals, n_intervals = " + std::to_string(s.n_total));
-    check_coefficients(c);
-    const int m = static_cast<int>(c.size() / 4);
-    if (m > s.n_total - s.end)
+    check_coefficients(v);
+    const int m = static_cast<int>(v.size() / 4);
+    if (m > s.n_total - c.end)
       throw std::runtime_error("profile stream holds more than n_intervals = " +
                                std::to_string(s.n_total) + " intervals");
-    s.chunks.push_back(std::move(c));
-    s.end += m;
-    drop_behind(s.furthest);
-    if (s.end - s.first > s.peak) s.peak = s.end - s.first;
+    c.chunks.push_back(std::move(v));
+    c.end += m;
+    drop_behind(c);
+    c.loaded = c.end - c.first;
+    if (c.loaded > c.peak) c.peak = c.loaded.load();
   }
 }
 
-void Profile::drop_behind(double x) const {
-  Stream& s = *s_;
-  // a chunk ending behind x - retention goes; the newest one stays (it reaches up to x)
-  while (s.chunks.size() > 1) {
-    const int m = static_cast<int>(s.chunks.front().size() / 4);
-    if (!(x0_ + (s.first + m) * dx_ < x - s.retention)) break;
-    s.chunks.pop_front();
-    s.first += m;
+void Profile::drop_behind(Cursor& c) const {
+  // a chunk ending behind furthest - retention goes; the newest one stays (it reaches there)
+  while (c.chunks.size() > 1) {
+    const int m = static_cast<int>(c.chunks.front().size() / 4);
+    if (!(x0_ + (c.first + m) * dx_ < c.furthest - s_->retention)) break;
+    c.chunks.pop_front();
+    c.first += m;
   }
+  c.loaded = c.end - c.first;
 }
 
-void Profile::reopen(double x) const {
-  Stream& s = *s_;
-  s.chunks.clear();
-  s.first = s.end = 0;
-  s.furthest = x >= x0_ ? x : -INFINITY;  // a new pass along the track
-  s.next = s.open();
-  ++s.rewinds;
+void Profile::reopen(Cursor& c, double x) const {
+  c.chunks.clear();
+  c.first = c.end = 0;
+  c.loaded = 0;
+  c.furthest = x >= x0_ ? x : -INFINITY;  // a new pass along the track
+  c.next = s_->open();
+  ++s_->rewinds;
 }
 
-const double* Profile::interval(int i, double x) const {
-  Stream& s = *s_;
+ProfileValue Profile::stream_value(int i, double u, double x) const {
+  Cursor& c = cursor();
   // NaN never advances it; beyond the table's end (flat) counts as its end
-  if (x > s.furthest) s.furthest = std::fmin(x, x0_ + s.n_total * dx_);
-  load_through(i);
-  drop_behind(s.furthest);
-  if (i < s.first && s.rewind) {
-    reopen(x);
-    load_through(i);
+  if (x > c.furthest) c.furthest = std::fmin(x, x0_ + s_->n_total * dx_);
+  load_through(c, i);
+  drop_behind(c);
+  if (i < c.first && s_->rewind) {
+    reopen(c, x);
+    load_through(c, i);
   }
-  if (i < s.first)
+  if (i < c.first)
     throw std::runtime_error(
         "profile requested at X = " + std::to_string(x) + " m, behind the streamed profile's " +
-        "kept range (from X = " + std::to_string(x0_ + s.first * dx_) + " m, " +
-        std::to_string(s.retention) + " m behind the furthest X requested, " +
-        std::to_string(s.furthest) + " m): the stream reads the track forwards only");
-  int k = s.first;
-  for (const std::vector<double>& c : s.chunks) {
-    const int m = static_cast<int>(c.size() / 4);
-    if (i < k + m) return c.data() + 4 * (i - k);
+        "kept range (from X = " + std::to_string(x0_ + c.first * dx_) + " m, " +
+        std::to_string(s_->retention) + " m behind the furthest X requested, " +
+        std::to_string(c.furthest) + " m): the stream reads the track forwards only");
+  int k = c.first;
+  for (const std::vector<double>& v : c.chunks) {
+    const int m = static_cast<int>(v.size() / 4);
+    if (i < k + m) return cubic(v.data() + 4 * (i - k), u);
     k += m;
   }
   throw std::logic_error("profile stream: interval not loaded");  // load_through loaded it
 }
 
 ProfileValue Profile::operator()(double x) const {
-  ProfileValue v;
-  if (empty()) return v;
+  if (empty()) return ProfileValue();
   const int m = n_intervals();
   const double x_end = x0_ + m * dx_;
   const bool before = !(x >= x0_);  // also catches NaN
@@ -132,11 +170,8 @@ ProfileValue Profile::operator()(double x) const {
   int i = before ? 0 : beyond ? m - 1 : static_cast<int>((x - x0_) / dx_);
   if (i > m - 1) i = m - 1;
   const double u = before ? 0.0 : beyond ? dx_ : x - (x0_ + i * dx_);
-  const double* c = s_ ? interval(i, x) : c_->data() + 4 * i;
-  v.r = ((c[0] * u + c[1]) * u + c[2]) * u + c[3];
-  if (before || beyond) return v;  // flat continuation
-  v.rx = (3.0 * c[0] * u + 2.0 * c[1]) * u + c[2];
-  v.rxx = 6.0 * c[0] * u + 2.0 * c[1];
+  ProfileValue v = s_ ? stream_value(i, u, x) : cubic(c_->data() + 4 * i, u);
+  if (before || beyond) v.rx = v.rxx = 0.0;  // flat continuation
   return v;
 }
 

@@ -17,9 +17,13 @@
 // at most the vehicle's span behind its leading wheel; a request behind the kept range throws.
 #pragma once
 
+#include <atomic>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 namespace trackwheel {
@@ -46,7 +50,8 @@ class Profile {
   // ending more than `retention` [m] behind the furthest X requested are dropped. A request
   // behind the kept range re-opens the source and reads forwards again to it if `rewind` (a
   // second run on the same rail model starts behind where the first one ended), else throws
-  // std::runtime_error.
+  // std::runtime_error. Each thread reading the profile makes its own pass, opening a source
+  // at its first request; with `rewind` false the one source serves one thread only.
   Profile(double x0, double dx, int n_intervals, ChunkOpener open, double retention, bool rewind);
 
   bool empty() const { return !c_ && !s_; }
@@ -54,30 +59,39 @@ class Profile {
   int n_intervals() const;
   double x0() const { return x0_; }
   double dx() const { return dx_; }
-  // intervals held now, and the most ever held at once (the eager table: all of them)
+  // intervals held now (by all threads' passes), and the most one pass ever held at once (the
+  // eager table: all of them)
   int loaded_intervals() const;
   int peak_loaded_intervals() const;
-  int rewinds() const { return s_ ? s_->rewinds : 0; }  // times the source was re-opened
+  int rewinds() const { return s_ ? s_->rewinds.load() : 0; }  // times a source was re-opened
   ProfileValue operator()(double x) const;
 
  private:
-  struct Stream {
-    ChunkOpener open;
-    bool rewind = false;
-    int rewinds = 0;
+  // One thread's pass along the stream: the chunks it holds. Each thread reads its own (runs
+  // in concurrent threads on one rail model do not undo each other's chunks); a thread's
+  // successive runs share it.
+  struct Cursor {
     ChunkSource next;
-    int n_total = 0;
-    double retention = 0.0;
     std::deque<std::vector<double>> chunks;
     int first = 0;  // interval index of chunks.front()'s first interval
     int end = 0;    // one past the last loaded interval
-    int peak = 0;
     double furthest = 0.0;
+    std::atomic<int> loaded{0}, peak{0};  // read by other threads' counters
   };
-  const double* interval(int i, double x) const;  // interval i's 4 coefficients
-  void load_through(int i) const;
-  void drop_behind(double x) const;
-  void reopen(double x) const;
+  struct Stream {
+    ChunkOpener open;
+    bool rewind = false;
+    int n_total = 0;
+    double retention = 0.0;
+    std::atomic<int> rewinds{0};
+    std::mutex mutex;  // guards the map only; a cursor is its thread's alone
+    std::map<std::thread::id, Cursor> cursors;
+  };
+  Cursor& cursor() const;  // the calling thread's
+  ProfileValue stream_value(int i, double u, double x) const;
+  void load_through(Cursor& c, int i) const;
+  void drop_behind(Cursor& c) const;
+  void reopen(Cursor& c, double x) const;
 
   double x0_ = 0.0, dx_ = 1.0;
   // shared, never changed: a profile over kilometres (32 MB per km at 1 mm) is not copied
