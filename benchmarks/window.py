@@ -11,7 +11,9 @@ after the run, and the bytes of the returned arrays. Cases:
 - ``smooth 100 m / 1 km / 5 km``: a smooth track, one sample kept every 20 steps: the cost per
   step must not depend on the distance, the peak RSS only through the kept samples;
 - ``fra5 1 km``: FRA class 5 (seed 0), the issue's target (< 60 s on one core); its rail profile
-  is a cubic spline table over the kilometre (1 mm samples, 32 MB), built before the run.
+  is a cubic spline table over the kilometre (1 mm samples, 32 MB) streamed into the kernel:
+  its chunks are built inside the time loop as the wheel reaches them, so they count in the
+  time per step.
 
 The same cases on the full model (``fidelity="full"``: the ANCF rail, the rolling contact,
 generalized-alpha; same window, mesh and step) make the group ``full``; its target is 1 km of
