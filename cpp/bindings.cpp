@@ -345,6 +345,8 @@ PYBIND11_MODULE(_core, m) {
            "The table from an iterable of (4, m_k) coefficient arrays, m_k summing to "
            "n_intervals")
       .def(py::init([](double x0, double dx, int n_intervals, py::object chunks, double retention) {
+             if (!PyCallable_Check(chunks.ptr()) && !py::isinstance<py::iterable>(chunks))
+               throw py::type_error("profile chunks must be an iterable or a callable");
              return Profile(x0, dx, n_intervals, python_chunk_opener(chunks), retention,
                             PyCallable_Check(chunks.ptr()) != 0);
            }),

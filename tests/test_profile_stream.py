@@ -140,6 +140,8 @@ def test_request_behind_the_kept_range():
     assert again(1.234) == whole(1.234) and again.rewinds == 1
     with pytest.raises(ValueError, match="retention"):
         _core.Profile(x0, h, n - 1, _chunks(irr, 10.0), 0.0)
+    with pytest.raises(TypeError, match="chunks must be an iterable or a callable"):
+        _core.Profile(x0, h, n - 1, 3.0, 2.5)
 
 
 def test_stream_shorter_than_its_intervals_raises():
