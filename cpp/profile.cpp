@@ -89,10 +89,8 @@ Profile::Cursor& Profile::cursor() const {
     c = &it->second;
     fresh = inserted;
   }
-  if (fresh) {
-    c->furthest = -INFINITY;
-    c->next = s.open();
-  }
+  if (fresh) c->furthest = -INFINITY;
+  if (!c->next) c->next = s.open();  // also after an opening that threw
   return *c;
 }
 
@@ -132,6 +130,7 @@ void Profile::reopen(Cursor& c, double x) const {
   c.first = c.end = 0;
   c.loaded = 0;
   c.furthest = x >= x0_ ? x : -INFINITY;  // a new pass along the track
+  c.next = nullptr;  // if opening throws, the next request opens again (never the old source)
   c.next = s_->open();
   ++s_->rewinds;
 }

@@ -144,6 +144,27 @@ def test_request_behind_the_kept_range():
         _core.Profile(x0, h, n - 1, 3.0, 2.5)
 
 
+def test_a_failed_reopening_is_retried_not_read_from_the_old_source():
+    """An exception while re-opening surfaces; the next request opens afresh and gives the
+    whole table's value (the old source, past the kept range, is never read on)."""
+    irr = tw.Irregularity.sine(2.0, 1e-4)
+    x0, h, n = irr.spline_grid(0.0, 10.0, 1e-3)
+    whole = _core.Profile(x0, h, n - 1, _chunks(irr, 10.0))
+    opened = []
+
+    def opener():
+        opened.append(1)
+        if len(opened) == 2:
+            raise ValueError("source unavailable")
+        return _chunks(irr, 10.0)
+
+    p = _core.Profile(x0, h, n - 1, opener, 2.5)
+    assert p(6.5) == whole(6.5)  # chunks 0-2 dropped, the source at chunk 7
+    with pytest.raises(ValueError, match="source unavailable"):
+        p(0.5)
+    assert p(0.5) == whole(0.5) and len(opened) == 3
+
+
 def test_stream_shorter_than_its_intervals_raises():
     irr = tw.Irregularity.sine(2.0, 1e-4)
     x0, h, n = irr.spline_grid(0.0, 10.0, 1e-3)
