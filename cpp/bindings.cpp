@@ -175,6 +175,43 @@ void append_ppoly(const PpolyArray& c, std::vector<double>& v) {
     for (py::ssize_t k = 0; k < 4; ++k) v.push_back(a(k, i));
 }
 
+// A Python object released with the GIL held wherever its last owner dies (the rail model
+// and its profile are copied and destroyed in GIL-free code too).
+std::shared_ptr<py::object> gil_held(py::object o) {
+  return std::shared_ptr<py::object>(new py::object(std::move(o)), [](py::object* p) {
+    py::gil_scoped_acquire gil;
+    delete p;
+  });
+}
+
+// The streamed profile's source: the next array of a Python iterator, drawn with the GIL
+// (the time loop runs without it; one call per chunk).
+Profile::ChunkSource python_chunk_source(const py::object& chunks) {
+  auto it = gil_held(py::iter(chunks));
+  return [it]() {
+    py::gil_scoped_acquire gil;
+    std::vector<double> v;
+    py::object next = py::reinterpret_steal<py::object>(PyIter_Next(it->ptr()));
+    if (!next) {
+      if (PyErr_Occurred()) throw py::error_already_set();  // the iterator's own exception
+      return v;                                             // exhausted
+    }
+    const PpolyArray c = py::cast<PpolyArray>(next);
+    v.reserve(4 * static_cast<std::size_t>(c.ndim() == 2 ? c.shape(1) : 0));
+    append_ppoly(c, v);
+    return v;
+  };
+}
+
+// `chunks` callable: each opening calls it for a fresh iterable; else the one iterable, once.
+Profile::ChunkOpener python_chunk_opener(const py::object& chunks) {
+  auto src = gil_held(chunks);
+  return [src]() {
+    py::gil_scoped_acquire gil;
+    return python_chunk_source(PyCallable_Check(src->ptr()) ? (*src)() : *src);
+  };
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -307,7 +344,27 @@ PYBIND11_MODULE(_core, m) {
            py::arg("x0"), py::arg("dx"), py::arg("n_intervals"), py::arg("chunks"),
            "The table from an iterable of (4, m_k) coefficient arrays, m_k summing to "
            "n_intervals")
+      .def(py::init([](double x0, double dx, int n_intervals, py::object chunks, double retention) {
+             if (!PyCallable_Check(chunks.ptr()) && !py::isinstance<py::iterable>(chunks))
+               throw py::type_error("profile chunks must be an iterable or a callable");
+             return Profile(x0, dx, n_intervals, python_chunk_opener(chunks), retention,
+                            PyCallable_Check(chunks.ptr()) != 0);
+           }),
+           py::arg("x0"), py::arg("dx"), py::arg("n_intervals"), py::arg("chunks"),
+           py::arg("retention"),
+           "Streamed: the (4, m_k) coefficient arrays of `chunks` (an iterable, or a callable "
+           "returning a fresh one) are drawn as X advances and dropped once they end more than "
+           "`retention` [m] behind the furthest X requested. A request behind the kept range "
+           "draws a fresh iterable from the callable and reads forwards to it, or raises "
+           "RuntimeError for a plain iterable. An exception of the iterator surfaces where the "
+           "profile is read")
       .def_property_readonly("empty", &Profile::empty)
+      .def_property_readonly("streamed", &Profile::streamed)
+      .def_property_readonly("n_intervals", &Profile::n_intervals)
+      .def_property_readonly("loaded_intervals", &Profile::loaded_intervals, "intervals held now")
+      .def_property_readonly("peak_loaded_intervals", &Profile::peak_loaded_intervals,
+                             "the most intervals ever held at once")
+      .def_property_readonly("rewinds", &Profile::rewinds, "times the stream was re-opened")
       .def(
           "__call__",
           [](const Profile& p, double x) {
@@ -363,6 +420,8 @@ PYBIND11_MODULE(_core, m) {
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())
       .def(py::init<const RailParams&, const SupportParams&, Profile>())
+      .def_property_readonly("profile", &RailModel::profile,
+                             "the rail's profile (a streamed one shares its state)")
       .def_property_readonly("n_dof", &RailModel::n_dof)
       .def_property_readonly("n_free", &RailModel::n_free)
       .def_property_readonly("n_nodes", &RailModel::n_nodes)

@@ -252,8 +252,34 @@ class Profile:
         """
         The table from an iterable of (4, m_k) coefficient arrays, m_k summing to n_intervals
         """
+    @typing.overload
+    def __init__(self, x0: typing.SupportsFloat | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, n_intervals: typing.SupportsInt | typing.SupportsIndex, chunks: typing.Any, retention: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        Streamed: the (4, m_k) coefficient arrays of `chunks` (an iterable, or a callable returning a fresh one) are drawn as X advances and dropped once they end more than `retention` [m] behind the furthest X requested. A request behind the kept range draws a fresh iterable from the callable and reads forwards to it, or raises RuntimeError for a plain iterable. An exception of the iterator surfaces where the profile is read
+        """
     @property
     def empty(self) -> bool:
+        ...
+    @property
+    def loaded_intervals(self) -> int:
+        """
+        intervals held now
+        """
+    @property
+    def n_intervals(self) -> int:
+        ...
+    @property
+    def peak_loaded_intervals(self) -> int:
+        """
+        the most intervals ever held at once
+        """
+    @property
+    def rewinds(self) -> int:
+        """
+        times the stream was re-opened
+        """
+    @property
+    def streamed(self) -> bool:
         ...
 class WheelParams:
     def __init__(self) -> None:
@@ -544,6 +570,11 @@ class RailModel:
     @property
     def n_nodes(self) -> int:
         ...
+    @property
+    def profile(self) -> Profile:
+        """
+        the rail's profile (a streamed one shares its state)
+        """
     @property
     def total_mass(self) -> float:
         ...

@@ -23,6 +23,11 @@ PROFILE_POINTS_PER_WAVELENGTH = 40
 #: through samples every WHEEL_ARC_STEP [m] of its circumference (rounding a new flat's corners
 #: over about that arc).
 WHEEL_ARC_STEP = 5e-4
+#: A rail profile of more than STREAM_MIN_CHUNKS spline chunks is streamed into the kernel,
+#: which keeps its chunks STREAM_RETENTION [m] (or four vehicle spans) behind the furthest X
+#: read (:func:`profile`).
+STREAM_MIN_CHUNKS = 3
+STREAM_RETENTION = 200.0
 
 
 @lru_cache(maxsize=64)
@@ -78,33 +83,52 @@ def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core
     [m]; none: empty), patch-filtered if ``scene.contact.patch_filter``, as a function of
     X - ``shift`` [m].
 
+    A table of more than STREAM_MIN_CHUNKS chunks of SPLINE_CHUNK intervals (a travelling
+    window's run over hundreds of metres) is streamed: the kernel draws its chunks as the
+    vehicle advances and keeps those within :func:`stream_retention` behind the leading
+    wheel, so its memory does not grow with the distance.
+
     Raises ValueError where the profile curves upwards more sharply than the wheel (r'' >=
     1/rho0, e.g. a dipped joint's cusp): the wheel would bridge the dip on two points, which
-    the single contact point of the model cannot represent.
+    the single contact point of the model cannot represent. A streamed profile raises it
+    where the run reaches the chunk that holds the point.
     """
     irr = scene.irregularity
     if irr is None or not irr.parts:
         return _core.Profile()
-    from .irregularity import contact_half_width
+    from . import irregularity
 
     dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
     end = scene.rail.length if end is None else end
     if scene.contact.patch_filter:
-        x0, h, c, worst, at = _filtered_table(irr, end, dx, contact_half_width(scene))
-        table = _core.Profile(x0 - shift, h, c)
-    else:  # chunk by chunk into the kernel: no whole-table array in Python
-        x0, h, n = irr.spline_grid(0.0, end, dx)
-        worst, at = -math.inf, x0
+        x0, h, c, worst, at = _filtered_table(irr, end, dx, irregularity.contact_half_width(scene))
+        _check_curvature(scene, worst, at)
+        return _core.Profile(x0 - shift, h, c)
+    x0, h, n = irr.spline_grid(0.0, end, dx)
+    chunk = irregularity.SPLINE_CHUNK  # read here: tests shrink it
 
-        def chunks():
-            nonlocal worst, at
-            for _, c, w, x in irr.spline_chunks(0.0, end, dx):
-                if w > worst:
-                    worst, at = w, x
-                yield c
-                del c  # the kernel has copied it
+    def chunks():
+        for _, c, worst, at in irr.spline_chunks(0.0, end, dx, chunk=chunk):
+            _check_curvature(scene, worst, at)
+            yield c
+            del c  # the kernel has copied it
 
-        table = _core.Profile(x0 - shift, h, n - 1, chunks())
+    if n - 1 > STREAM_MIN_CHUNKS * chunk:
+        return _core.Profile(x0 - shift, h, n - 1, chunks, stream_retention(scene))
+    # chunk by chunk into the kernel: no whole-table array in Python
+    return _core.Profile(x0 - shift, h, n - 1, chunks())
+
+
+def stream_retention(scene: Scene) -> float:
+    """How far behind the furthest X read a streamed profile keeps its chunks [m]: the
+    vehicle's span (its rear wheels read that far behind the leading one) four times over,
+    at least STREAM_RETENTION; the contact point never moves back by more than a rail
+    deflection's slope times the span."""
+    behind, ahead = scene.active_vehicle.span
+    return max(STREAM_RETENTION, 4.0 * (ahead - behind))
+
+
+def _check_curvature(scene: Scene, worst: float, at: float) -> None:
     if worst >= 1.0 / scene.wheel.radius:
         raise ValueError(
             f"Scene.irregularity curves upwards by {worst:.3g} 1/m at X = {at:.4g} m, more "
@@ -112,7 +136,6 @@ def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core
             "bridge it on two points, which one contact point cannot represent; allowed: "
             "r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to average it "
             "over the contact patch)")
-    return table
 
 
 def _filtered_table(irr, end: float, dx: float, half_width: float):
