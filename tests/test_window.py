@@ -248,7 +248,8 @@ def test_profile_table_built_in_chunks_is_the_one_spline():
 def test_profile_memory_in_python_is_independent_of_distance():
     """The kernel's rail profile is handed over chunk by chunk (65 536 intervals), so Python's
     peak while building it (numpy's allocations, traced) is the same for 200 m and 1 km of
-    profile (2e5 and 1e6 samples at 1 mm; the 1 km table is 30.5 MiB, held in the kernel):
+    profile (2e5 and 1e6 samples at 1 mm; the 1 km table is 30.5 MiB, which the kernel streams
+    and holds a few chunks of at a time: tests/test_profile_stream.py):
     within 1 MiB, against the 24.4 MiB the longer table adds (measured 0.01 MiB; the spline
     through all samples at once peaked at 4.75 tables). The work space is about two chunks'
     splines (12.5 MiB: the kernel's loop holds the previous chunk while the next is built).
