@@ -181,6 +181,23 @@ def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(sp
     assert 0.5 < np.max(np.abs(w)) / static < 2.0
 
 
+def vehicle_probe(scene, speed):
+    """(R, n_free): R(x=None) is ga_probe's dict for ``scene`` (a vehicle) at ``speed`` [m/s]
+    one step of 1e-5 s from its static start, with the bodies moving (damper forces present);
+    n_free the rail's free coordinates, which come first in x."""
+    plan = _plan(scene, speed, dt=1e-5, duration=1e-4)
+    wheels, contact = _kernel.wheels_params(plan.scene), _kernel.contact_params(plan.scene)
+    vp = _kernel.vehicle_params(plan.scene)
+    s = kernel_settings(plan)
+    st = plan.init
+    st.bodydot = np.linspace(0.01, -0.02, len(st.body))
+
+    def R(x=None):
+        return _core.ga_probe(plan.model, wheels, contact, s, st, 1e-5, x, vp)
+
+    return R, plan.model.n_free
+
+
 @pytest.mark.parametrize("preset", ["bogie", "half_car"])
 def test_iteration_matrix_with_bodies_matches_central_differences(preset):
     """ga_probe's iteration matrix against central differences of its residual with the
@@ -190,19 +207,10 @@ def test_iteration_matrix_with_bodies_matches_central_differences(preset):
     veh = Vehicle.bogie() if preset == "bogie" else Vehicle.half_car()
     length = 6.0 if preset == "bogie" else 23.0
     scene = tw.Scene(rail=tw.Rail(length=length, n_elements=int(length / 0.5)), vehicle=veh)
-    plan = _plan(scene, tw.kmh(300), dt=1e-5, duration=1e-4)
-    wheels, contact = _kernel.wheels_params(plan.scene), _kernel.contact_params(plan.scene)
-    vp = _kernel.vehicle_params(plan.scene)
-    s = kernel_settings(plan)
-    st = plan.init
-    st.bodydot = np.linspace(0.01, -0.02, len(st.body))  # damper forces present
-
-    def R(x=None):
-        return _core.ga_probe(plan.model, wheels, contact, s, st, 1e-5, x, vp)
-
+    R, nf = vehicle_probe(scene, tw.kmh(300))
     p0 = R()
     x0, J = p0["start"], p0["matrix"]
-    nf, nw, nb = plan.model.n_free, veh.n_wheels, veh.n_bodies
+    nw, nb = veh.n_wheels, veh.n_bodies
     assert len(x0) == nf + 3 * nw + 2 * nb
     h = np.full(len(x0), 1e3)
     h[nf + 2:nf + 3 * nw:3] = 1.0

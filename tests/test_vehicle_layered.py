@@ -15,10 +15,11 @@ import dataclasses as dc
 
 import numpy as np
 import pytest
+from test_system import central_difference_error
+from test_vehicle import vehicle_probe
 
 import trackwheel as tw
 from trackwheel import _core, _kernel
-from trackwheel.simulate import kernel_settings, resolve
 from trackwheel.statics import vehicle_static
 from trackwheel.vehicle import Vehicle
 
@@ -73,15 +74,6 @@ def test_bogie_run_on_the_ballasted_track_starts_in_equilibrium():
     assert np.max(np.abs(r.body_z - r.body_z[0])) < 1e-7
 
 
-def _plan(scene, speed, **kw):
-    args = dict(integrator="generalized_alpha", dt=None, n_elements=None, x_start=None,
-                x_end=None, duration=None, output_every=None, rho_inf=0.8, baumgarte=0.0,
-                rolling=True, start="static", drop_height=0.0, energy=False,
-                fidelity="full", n_modes=None, max_newton=25, newton_tol=1e-11)
-    args.update(kw)
-    return resolve(scene, speed, **args)
-
-
 @pytest.mark.parametrize("preset", ["bogie", "half_car"])
 def test_iteration_matrix_with_sleepers_and_bodies_matches_central_differences(preset):
     """ga_probe's matrix over x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per
@@ -94,31 +86,15 @@ def test_iteration_matrix_with_sleepers_and_bodies_matches_central_differences(p
     veh = Vehicle.bogie() if preset == "bogie" else Vehicle.half_car()
     length = 6.0 if preset == "bogie" else 23.0
     scene = dc.replace(_layered_kato(length, int(length / 0.5)), vehicle=veh)
-    plan = _plan(scene, V, dt=1e-5, duration=1e-4)
-    wheels, contact = _kernel.wheels_params(plan.scene), _kernel.contact_params(plan.scene)
-    vp = _kernel.vehicle_params(plan.scene)
-    s = kernel_settings(plan)
-    st = plan.init
-    st.bodydot = np.linspace(0.01, -0.02, len(st.body))  # damper forces present
-
-    def probe(x=None):
-        return _core.ga_probe(plan.model, wheels, contact, s, st, 1e-5, x, vp)
-
+    probe, nf = vehicle_probe(scene, V)
     p0 = probe()
     x0, J = p0["start"], p0["matrix"]
-    nf, nw, nb = plan.model.n_free, veh.n_wheels, veh.n_bodies
+    nw, nb = veh.n_wheels, veh.n_bodies
     ns = len(scene.support_positions)
     assert len(x0) == nf + 3 * nw + 2 * nb + ns
     h = np.full(len(x0), 1e3)
     h[nf + 2:nf + 3 * nw:3] = 1.0
-    cols = []
-    for i in range(len(x0)):
-        xp, xm = x0.copy(), x0.copy()
-        xp[i] += h[i]
-        xm[i] -= h[i]
-        cols.append(-(probe(xp)["residual"] - probe(xm)["residual"]) / (2.0 * h[i]))
-    J_fd = np.stack(cols, axis=1)
-    err = np.max(np.abs(J - J_fd), axis=0) / np.max(np.abs(J), axis=0)
+    err = central_difference_error(probe, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
     dense = np.linalg.solve(J, p0["residual"])
     np.testing.assert_allclose(p0["solution"], dense, rtol=0,
