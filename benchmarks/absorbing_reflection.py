@@ -23,20 +23,24 @@ Writes benchmarks/absorbing_reflection.csv (1) and absorbing_reflection_bloch.cs
 from __future__ import annotations
 
 import dataclasses
+import sys
 
 import numpy as np
-from _common import write_csv
+from _common import HERE, write_csv
 from scipy.signal.windows import tukey
 from scipy.sparse import coo_matrix
-from scipy.sparse.linalg import splu, spsolve
+from scipy.sparse.linalg import spsolve
 
 import trackwheel as tw
 from trackwheel.eigen import vertical_matrices
 from trackwheel.scene import ABSORBING_ATTENUATION
 
+# the pulse measurement of the test, with its element, step, pulse, record and distances
+sys.path.insert(0, str(HERE.parent / "tests"))
+from test_long_track import (  # noqa: E402
+    DT, EXTRA, FAR, GAP, H, RECEIVER, WINDOW, pulse_response)
+
 KATO = tw.Scene.kato2005()
-H, DT, TAU, WINDOW = 0.0625, 1e-5, 3e-4, 0.025  # element [m], step [s], pulse [s], record [s]
-GAP, RECEIVER, FAR, EXTRA = 2.25, 1.0, 10.0, 40.0  # as in tests/test_long_track.py [m]
 BAY = 0.5  # support spacing [m]
 EDGES = np.arange(100.0, 3001.0, 100.0)  # band edges [Hz]
 
@@ -50,25 +54,6 @@ def rail_scene(length, zone=None, design=ABSORBING_ATTENUATION):
         c = rail.absorbing_damping * design / ABSORBING_ATTENUATION
         rail = dataclasses.replace(rail, absorbing_ends=tw.AbsorbingEnds(zone, c))
     return dataclasses.replace(KATO, rail=rail, gravity=0.0, rail_gravity=False)
-
-
-def pulse_response(scene, x_source, x_receiver, n_steps):
-    """Displacement [m] at x_receiver under a unit Hann force pulse at x_source (trapezoidal
-    rule)."""
-    M, C, K, dofs = vertical_matrices(scene)
-    i, j = (int(np.flatnonzero(dofs == 4 * round(x / H) + 1)[0]) for x in (x_source, x_receiver))
-    lu = splu((K + 2 / DT * C + 4 / DT**2 * M).tocsc())
-    u, ud, udd = (np.zeros(M.shape[0]) for _ in range(3))
-    out = np.zeros(n_steps + 1)
-    for k in range(1, n_steps + 1):
-        f = np.zeros_like(u)
-        f[i] = 0.5 * (1 - np.cos(2 * np.pi * k * DT / TAU)) if k * DT < TAU else 0.0
-        un = lu.solve(f + M @ (4 / DT**2 * u + 4 / DT * ud + udd) + C @ (2 / DT * u + ud))
-        udn = 2 / DT * (un - u) - ud
-        udd = 4 / DT**2 * (un - u) - 4 / DT * ud - udd
-        u, ud = un, udn
-        out[k] = u[j]
-    return out
 
 
 def band_energy(x):
