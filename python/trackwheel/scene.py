@@ -512,7 +512,7 @@ class Scene:
         """This scene on the travelling ``window`` (None: the scene without one, its rail as
         given): the rail's length becomes ``window.length`` for the vehicle's span, with as many
         elements per bay as the scene's mesh has (at least one), and absorbing end zones of
-        ``window.zone_bays`` bays unless the rail has its own."""
+        :meth:`Window.zone_bays` bays unless the rail has its own."""
         from dataclasses import replace
 
         if window is None:
