@@ -300,7 +300,13 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
     // dN/dtheta = dNe dDelta rho/dpsi, dN/dthetadot = c dDelta rho/dpsi
     const double sm = ws.sigma * model_.contact.friction;
     const double dn = we.cf.dN_ddelta * cq + model_.contact.damping * cv;
-    for (int c = 1; c <= 9; ++c) add_entry(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
+    if (we.cf.compliant) {  // dN_e/dq = -k_t u (contact.hpp), not along grad_rho
+      const double cc = model_.contact.damping * cv;
+      for (int c = 1; c <= 9; ++c)
+        add_entry(o + kLambda, glob(c), sm * (cc * we.cf.grad_rho(c) - cq * we.cf.dNe_dq(c)));
+    } else {
+      for (int c = 1; c <= 9; ++c) add_entry(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
+    }
     add_entry(o + kLambda, o + kTheta, -sm * we.drho.rx * dn);
   }
 }
@@ -316,8 +322,11 @@ void System::add_out_of_round_block(const WheelEval& we, const int* g, int o, do
   const double dNe = we.cf.dN_ddelta, c = model_.contact.damping;
   const double dn = dNe * cq + c * cv;
   for (int a = 1; a <= 9; ++a) {
-    add_entry(g[a], o + kTheta, -we.cf.grad_rho(a) * d1 * dn);
-    add_entry(o + kTheta, g[a], -we.cf.grad_rho(a) * d1 * dn);
+    // d1 dN/dq'' (the element compliance's N_e depends on q along u, contact.hpp)
+    const double v = we.cf.compliant ? d1 * (cq * we.cf.dNe_dq(a) - c * cv * we.cf.grad_rho(a))
+                                     : -we.cf.grad_rho(a) * d1 * dn;
+    add_entry(g[a], o + kTheta, v);
+    add_entry(o + kTheta, g[a], v);
   }
   add_entry(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
 }
@@ -411,8 +420,9 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev) {
     E += sl.energy(st.e, identity, st.z, st.zdot);
   }
   for (int w = 0; w < model.n_wheels(); ++w)
-    E += contact_potential(model.contact.law, model.contact.stiffness,
-                           std::max(ev.w[w].cf.delta, 0.0));
+    E += ev.w[w].cf.compliant ? ev.w[w].cf.energy
+                              : contact_potential(model.contact.law, model.contact.stiffness,
+                                                  std::max(ev.w[w].cf.delta, 0.0));
   E -= rail.gravity_force().dot(st.e - rail.reference());
   for (int w = 0; w < model.n_wheels(); ++w) {
     E += model.wheels[w].total_load() * st.wheels[w].y;

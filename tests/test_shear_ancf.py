@@ -390,7 +390,10 @@ def test_linear_path_does_not_see_the_shear_element(layered, monkeypatch):
     sleepers' rail weights come from RailModel.locate: now the IIE w functions (those the linear
     beam's pads use) instead of the Hermite ones, equal at the nodes where these supports sit up
     to the rounding of mu (1 + phi) = 1, so the results agree to round-off (1e-12; measured
-    7e-14) -- and between nodes the sleepers now couple consistently with the pads."""
+    7e-14) -- and between nodes the sleepers now couple consistently with the pads. The Hertz
+    force N = C_H delta^1.5 sees that rounding of the rail height y relative to the compression
+    delta, amplified by 1.5 |y| / delta ~ 15 (measured 1.0e-12; 8.6e-13 without the element
+    compliance): 1e-11 for it."""
     s = tw.Scene.kato2005()
     s = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko"))
     if layered:
@@ -409,9 +412,9 @@ def test_linear_path_does_not_see_the_shear_element(layered, monkeypatch):
     finally:
         monkeypatch.undo()
         _kernel.rail_model.cache_clear()
-    for a, b in zip(with_shear[:-1], euler[:-1]):
+    for i, (a, b) in enumerate(zip(with_shear[:-1], euler[:-1])):
         if layered:
-            np.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
+            np.testing.assert_allclose(a, b, rtol=1e-11 if i == 1 else 1e-12, atol=0)
         else:
             np.testing.assert_array_equal(a, b)
     assert not np.array_equal(with_shear[-1], euler[-1])

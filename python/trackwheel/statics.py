@@ -178,4 +178,5 @@ def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = Non
     model = _kernel.rail_model(scene, _mesh(scene, n_elements))
     modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
     return np.asarray(_core.linear_static_line(model, _kernel.beam_params(scene),
-                                                 scene.static_load, x.tolist(), modes))
+                                                 scene.static_load, x.tolist(), modes,
+                                                 _kernel.element_compliance(scene)))

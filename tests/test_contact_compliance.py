@@ -1,0 +1,294 @@
+"""The rail under the load between nodes: the element's fixed-end compliance in series with the
+contact law (docs: Model § Contact, "The rail under the load between nodes";
+``Contact.element_compliance``).
+
+The element's w functions are exact homogeneous static solutions (the IIE Timoshenko
+functions; the Hermite cubics for Euler-Bernoulli), so a static point load P at a between the
+nodes, applied through the work-equivalent nodal loads S(a)^T P, gives exact nodal values; the
+exact deflection under the load is the interpolation plus the element's clamped-clamped
+Green's function G(a) P. These tests check G(a) and the statics against the closed form of a
+simply supported span, the series law and every new Jacobian against central differences, and
+the moving contact on the shear-deformable rail against mesh refinement.
+"""
+
+from __future__ import annotations
+
+import dataclasses as dc
+import math
+
+import numpy as np
+import pytest
+from conftest import EA, EI, RHO_A
+from test_ancf import fd_with_tolerance
+from test_contact import RHO0, bent_rail
+from test_system import central_difference_error
+
+import trackwheel as tw
+from trackwheel import _core, _kernel
+
+KGA = tw.Rail(beam="timoshenko").shear_stiffness  # the paper's rail, kappa 0.4 [N]
+RHO_I = tw.Rail().rotary_inertia  # [kg m]
+K_LIN = tw.Scene.kato2005().contact_stiffness  # [N/m]
+C_HERTZ = tw.Scene.kato2005().hertz_constant  # [N/m^1.5]
+LAWS = {"linear": K_LIN, "hertz": C_HERTZ}
+
+
+def shear_rail(length=5.0, n_elements=20, shear=True, profile=None):
+    """The paper's section on ``n_elements`` (shear-deformable with ``shear``), simply supported
+    at its ends only, no gravity."""
+    p = _core.RailParams()
+    p.length, p.EA, p.EI, p.rhoA, p.n_elements, p.n_gauss, p.gravity = (
+        length, EA, EI, RHO_A, n_elements, 5, 0.0)
+    if shear:
+        p.shear_stiffness, p.rotary_inertia = KGA, RHO_I
+    args = (p, _core.SupportParams()) + (() if profile is None else (profile,))
+    return _core.RailModel(*args)
+
+
+def contact(law, stiffness, compliance=True, damping=0.0):
+    cp = _core.ContactParams()
+    cp.law = getattr(_core.ContactLaw, law)
+    cp.stiffness, cp.damping, cp.radius = stiffness, damping, RHO0
+    cp.element_compliance = compliance
+    return cp
+
+
+def simply_supported(P, a, L, kga=KGA):
+    """Deflection under a point load P at a on a simply supported span L [m]: bending
+    P a^2 b^2 / (3 EI L) plus shear P a b / (L kGA) (statically determinate: the shear force is
+    P b / L left of the load) [m]."""
+    b = L - a
+    return P * a * a * b * b / (3.0 * EI * L) + (P * a * b / (L * kga) if kga else 0.0)
+
+
+# --------------------------------------------------------------------------------------------
+# the fixed-end compliance and the statics under a load between nodes
+
+def test_fixed_end_compliance_limits_and_symmetry():
+    """G(a) of the kernel: l^3 / (192 EI) + l / (4 kGA) at mid-element (the clamped-clamped
+    beam's centre deflections, additive there by symmetry), a^3 b^3 / (3 EI l^3) for
+    Euler-Bernoulli (shear compliance 0), symmetric in a <-> l - a, zero at the nodes; its
+    derivatives against central differences (G is a polynomial of degree 6 in a: the
+    difference quotient's error ~h^2 G''', h = 1e-5 l, far below 1e-7)."""
+    le = 0.075
+    g_mid = _core.fixed_end_compliance(EI, 1.0 / KGA, le, 0.5 * le)[0]
+    assert g_mid == pytest.approx(le**3 / (192 * EI) + le / (4 * KGA), rel=1e-14)
+    for a in (0.0, 0.013, 0.031, le):
+        g = _core.fixed_end_compliance(EI, 0.0, le, a)[0]
+        assert g == pytest.approx(a**3 * (le - a) ** 3 / (3 * EI * le**3), rel=1e-14, abs=0)
+        assert _core.fixed_end_compliance(EI, 1.0 / KGA, le, le - a)[0] == pytest.approx(
+            _core.fixed_end_compliance(EI, 1.0 / KGA, le, a)[0], rel=1e-13, abs=1e-30)
+    h = 1e-5 * le
+    for a in (0.011, 0.029, 0.052):
+        G = [_core.fixed_end_compliance(EI, 1.0 / KGA, le, a + k * h) for k in (-1, 0, 1)]
+        assert (G[2][0] - G[0][0]) / (2 * h) == pytest.approx(G[1][1], rel=1e-7)
+        assert (G[2][1] - G[0][1]) / (2 * h) == pytest.approx(G[1][2], rel=1e-7)
+
+
+@pytest.mark.parametrize("beam", ["timoshenko", "euler"])
+@pytest.mark.parametrize("a", [0.37, 0.5, 0.8125])
+def test_linear_static_deflection_under_a_load_between_nodes(beam, a):
+    """Linear track, a 1 m simply supported span on 3 elements (nodes at 1/3, 2/3 m), the load
+    between nodes: with the element compliance the deflection under the load is the closed
+    form to round-off (1e-12: the IIE and Hermite elements are nodally exact, G(a) exact);
+    without it the interpolated rail misses exactly G(a) P -- the 'kick' term, 6 % of the
+    deflection here, which moves with the load inside each element."""
+    P, L, n = 5e4, 1.0, 3
+    shear = beam == "timoshenko"
+    model = shear_rail(L, n, shear)
+    b = _core.BeamParams()
+    if shear:
+        b.shear_stiffness, b.rotary_inertia = KGA, RHO_I
+    exact = -simply_supported(P, a, L, KGA if shear else 0.0)
+    with_g = _core.linear_static_line(model, b, P, [a], 0, True)[0]
+    plain = _core.linear_static_line(model, b, P, [a], 0, False)[0]
+    assert with_g == pytest.approx(exact, rel=1e-12)
+    le = L / n
+    g = _core.fixed_end_compliance(EI, 1.0 / KGA if shear else 0.0, le, a - le * math.floor(a / le))
+    assert plain - with_g == pytest.approx(g[0] * P, rel=1e-9, abs=1e-12 * abs(exact))
+    if a != 1.0 / 3.0 and shear:
+        assert abs(plain / exact - 1.0) > 0.02
+
+
+@pytest.mark.parametrize("law", ["linear", "hertz"])
+def test_full_static_deflection_under_a_load_between_nodes(law):
+    """Full model (shear-deformable ANCF rail), the same span and a wheel of 1 kN standing
+    between nodes: y_contact (the rail under the load, the element's own deflection included)
+    equals the closed form at the contact point a = s* within 1e-7 (measured 2e-10: the rail's
+    geometric nonlinearity at slopes ~1e-5 and the load's tilt by them); without the
+    compliance it misses the closed form by G(a) P (measured 5 %)."""
+    L, n, P = 1.0, 3, 1e3
+    model = shear_rail(L, n)
+    w = _core.WheelParams()
+    w.mass, w.inertia, w.radius, w.load, w.gravity = 0.0, 1.0, RHO0, P, 0.0
+    for x in (0.41, 0.77):
+        d = _core.static_solve(model, w, contact(law, LAWS[law]), x)
+        exact = -simply_supported(d["normal_force"], d["contact_s"], L)
+        assert d["y_contact"] == pytest.approx(exact, rel=1e-7)
+        plain = _core.static_solve(model, w, contact(law, LAWS[law], compliance=False), x)
+        assert abs(plain["y_contact"] / exact - 1.0) > 0.02
+
+
+# --------------------------------------------------------------------------------------------
+# the series law
+
+@pytest.mark.parametrize("law", ["linear", "hertz"])
+@pytest.mark.parametrize("G", [0.0, 1.5e-10, 2e-9])
+def test_series_law(law, G):
+    """N = N_law(delta - G N) to round-off, dN/d(delta) and the energy's derivative N against
+    central differences (relative steps 1e-4: the error ~(h/delta)^2 ~ 1e-8), and G = 0 is the
+    law itself."""
+    k = LAWS[law]
+    for delta in (2e-5, 1e-4):
+        N, slope, comp, energy = _core.series_contact(getattr(_core.ContactLaw, law), k, G, delta)
+        law_n = k * comp if law == "linear" else k * comp**1.5
+        assert N == pytest.approx(law_n, rel=1e-14)
+        assert comp + G * N == pytest.approx(delta, rel=1e-14)
+        h = 1e-4 * delta
+        up = _core.series_contact(getattr(_core.ContactLaw, law), k, G, delta + h)
+        dn = _core.series_contact(getattr(_core.ContactLaw, law), k, G, delta - h)
+        assert (up[0] - dn[0]) / (2 * h) == pytest.approx(slope, rel=1e-7)
+        assert (up[3] - dn[3]) / (2 * h) == pytest.approx(N, rel=1e-7)
+        if G == 0.0:
+            assert N == (k * delta if law == "linear" else k * delta * math.sqrt(delta))
+
+
+# --------------------------------------------------------------------------------------------
+# the full model's contact force and its Jacobian
+
+def corrugated(length=5.0, n_elements=20):
+    """The shear rail with a 0.3 mm, 0.1 m corrugation (R'' up to 1.2 1/m, R''' up to 75 1/m^2:
+    the profile's terms of d2 s*/dq2)."""
+    from scipy.interpolate import CubicSpline
+
+    dx = 1e-3
+    x = np.arange(0.0, length + dx / 2, dx)
+    spline = CubicSpline(x, 3e-4 * np.sin(2 * math.pi * x / 0.1))
+    return shear_rail(length, n_elements, profile=_core.Profile(0.0, dx, spline.c))
+
+
+class Compliant:
+    """F(q) with q = [X_A, Y_A, e_el] on a copy of the rail state ``e``, wheel near ``x``."""
+
+    def __init__(self, model, e, cp, x):
+        self.model, self.e, self.cp, self.x = model, e, cp, x
+
+    def at_penetration(self, delta):
+        above = _core.contact_eval(self.model, self.e, self.x, self.model.positions(
+            self.e, [self.x])[0, 1] + RHO0 + 1e-3, self.x, self.cp, np.zeros(10))
+        ya = above["surface"][1] + RHO0 - delta
+        self.el = _core.contact_eval(self.model, self.e, self.x, ya, self.x, self.cp,
+                                     np.zeros(10))["element"]
+        return np.concatenate([[self.x, ya], self.e[4 * self.el:4 * self.el + 8]])
+
+    def __call__(self, q):
+        e = self.e.copy()
+        e[4 * self.el:4 * self.el + 8] = q[2:]
+        d = _core.contact_eval(self.model, e, q[0], q[1], self.x, self.cp, np.zeros(10))
+        assert d["element"] == self.el  # the stencil stays in one element
+        return d
+
+
+# FD steps 1e-4 of the penetration (test_contact.py: truncation ~1e-8 of the force's scale);
+# the tolerance is estimated from the steps h and 2h and must stay below TOL_CEILING. The
+# compliance's terms: the climbing force (N^2/2) G' ds*/dq is ~1e-4 of N grad rho, its
+# Jacobian's d2 s*/dq2 part ~1e-6 of K -- above the ceiling only because the corrugation's
+# curvature makes d2 s*/dq2 large; the test_dropping_a_term check below measures it.
+H_REL = 1e-4
+TOL_CEILING = 1e-7
+
+
+@pytest.mark.parametrize("law", ["linear", "hertz"])
+@pytest.mark.parametrize("xi", [0.2, 0.85])
+@pytest.mark.parametrize("profile", [False, True])
+def test_compliant_contact_stiffness_matches_central_differences(rel, law, xi, profile):
+    """K = -dF/dq with the element compliance (its G, G' and G'' at s*, the climbing force and
+    d2 s*/dq2) against central differences, on a bent shear rail, plain or corrugated; K is the
+    Hessian of the series spring's energy Phi (symmetric), and F = -grad Phi."""
+    model = corrugated() if profile else shear_rail()
+    f = Compliant(model, bent_rail(model), contact(law, LAWS[law]), (9 + xi) * 0.25)
+    q0 = f.at_penetration(5e-5)
+    d = f(q0)
+    assert d["active"] and d["compliance"] > 0.0
+    K_fd, tol = fd_with_tolerance(lambda q: -f(q)["F"], q0, H_REL * 5e-5, d["K"])
+    assert tol < TOL_CEILING
+    assert rel(K_fd, d["K"]) < tol
+    assert np.linalg.norm(d["K"] - d["K"].T) < 1e-12 * np.linalg.norm(d["K"])
+    dphi, tol = fd_with_tolerance(lambda q: np.array([f(q)["energy"]]), q0, H_REL * 5e-5,
+                                  d["F"][None, :])
+    assert tol < TOL_CEILING
+    assert rel(-dphi[0], d["F"]) < tol
+    # the series law at the point: N = k delta / (1 + k G) for the linear law
+    if law == "linear":
+        assert d["N"] == pytest.approx(K_LIN * (RHO0 - d["rho"]) / (1 + K_LIN * d["compliance"]),
+                                       rel=1e-13)
+
+
+def test_the_climbing_force_is_the_horizontal_part():
+    """On the straight rail the contact normal is vertical, so the only horizontal force on the
+    wheel centre is the climbing term (N_e^2 / 2) G'(a) ds*/dX_A = (N^2 / 2) G'(a) (ds*/dX_A = 1
+    there): it pushes the wheel back where the compliance rises ahead (a < l/2) and forward
+    beyond the middle, and is the same work G N^2 / 2 the element's deflection stores."""
+    model = shear_rail()
+    e = np.asarray(model.reference())
+    le = model.element_length
+    for xi in (0.2, 0.5, 0.8):
+        x = (9 + xi) * le
+        d = _core.contact_eval(model, e, x, RHO0 - 5e-5, x, contact("linear", K_LIN),
+                               np.zeros(10))
+        G, Ga, _ = _core.fixed_end_compliance(EI, 1.0 / KGA, le, xi * le)
+        assert d["compliance"] == pytest.approx(G, rel=1e-13)
+        assert d["F"][0] == pytest.approx(0.5 * d["N"] ** 2 * Ga, rel=1e-10, abs=1e-9)
+        assert d["F"][1] == pytest.approx(d["N"], rel=1e-13)
+
+
+# --------------------------------------------------------------------------------------------
+# the iteration matrices
+
+def _ballasted_probe(law, slide, polygon=False, compliance=True):
+    """The ballasted preset with the Timoshenko rail on 8 elements per bay, a wheel standing at
+    its static state between nodes (xi = 0.3 of its element), generalized-alpha at 2.8e-5 s."""
+    scene = tw.Scene.ballasted_track(length=6.0, elements_per_bay=8)
+    scene = dc.replace(scene, rail=dc.replace(scene.rail, beam="timoshenko"),
+                       contact=dc.replace(scene.contact, law=law, element_compliance=compliance))
+    if polygon:
+        scene = dc.replace(scene, wheel=dc.replace(scene.wheel, defects=(tw.Polygon(8, 5e-5),)))
+    dt, v, x = 2.8e-5, tw.kmh(200), 3.0 + 0.3 * 0.075
+    model = _kernel.rail_model(scene)
+    cp = _kernel.contact_params(scene)
+    wheel = _kernel.wheel_params(scene)
+    d = _core.static_solve(model, wheel, cp, x)
+    w = _core.WheelState()
+    w.y, w.s, w.thetadot = d["y_wheel"], d["contact_s"], v / scene.wheel.radius
+    w.theta = 0.3 if polygon else 0.0
+    w.state = _core.SlipState.slip if slide else _core.SlipState.stick
+    w.sigma = -1.0
+    st = _core.SimState()
+    st.e = np.asarray(d["e"])
+    st.edot, st.wheels = np.zeros_like(st.e), [w]
+    st.z = np.asarray(d["sleeper_z"])
+    st.zdot = np.zeros_like(st.z)
+    s = _core.SimSettings()
+    s.speed, s.x_start, s.dt, s.t_end = v, x, dt, dt
+    return model, [wheel], cp, s, st, dt
+
+
+@pytest.mark.parametrize("law, slide, polygon", [
+    ("linear", False, False), ("hertz", True, False), ("hertz", False, True),
+    ("linear", True, True)])
+def test_full_iteration_matrix_with_compliance_matches_central_differences(law, slide, polygon):
+    """generalized-alpha's iteration matrix on the ballasted Timoshenko track with the element
+    compliance (contact K, the slide row's dN_e/dq = -k_t u, the out-of-round block) against
+    central differences of the residual, as tests/test_system.py: every column within 1e-6
+    of its largest entry (measured below 1e-7)."""
+    model, wheels, cp, s, st, dt = _ballasted_probe(law, slide, polygon)
+
+    def R(x=None):
+        return _core.ga_probe(model, wheels, cp, s, st, dt, x)
+
+    p0 = R()
+    x0, J = p0["start"], p0["matrix"]
+    h = np.full(len(x0), 1e3)
+    h[model.n_free + 2] = 1.0  # the multiplier lambda [N]
+    err = central_difference_error(R, x0, J, h)
+    assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
