@@ -482,6 +482,11 @@ PYBIND11_MODULE(_core, m) {
         d["K"] = cf.K;
         d["C"] = cf.C;
         d["grad_rho"] = cf.grad_rho;
+        Vec10 sq;
+        Mat10 sqq;
+        contact_parameter_derivatives(pt, sq, &sqq);
+        d["ds_dq"] = sq;
+        d["d2s_dq2"] = sqq;
         d["compression"] = cf.compression;
         d["deflection"] = cf.deflection;
         d["compliance"] = pt.compliance.G;
