@@ -489,6 +489,7 @@ PYBIND11_MODULE(_core, m) {
         d["d2s_dq2"] = sqq;
         d["compression"] = cf.compression;
         d["deflection"] = cf.deflection;
+        d["rolling_radius"] = pt.rho + cf.deflection;
         d["compliance"] = pt.compliance.G;
         d["energy"] = cf.energy;
         return d;

@@ -253,6 +253,7 @@ ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint
   out.K.setZero();
   out.C.setZero();
   out.dNe_dq.setZero();
+  out.ddeflection_dq.setZero();
   if (out.delta <= 0.0) return out;
   const ElementCompliance& g = pt.compliance;
   const SeriesForce sf = series_normal_force(cp.law, cp.stiffness, g.G, out.delta);
@@ -272,6 +273,7 @@ ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint
   const double climb = 0.5 * sf.N * sf.N;  // -dPhi/dG
   const Vec10 u = out.grad_rho + (sf.N * g.Ga) * sq;
   out.dNe_dq = -sf.slope * u;
+  out.ddeflection_dq = g.G * out.dNe_dq + (sf.N * g.Ga) * sq;
   out.F = N * out.grad_rho + (climb * g.Ga) * sq;
   if (want_jacobian) {
     out.K =
@@ -296,6 +298,7 @@ ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, cons
   out.K.setZero();
   out.C.setZero();
   out.dNe_dq.setZero();
+  out.ddeflection_dq.setZero();
   if (out.delta <= 0.0) return out;
   double dNe;  // derivative of the elastic force with respect to delta
   const double Ne = elastic_normal_force(cp.law, cp.stiffness, out.delta, dNe);

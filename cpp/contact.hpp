@@ -119,6 +119,7 @@ struct ContactForce {
   double deflection = 0.0;   // the element's own deflection under the load G N_e, along -n [m]
   double energy = 0.0;       // contact potential (series: Phi above) [J]
   Vec10 dNe_dq;              // d N_e / dq [N/m] (-dN_ddelta grad rho without compliance)
+  Vec10 ddeflection_dq;      // d(G N_e)/dq = G dN_e/dq + N_e G' ds*/dq [-] (0 without)
   Vec10 grad_rho;            // d rho / dq
   Vec10 F;                   // generalised contact force on q = [X_A, Y_A, e_el] [N]
   Mat10 K;                   // -dF/dq [N/m] (damping's own q-dependence neglected)

@@ -68,7 +68,8 @@ void FullStepper::record_sample(double t) {
     rec.push(Field::slip, we.rk.g);
     rec.push(Field::slip_state, static_cast<int>(ws.state));
     rec.push(Field::penetration, we.cf.compression);
-    rec.push(Field::v_error, v != 0.0 ? (v - pt.rho * ws.thetadot) / v * 100.0 : 0.0);
+    // the rolling radius (rho + G N_e with the element compliance: rk.b(10) = -rho_r)
+    rec.push(Field::v_error, v != 0.0 ? (v + we.rk.b(10) * ws.thetadot) / v * 100.0 : 0.0);
     // obliquity phi = atan2(y_s, x_s), its slope along s and its rate at fixed s
     Eigen::Vector2d Se_dd = Eigen::Vector2d::Zero(), Ssedot = Eigen::Vector2d::Zero();
     for (int a = 0; a < 4; ++a) {

@@ -59,7 +59,16 @@ void System::contact_terms(const SimState& st, bool jac, Eval& ev) const {
     ContactParams c = model_.contact_of(w);
     c.radius += we.drho.r;
     we.cf = contact_force(c, we.pt, qdot, jac, we.drho.rx * st.wheels[w].thetadot);
-    we.rk = rolling_kinematics(we.pt, we.cf.grad_rho, qdot, st.wheels[w].thetadot, jac);
+    if (we.cf.compliant) {
+      // the wheel rolls on the rail under the load: rho_r = rho + G N_e = rho0 - delta_c
+      we.rk = rolling_kinematics(we.pt, we.pt.rho + we.cf.deflection,
+                                 we.cf.grad_rho + we.cf.ddeflection_dq, qdot, st.wheels[w].thetadot,
+                                 jac);
+      we.drolling_dtheta = we.pt.compliance.G * we.cf.dN_ddelta * we.drho.rx;
+    } else {
+      we.rk = rolling_kinematics(we.pt, we.cf.grad_rho, qdot, st.wheels[w].thetadot, jac);
+      we.drolling_dtheta = 0.0;
+    }
   }
 }
 
@@ -155,6 +164,9 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     qdot(1) = st.wheels[w].ydot;
     qdot.tail<8>() = st.edot.segment<8>(d0);
     r2(o + kLambda) = -we.rk.dg_dq.dot(qdot) - set_.baumgarte * we.rk.g;
+    // dg/dtheta theta' = -theta'^2 d rho_r/d theta (compliance and out-of-roundness)
+    const double thd = st.wheels[w].thetadot;
+    if (we.drolling_dtheta != 0.0) r2(o + kLambda) += thd * thd * we.drolling_dtheta;
   }
   lock_theta_rows(st, &r2);
   if (nb_ > 0) {
@@ -286,12 +298,17 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
   int g[11];
   for (int a = 0; a <= 10; ++a) g[a] = glob(a);
   add_out_of_round_block(we, g, o, cq, cv);
+  // the torque -rho_r lambda and g's -rho_r theta' through rho_r(theta) (compliance and
+  // out-of-roundness)
+  const double drt = we.drolling_dtheta;
+  if (drt != 0.0) add_entry(o + kTheta, o + kTheta, lambda * drt * cq);
   if (sticking(set_.rolling, ws, we)) {
     // row: (cq dg/dq + cv b) / cv
     for (int c = 1; c <= 10; ++c) {
       const double v = (c <= 9 ? cq * we.rk.dg_dq(c) : 0.0) / cv + we.rk.b(c);
       add_entry(o + kLambda, glob(c), v);
     }
+    if (drt != 0.0) add_entry(o + kLambda, o + kTheta, -cq * ws.thetadot * drt / cv);
     return;
   }
   Db_(o - nf_ + kLambda, o - nf_ + kLambda) = 1.0;

@@ -263,22 +263,24 @@ def test_the_climbing_force_is_the_horizontal_part():
 # --------------------------------------------------------------------------------------------
 # the iteration matrices
 
-def _ballasted_probe(law, slide, polygon=False, compliance=True):
+def _ballasted_probe(law, slide, polygon=None, compliance=True, theta=0.3, dt=2.8e-5):
     """The ballasted preset with the Timoshenko rail on 8 elements per bay, a wheel standing at
-    its static state between nodes (xi = 0.3 of its element), generalized-alpha at 2.8e-5 s."""
+    its static state between nodes (xi = 0.3 of its element), generalized-alpha at 2.8e-5 s;
+    ``polygon`` = (order, amplitude [m]) turns the wheel to ``theta`` [rad] of that defect."""
     scene = tw.Scene.ballasted_track(length=6.0, elements_per_bay=8)
     scene = dc.replace(scene, rail=dc.replace(scene.rail, beam="timoshenko"),
                        contact=dc.replace(scene.contact, law=law, element_compliance=compliance))
     if polygon:
-        scene = dc.replace(scene, wheel=dc.replace(scene.wheel, defects=(tw.Polygon(8, 5e-5),)))
-    dt, v, x = 2.8e-5, tw.kmh(200), 3.0 + 0.3 * 0.075
+        scene = dc.replace(scene, wheel=dc.replace(scene.wheel,
+                                                   defects=(tw.Polygon(*polygon),)))
+    v, x = tw.kmh(200), 3.0 + 0.3 * 0.075
     model = _kernel.rail_model(scene)
     cp = _kernel.contact_params(scene)
     wheel = _kernel.wheel_params(scene)
     d = _core.static_solve(model, wheel, cp, x)
     w = _core.WheelState()
     w.y, w.s, w.thetadot = d["y_wheel"], d["contact_s"], v / scene.wheel.radius
-    w.theta = 0.3 if polygon else 0.0
+    w.theta = theta if polygon else 0.0
     w.state = _core.SlipState.slip if slide else _core.SlipState.stick
     w.sigma = -1.0
     st = _core.SimState()
@@ -292,8 +294,8 @@ def _ballasted_probe(law, slide, polygon=False, compliance=True):
 
 
 @pytest.mark.parametrize("law, slide, polygon", [
-    ("linear", False, False), ("hertz", True, False), ("hertz", False, True),
-    ("linear", True, True)])
+    ("linear", False, None), ("hertz", True, None), ("hertz", False, (8, 5e-5)),
+    ("linear", True, (8, 5e-5))])
 def test_full_iteration_matrix_with_compliance_matches_central_differences(law, slide, polygon):
     """generalized-alpha's iteration matrix on the ballasted Timoshenko track with the element
     compliance (contact K, the slide row's dN_e/dq = -k_t u, the out-of-round block) against
@@ -338,18 +340,27 @@ def quarter_car(elements_per_bay, compliance=None, window=True, length=30.0):
     return s.windowed(tw.Window(20, 20)) if window else s
 
 
-def _steady(scene, speed, fidelity="linear/sprung", **kw):
-    """(bay profile max, min [N], ripple above 1 kHz rms [N]) over the steady part."""
+def _steady(scene, speed, fidelity="linear/sprung", tangential=False, **kw):
+    """(bay profile max, min [N], ripple above 1 kHz rms [N]) over the steady part (whole
+    bays); with ``tangential`` also the tangential force's amplitude at the element-passing
+    frequency v / l_e [N]."""
     r = tw.simulate(scene, speed, dt=tw.default_settings(scene)["dt"],
                     n_elements=scene.rail.n_elements, fidelity=fidelity, progress=False, **kw)
     ss = tw.steady_state(r, tol=2e-3)
     t, f = np.asarray(r.t), np.asarray(r.normal_force)
     keep = (t >= ss.t_from) & (t < ss.t_from + ss.n_bays * scene.supports.spacing / speed
                                - 0.5 * (t[1] - t[0]))
+    freq = np.fft.rfftfreq(keep.sum(), t[1] - t[0])
     c = np.fft.rfft(f[keep] - f[keep].mean())
-    c[np.fft.rfftfreq(keep.sum(), t[1] - t[0]) < 1000.0] = 0.0
+    c[freq < 1000.0] = 0.0
     ripple = float(np.sqrt(np.mean(np.fft.irfft(c, keep.sum()) ** 2)))
-    return float(ss.bay_profile.max()), float(ss.bay_profile.min()), ripple
+    out = (float(ss.bay_profile.max()), float(ss.bay_profile.min()), ripple)
+    if not tangential:
+        return out
+    lam = np.asarray(r.tangential_force)[keep]
+    a = 2.0 * np.abs(np.fft.rfft(lam - lam.mean())) / lam.size
+    fe = speed * scene.rail.n_elements / scene.rail.length
+    return out + (float(a[np.abs(freq - fe) < 3 * freq[1]].max()),)
 
 
 def test_moving_contact_converges_to_the_fine_mesh_at_the_default_mesh():
@@ -376,12 +387,16 @@ def test_full_model_takes_the_same_compliance():
     """The full model (shear-deformable ANCF rail, foot-of-normal contact, rolling) on the same
     quarter car and default mesh: its bay profile equals the linear level's within 1e-3
     (measured 7e-5) and its ripple within 5 % (measured 1 %): the element compliance acts
-    alike on both paths."""
+    alike on both paths. The wheel rolls on the rail under the load (rolling radius
+    rho + G N_e), so the tangential force has no element-passing content either: below 15 N
+    at v / l_e = 741 Hz (measured 6 N; 75 N without the compliance, and 138 N with it but the
+    rolling radius of the interpolated rail, rho, which varies by G N ~ 6 um per element)."""
     v = tw.kmh(200)
-    full = _steady(quarter_car(8), v, fidelity="full", distance=12.0)
+    full = _steady(quarter_car(8), v, fidelity="full", tangential=True, distance=12.0)
     lin = _steady(quarter_car(8), v, distance=12.0)
     assert abs(full[0] / lin[0] - 1.0) < 1e-3 and abs(full[1] / lin[1] - 1.0) < 1e-3
     assert abs(full[2] / lin[2] - 1.0) < 0.05
+    assert full[3] < 15.0
 
 
 # --------------------------------------------------------------------------------------------
@@ -435,3 +450,68 @@ def test_linear_newton_satisfies_the_series_law(level):
         assert r.newton_iterations <= 1.02 * plain.newton_iterations
     else:
         assert np.max(np.abs(r.y_wheel - r.y_contact - 0.46)) < 1e-12
+
+
+def _bay_harmonics(r, x0, x1, d=0.6, n=128):
+    """Amplitudes of the first three sleeper-passing harmonics of the contact force averaged
+    over the bays in [x0, x1] [N]."""
+    nb = round((x1 - x0) / d)
+    xs = x0 + d * np.arange(nb * n) / n
+    f = np.interp(xs, r.x_wheel, r.normal_force).reshape(nb, n).mean(axis=0)
+    return 2.0 * np.abs(np.fft.rfft(f)[1:4]) / n
+
+
+def test_full_and_linear_agree_on_sleeper_passing_harmonics_at_64_elements_per_bay():
+    """The quarter car at 200 km/h on a 9.6 m fixed rail at 64 elements per bay (l = 9.4 mm):
+    the full model's and the linear level's first three sleeper-passing harmonics, over the
+    same three bays of the same passage (both start from their static state at X = 2.7 m, so the
+    start-up's share is common), agree within 0.5 % (the issue's target; measured 0.05 %).
+    Before the shear element's director was held to the centre line's stretch they differed by
+    12-14 % here (5-7 % on a 14.4 m rail, 0.5 % at 32 elements per bay): the director stretched
+    on fine meshes and softened the full model's rail."""
+    s = quarter_car(64, window=False, length=9.6)
+    kw = dict(x_start=2.7, x_end=6.3, dt=tw.default_settings(s)["dt"],
+              n_elements=s.rail.n_elements, progress=False)
+    full = _bay_harmonics(tw.simulate(s, tw.kmh(200), **kw), 4.2, 6.0)
+    lin = _bay_harmonics(tw.simulate(s, tw.kmh(200), fidelity="linear/sprung", **kw), 4.2, 6.0)
+    np.testing.assert_allclose(full, lin, rtol=5e-3)
+    assert lin[0] > 1e3  # the harmonics are the sleepers' (1.8 kN), not noise
+
+
+def test_rolling_radius_terms_of_an_out_of_round_wheel():
+    """With the element compliance the wheel rolls on the rail under the load, radius
+    rho_r = rho + G N_e, and N_e depends on theta through an out-of-round wheel's radius: the
+    rolling row's and the torque's theta'' entries gain -cq theta' d rho_r/d theta / cv and
+    lambda d rho_r/d theta cq (d rho_r/d theta = G k_t dDelta rho/dpsi). They are tiny beside
+    the entries, so they are checked alone, where they are large: a 0.1 mm, 8th-order polygon
+    turning through theta = pi/16 at the step's end (Delta rho = 0, dDelta rho/dpsi =
+    -0.8 mm), a step of 0.1 ms and an iterate with lambda = 1e8 N (an iterate, not a state:
+    it scales the torque's term): central differences of the residual with steps 1e4 rad/s^2
+    are exact there to ~1e-14 of the entry (the residual is smooth in theta''), tolerance
+    1e-10 of the entry (measured 2.5e-13); the terms are 1.8e-7 and 8.8e-7 of their entries,
+    so dropping either fails by 1e3 x the tolerance."""
+    dt = 1e-4
+    theta = math.pi / 16 - tw.kmh(200) / 0.46 * dt
+    model, wheels, cp, s, st, dt = _ballasted_probe("hertz", False, polygon=(8, 1e-4),
+                                                    theta=theta, dt=dt)
+    c = _core.ContactParams()
+    c.law, c.stiffness, c.radius, c.element_compliance = cp.law, cp.stiffness, 0.46, True
+    c.radius += tw.Polygon(8, 1e-4).delta_rho(theta, 0.46)
+    d = _core.contact_eval(model, st.e, s.x_start, st.wheels[0].y, st.wheels[0].s, c,
+                           np.zeros(10))
+    assert d["N"] > 0.0 and d["compliance"] > 0.0  # the contact is closed, between nodes
+
+    def R(x=None):
+        return _core.ga_probe(model, wheels, cp, s, st, dt, x)
+
+    x0 = R()["start"].copy()
+    th, lam = model.n_free + 1, model.n_free + 2
+    x0[lam] = 1e8
+    J = R(x0)["matrix"]
+    h = 1e4
+    xp, xm = x0.copy(), x0.copy()
+    xp[th] += h
+    xm[th] -= h
+    col = -(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h)
+    for row in (th, lam):
+        assert abs(J[row, th] - col[row]) < 1e-10 * abs(J[row, th])

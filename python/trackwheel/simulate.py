@@ -140,7 +140,8 @@ def _vehicle_initial_state(scene, model, speed, x_start, start, drop_height):
         c = _core.contact_eval(model, e, x, y, x, contact, np.zeros(10))
         ws = _core.WheelState()
         ws.y, ws.ydot, ws.theta = y, 0.0, 0.0
-        ws.thetadot = float(c["tangent"][0]) * speed / c["rho"]  # pure rolling at the start
+        # pure rolling at the start, on the rolling radius (the element's deflection included)
+        ws.thetadot = float(c["tangent"][0]) * speed / (c["rho"] + c["deflection"])
         ws.s = c["s"]
         ws.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
         states.append(ws)
@@ -174,7 +175,7 @@ def _initial_state(scene, model, speed, x_start, start, drop_height):
     w.ydot = 0.0
     w.theta = 0.0
     # pure rolling at the start: t . V_A = rho thetadot
-    w.thetadot = float(c["tangent"][0]) * speed / c["rho"]
+    w.thetadot = float(c["tangent"][0]) * speed / (c["rho"] + c["deflection"])
     w.s = c["s"]
     w.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
     st.e = e
