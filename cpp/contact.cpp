@@ -213,8 +213,7 @@ SeriesForce series_normal_force(ContactLaw law, double k, double G, double delta
   }
   if (delta <= 0.0) return f;
   // x + G C x^1.5 = delta for the compression x: increasing and convex in x, so Newton from
-  // x = delta (above the root) falls monotonically onto it; a fixed number of steps past the
-  // tolerance keeps the result a deterministic function of (delta, G).
+  // x = delta (above the root) falls monotonically onto it (a few steps: G C sqrt(x) ~ 0.1).
   double x = delta;
   for (int it = 0; it < 50; ++it) {
     const double sq = std::sqrt(x);
@@ -249,6 +248,7 @@ ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint
   Mat10 H;
   distance_derivatives(pt, out.grad_rho, want_jacobian ? &H : nullptr);
   out.delta = cp.radius - pt.rho;
+  out.compression = out.delta;
   out.F.setZero();
   out.K.setZero();
   out.C.setZero();
@@ -257,6 +257,7 @@ ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint
   if (out.delta <= 0.0) return out;
   const ElementCompliance& g = pt.compliance;
   const SeriesForce sf = series_normal_force(cp.law, cp.stiffness, g.G, out.delta);
+  out.compression = sf.compression;
   out.energy = contact_potential(cp.law, cp.stiffness, sf.compression) + 0.5 * g.G * sf.N * sf.N;
   const double delta_dot = radius_rate - out.grad_rho.dot(qdot);
   const double N = sf.N + cp.damping * delta_dot;
@@ -265,7 +266,6 @@ ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint
   out.active = true;
   out.Ne = sf.N;
   out.dN_ddelta = sf.slope;
-  out.compression = sf.compression;
   out.deflection = g.G * sf.N;
   Vec10 sq;
   Mat10 sqq;
