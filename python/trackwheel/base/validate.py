@@ -7,16 +7,7 @@ import numbers
 
 import numpy as np
 
-from . import _core
-
-#: Limits defined once in the C++ kernel (cpp/limits.hpp) and read here, so that the Python
-#: checks and the kernel's accept the same inputs: most rail elements [-], the Gauss points per
-#: element (low, high) [-], the highest forward speed [m/s] and the most coordinates of a dense
-#: generalised eigenproblem [-] (larger ones take the partial sparse solver).
-MAX_ELEMENTS: int = _core.MAX_ELEMENTS
-MAX_DENSE_EIGEN_DOF: int = _core.MAX_DENSE_EIGEN_DOF
-GAUSS_RANGE: tuple[int, int] = tuple(_core.GAUSS_RANGE)
-MAX_SPEED: float = _core.MAX_SPEED
+from .limits import MAX_ELEMENTS
 
 
 def number(name: str, value, *, low=None, high=None, low_open=False, high_open=False,
@@ -89,6 +80,12 @@ def positions(name: str, values, low: float, high: float, unit: str = "m") -> np
         bad = arr[(arr < low) | (arr > high)][0]
         raise ValueError(f"{name} = {bad} is outside the allowed range [{low}, {high}] {unit}")
     return arr
+
+
+def n_elements(value, name: str = "n_elements", *, low: int = 1) -> int:
+    """``value`` as a number of rail elements in [``low``, MAX_ELEMENTS] [-]: the one check of
+    an element count (a Rail's, a call's ``n_elements``, a derived mesh's)."""
+    return integer(name, value, low=low, high=MAX_ELEMENTS)
 
 
 def _unit(unit: str) -> str:

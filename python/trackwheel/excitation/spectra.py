@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _validate as v
+from ..base import validate as v
 
 # FRA (Garg & Dukkipati 1984, Table 2.2 form, vertical profile): A_v [cm^2 rad/m] per class.
 _FRA_AV = {1: 1.2107, 2: 1.0181, 3: 0.6816, 4: 0.5376, 5: 0.2095, 6: 0.0339}

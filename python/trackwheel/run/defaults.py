@@ -6,8 +6,10 @@ values from here:
 - :data:`MAX_SPEED`: the highest forward speed a run accepts [m/s];
 - :func:`default_start` / :func:`default_end`: the wheel-centre start and end [m], the middles of
   the first and last support bays;
+- :func:`mesh`: the mesh of a call (its ``n_elements``, checked, or the scene's);
 - :func:`derived_mesh` / :func:`derived_dt` / :func:`default_settings`: the mesh and time step
-  that keep the headline outputs within 1 % of a refined run (issue 6);
+  that keep the headline outputs within 1 % of a refined run;
+- :func:`frequency_mesh`: the mesh of the frequency-domain track up to a highest frequency;
 - :func:`stability_limit`: the predicted largest stable step of an integrator, and
   :func:`warn_above_stability_limit` / :func:`warn_unresolved_mesh`, the warnings issued before
   a run that will likely fail or cannot resolve the track.
@@ -20,9 +22,11 @@ import warnings
 
 import numpy as np
 
-from . import _core, _kernel
-from . import _validate as v
-from .scene import MAX_ELEMENTS, Scene
+from .. import _core
+from ..base import validate as v
+from ..base.limits import MAX_ELEMENTS, MAX_SPEED
+from ..scene import Scene
+from . import kernel
 
 __all__ = [
     "ELEMENTS_PER_BAY",
@@ -35,17 +39,18 @@ __all__ = [
     "default_start",
     "derived_dt",
     "derived_mesh",
+    "frequency_mesh",
+    "mesh",
     "stability_limit",
 ]
 
-#: Highest forward speed of a run [m/s] (1080 km/h): far above any railway speed; keeps the
-#: convective terms of the moving contact (v^2 y_ss) in the range the contact search was tested in.
-#: Defined once, in the kernel (cpp/limits.hpp), which checks it too.
-MAX_SPEED = v.MAX_SPEED
 #: Elements per support bay of the derived default mesh (see :func:`default_settings`).
 ELEMENTS_PER_BAY = 8
 #: Time steps per period of the highest frequency of interest (see :func:`default_settings`).
 STEPS_PER_PERIOD = 150
+#: Elements per Euler-Bernoulli bending wavelength of the frequency-domain mesh at its highest
+#: frequency (see :func:`frequency_mesh`).
+ELEMENTS_PER_WAVELENGTH = 10
 
 
 class StabilityWarning(UserWarning):
@@ -84,7 +89,13 @@ def start_position(scene: Scene, x_start) -> float:
 
 
 # --------------------------------------------------------------------------------------------
-# derived mesh and time step
+# meshes and time step
+def mesh(scene: Scene, n_elements: int | None = None) -> int:
+    """The rail elements of a call [-]: ``n_elements`` checked against the element limit, or
+    the scene's own ``rail.n_elements`` if None."""
+    return scene.rail.n_elements if n_elements is None else v.n_elements(n_elements)
+
+
 def support_bays(scene: Scene) -> int:
     """Number of support bays over the rail, L / d_s rounded, at least 1 [-]."""
     return max(1, round(scene.rail.length / scene.supports.spacing))
@@ -113,7 +124,7 @@ def default_settings(scene: Scene, speed: float | None = None,
     """Time step [s] and mesh derived from the scene, as ``dict(dt=..., n_elements=...)``: what
     :func:`trackwheel.simulate` uses when neither is given, at every fidelity level.
 
-    Target (issue 6): at most 1 % error of the amplitude max |d| (docs: Model § Outputs) against a refined
+    Target: at most 1 % error of the amplitude max |d| (docs: Model § Outputs) against a refined
     run. The scene's former defaults (20 elements, dt = 1e-5 s) miss it by up to 5.5 %
     (benchmarks/README.md, "Speed against accuracy").
 
@@ -145,6 +156,27 @@ def default_settings(scene: Scene, speed: float | None = None,
     return {"dt": float(dt), "n_elements": int(ne)}
 
 
+def frequency_mesh(scene: Scene, f_max: float) -> int:
+    """Rail elements of the frequency-domain track up to ``f_max`` [Hz] (what ``trackwheel
+    receptance`` and ``decay-rate`` use): whole elements per support bay, at least
+    ELEMENTS_PER_WAVELENGTH per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
+    (shear shortens the wavelength a little; ten leave room), no fewer than the scene's. Where
+    MAX_ELEMENTS caps the count, warns (:class:`MeshWarning`) and returns the most whole
+    elements per bay that fit."""
+    r, d = scene.rail, scene.supports.spacing
+    w = 2.0 * math.pi * max(f_max, 1.0)
+    wavelength = 2.0 * math.pi * (r.bending_stiffness / (r.mass_per_length * w * w)) ** 0.25
+    n_bays = max(round(r.length / d), 1)
+    n = max(n_bays * math.ceil(ELEMENTS_PER_WAVELENGTH * d / wavelength), r.n_elements)
+    if n <= MAX_ELEMENTS:
+        return n
+    n = max(MAX_ELEMENTS // n_bays, 1) * n_bays
+    warnings.warn(MeshWarning(
+        f"{n} elements ({MAX_ELEMENTS} at most) give fewer than ten per bending wavelength "
+        f"({wavelength:.3g} m) at {f_max:g} Hz"), stacklevel=2)
+    return n
+
+
 def warn_unresolved_mesh(scene: Scene, n_elements: int, stacklevel: int = 3) -> bool:
     """Warn (:class:`MeshWarning`) and return True if ``n_elements`` is below the number of
     support bays: then some bay holds no node, and the rail's bending between two supports -- the
@@ -162,9 +194,9 @@ def warn_unresolved_mesh(scene: Scene, n_elements: int, stacklevel: int = 3) -> 
 # --------------------------------------------------------------------------------------------
 # stability limits
 def _start_state(scene: Scene, ne: int, x0: float):
-    model = _kernel.rail_model(scene, ne)
-    wheel = _kernel.wheel_params(scene)
-    contact = _kernel.contact_params(scene)
+    model = kernel.rail_model(scene, ne)
+    wheel = kernel.wheel_params(scene)
+    contact = kernel.contact_params(scene)
     st = _core.static_solve(model, wheel, contact, x0)
     return model, wheel, contact, np.asarray(st["e"]), float(st["y_wheel"])
 
@@ -203,8 +235,7 @@ def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: i
     v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
     check_speed(speed)
     v.number("rho_inf", rho_inf, low=0.0, high=1.0)
-    ne = scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
+    ne = mesh(scene, n_elements)
     x0 = start_position(scene, x_start)
     if integrator == "generalized_alpha":
         return math.inf

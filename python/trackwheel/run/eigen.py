@@ -27,14 +27,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _core, _kernel
-from . import _validate as v
-from .scene import MAX_ELEMENTS, Scene
+from .. import _core
+from ..base import validate as v
+from ..base.limits import MAX_DENSE_EIGEN_DOF
+from ..scene import Scene
+from . import kernel
+from .defaults import mesh
 
 #: ``method="auto"`` solves problems with more coordinates than this by the sparse method [-]:
 #: below it the dense solve takes milliseconds and gives every mode.
 AUTO_SPARSE_DOF = 400
-MAX_DENSE_EIGEN_DOF = v.MAX_DENSE_EIGEN_DOF
 METHODS = ("auto", "dense", "sparse")
 #: Lanczos basis size (ARPACK's ncv, at least 2 n_modes + 1) and relative tolerance of the
 #: eigenvalues of the sparse method [-].
@@ -83,7 +85,7 @@ class EigenResult:
         i_pos = v.integer("i_pos", i_pos, low=-n_pos, high=n_pos - 1)
         mode = v.integer("mode", mode, low=0, high=n_avail - 1)
         n_points = v.integer("n_points", n_points, low=2, high=10**7)
-        model = _kernel.rail_model(self.scene, self.n_elements)
+        model = kernel.rail_model(self.scene, self.n_elements)
         vec = np.asarray(self.shapes[i_pos, :, mode])
         s = np.linspace(0.0, self.scene.rail.length, n_points)
         n_dof = model.n_dof
@@ -114,7 +116,7 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
-    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
     if scene.vehicle is not None:
         _dense_only(method)
         return _vehicle_eigen(scene, x, n_modes, model.n_nodes - 1, n_axial)
@@ -153,7 +155,7 @@ def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None =
     (``method`` as in :func:`eigen`)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n = n_y + (len(scene.support_positions) if scene.supports.layered else 0)
     sparse = _sparse(method, n)
@@ -173,15 +175,9 @@ def vertical_matrices(scene: Scene, *, n_elements: int | None = None):
     matrices the linear path integrates (docs: Model § Rail (linearised))."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
     d = _core.direction_pencil(model, 1)
     return (*(_csr(d, key) for key in ("M", "C", "K")), np.asarray(d["dofs"]))
-
-
-def _mesh(scene: Scene, n_elements) -> int:
-    if n_elements is None:
-        return scene.rail.n_elements
-    return v.integer("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
 
 
 def _sparse(method: str, n: int) -> bool:
@@ -250,49 +246,33 @@ def _sparse_modes(model, component: int, n_modes: int, wheel_mass: float = 0.0,
 def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: int
                    ) -> EigenResult:
     """:func:`eigen` for a vehicle: K q = omega^2 M q over [rail vertical coords, u, sleepers'
-    z_j (layered supports)]."""
+    z_j (layered supports)], every block from the kernel: the track's vertical pencil (rail,
+    supports, sleepers), the vehicle's suspension matrices, and the wheels' linearised contact
+    springs k coupling Y_A to the rail through its shape functions at each wheel."""
     from scipy.linalg import eigh
 
     veh = scene.active_vehicle
-    model = _kernel.rail_model(scene, ne)
+    model = kernel.rail_model(scene, ne)
     rear, front = veh.span
     if x.min() + rear < 0.0 or x.max() + front > scene.rail.length:
         raise ValueError(f"positions: the vehicle's wheels span x = {rear}..{front} m, so its "
                          f"reference must lie in [{-rear:.4g}, {scene.rail.length - front:.4g}] m")
-    free = np.asarray(model.free_to_full)
-    n_sleepers = len(scene.support_positions) if scene.supports.layered else 0
-    _check_dense(int(np.sum(free % 2 == 1)) + veh.n_wheels + 2 * veh.n_bodies + n_sleepers)
-    e0 = model.reference()
-    Kr = np.asarray(model.tangent_dense(e0))
-    Mr = np.asarray(model.mass_dense())
-    vert = free[free % 2 == 1]  # y and dy/ds: the straight rail's vertical coordinates
-    nr, nw, nb = vert.size, veh.n_wheels, veh.n_bodies
-    vm = _vehicle_matrices(scene)
-    Ks, Ms, Ss = _sleeper_blocks(scene, model, e0, vert)
-    ns = Ms.shape[0]
-    n_modes = v.integer("n_modes", n_modes, low=1, high=nr + nw + 2 * nb + ns)
+    K0, M0, vert, nu = _vehicle_pencil(scene, model)
+    nr, nw, n = vert.size, veh.n_wheels, K0.shape[0]
+    n_modes = v.integer("n_modes", n_modes, low=1, high=n)
     kc = scene.contact_stiffness
-    nu = nw + 2 * nb
-    n = nr + nu + ns
+    e0 = model.reference()
     freqs, shapes, frac = [], [], []
     for x0 in x:
         S = _couplings(model, e0, vert, [x0 + p for p in veh.positions])  # (nw, nr)
-        K = np.zeros((n, n))
-        M = np.zeros((n, n))
-        K[:nr, :nr] = Kr[np.ix_(vert, vert)] + kc * S.T @ S
-        M[:nr, :nr] = Mr[np.ix_(vert, vert)]
+        K = K0.copy()
+        K[:nr, :nr] += kc * S.T @ S
         K[:nr, nr:nr + nw] = -kc * S.T
         K[nr:nr + nw, :nr] = -kc * S
-        K[nr:nr + nu, nr:nr + nu] += vm[0]
         K[nr:nr + nw, nr:nr + nw] += kc * np.eye(nw)
-        M[nr:nr + nu, nr:nr + nu] = np.diag(vm[1])
-        K[nr + nu:, nr + nu:] = Ks
-        M[nr + nu:, nr + nu:] = Ms
-        K[:nr, nr + nu:] = Ss.T
-        K[nr + nu:, :nr] = Ss
-        w2, vec = eigh(K, M, subset_by_index=(0, n_modes - 1))
+        w2, vec = eigh(K, M0, subset_by_index=(0, n_modes - 1))
         freqs.append(np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi))
-        kin = vec * (M @ vec)
+        kin = vec * (M0 @ vec)
         frac.append(kin[nr + nw:nr + nu].sum(axis=0) / kin.sum(axis=0))
         full = np.zeros((model.n_dof + n - nr, n_modes))
         full[vert] = vec[:nr]
@@ -302,46 +282,29 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
              else np.empty(0))
     return EigenResult(scene=scene, positions=x, frequencies=np.asarray(freqs),
                        shapes=np.asarray(shapes), axial_frequencies=axial, n_elements=ne,
-                       n_vehicle=nw + 2 * nb, body_fraction=np.asarray(frac))
+                       n_vehicle=nu, body_fraction=np.asarray(frac))
 
 
-def _sleeper_blocks(scene: Scene, model, e0, vert) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The layered supports' blocks over the sleepers' z_j (docs: Model § Layered supports):
-    K_zz = (k_p + k_b) I, M_zz = m_s I and the coupling K_zr = -k_p s(x_j) to the rail's
-    vertical coordinates (the pads' k_p s s^T to ground is already in the rail's tangent).
-    Empty without sleepers."""
-    sp = scene.supports
-    if not sp.layered:
-        return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, vert.size))
-    xs = scene.support_positions
-    ns = len(xs)
-    Ks = (sp.stiffness + sp.ballast_stiffness) * np.eye(ns)
-    return Ks, sp.sleeper_mass * np.eye(ns), -sp.stiffness * _couplings(model, e0, vert, xs)
-
-
-def _vehicle_matrices(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
-    """(K_v, mass diagonal over u) of the scene's vehicle, u = [Y per wheel, (z, phi) per
-    body]: K_v = sum k g g^T over the suspensions (docs: Model § The vehicle); the wheels'
-    masses on the wheels' entries."""
+def _vehicle_pencil(scene: Scene, model) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """(K, M, vert, n_u): the dense pencil of the track and the vehicle without the contact
+    springs, over [rail vertical coordinates (full indices ``vert``), u (n_u = n_wheels +
+    2 n_bodies), sleepers' z_j]: the kernel's vertical track pencil (``direction_pencil``: the
+    rail, its supports and sleepers at the straight reference) and its vehicle matrices."""
     veh = scene.active_vehicle
-    vp = _kernel.vehicle_params(scene)
-    nw = veh.n_wheels
-    n = nw + 2 * len(vp.bodies)
-    K = np.zeros((n, n))
-    for sp in vp.suspensions:
-        g = np.zeros(n)
-        g[nw + 2 * sp.upper_body] += 1.0
-        g[nw + 2 * sp.upper_body + 1] += sp.upper_arm
-        if sp.lower_wheel >= 0:
-            g[sp.lower_wheel] -= 1.0
-        else:
-            g[nw + 2 * sp.lower_body] -= 1.0
-            g[nw + 2 * sp.lower_body + 1] -= sp.lower_arm
-        K += sp.stiffness * np.outer(g, g)
-    mass = [w.mass for w in veh.wheels]
-    for b in vp.bodies:
-        mass += [b.mass, b.inertia]
-    return K, np.asarray(mass)
+    d = _core.direction_pencil(model, 1)
+    vert = np.asarray(d["dofs"])
+    nr, nt = vert.size, d["n"]
+    nu = veh.n_wheels + 2 * veh.n_bodies
+    _check_dense(nt + nu)
+    Kv, mv = kernel.vehicle_matrices(scene)
+    n = nt + nu
+    track = np.r_[0:nr, nr + nu:n]  # the track's rows in the assembled order
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    K[np.ix_(track, track)] = _csr(d, "K").toarray()
+    M[np.ix_(track, track)] = _csr(d, "M").toarray()
+    K[nr:nr + nu, nr:nr + nu] = Kv
+    M[nr:nr + nu, nr:nr + nu] = np.diag(mv)
+    return K, M, vert, nu
 
 
 def _couplings(model, e0, vert, xs) -> np.ndarray:

@@ -27,13 +27,15 @@ import math
 
 import numpy as np
 
-from . import _core, _kernel
-from . import _validate as v
-from .scene import MAX_ELEMENTS, Scene
+from .. import _core
+from ..base import validate as v
+from ..scene import Scene
+from . import kernel
+from .defaults import mesh
 
 __all__ = ["EN15461_SPANS", "ISO3095_BANDS", "ISO3095_VERTICAL_LIMIT", "band_decay_rates",
-           "decay_rate", "decay_rate_limit", "decay_rate_positions", "en15461_decay", "iso3095_band_edges",
-           "receptance"]
+           "decay_rate", "decay_rate_limit", "decay_rate_positions", "en15461_decay",
+           "iso3095_band_edges", "receptance", "receptance_points"]
 
 #: The EN 15461 measurement positions as distances from the excitation point (the middle of a
 #: sleeper bay), in support spacings (EN 15461:2008+A1:2010, 6.7 and Figure 2): every quarter
@@ -70,11 +72,6 @@ def _freqs(freqs) -> np.ndarray:
     return f
 
 
-def _mesh(scene: Scene, n_elements) -> int:
-    return scene.rail.n_elements if n_elements is None else v.integer(
-        "n_elements", n_elements, low=1, high=MAX_ELEMENTS)
-
-
 def receptance(scene: Scene, x: float, freqs, x_response=None, *,
                n_elements: int | None = None) -> np.ndarray:
     """Receptance of the track [m/N]: rail displacement at ``x_response`` [m] per unit vertical
@@ -101,10 +98,22 @@ def receptance(scene: Scene, x: float, freqs, x_response=None, *,
         xr = np.array([v.number("x_response", x_response, low=0.0, high=L, unit="m")])
     else:
         xr = v.positions("x_response", x_response, 0.0, L)
-    model = _kernel.rail_model(scene, _mesh(scene, n_elements))
-    a = np.asarray(_core.receptance(model, _kernel.beam_params(scene), x, xr.tolist(),
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    a = np.asarray(_core.receptance(model, kernel.beam_params(scene), x, xr.tolist(),
                                     f.tolist()))
     return a[:, 0] if scalar else a
+
+
+def receptance_points(scene: Scene) -> dict[str, float]:
+    """The excitation points [m] near the rail's middle where a track's receptance is usually
+    shown: ``"mid-span"`` (the middle of the bay nearest the rail's middle) and ``"above a
+    support"`` (the support nearest the middle; left out on a rail without supports)."""
+    pos = np.asarray(_check_scene(scene).support_positions)
+    if pos.size == 0:
+        return {"mid-span": 0.5 * scene.rail.length}
+    j = int(np.argmin(np.abs(pos - 0.5 * scene.rail.length)))
+    nxt = pos[j + 1] if j + 1 < pos.size else scene.rail.length
+    return {"mid-span": 0.5 * (pos[j] + nxt), "above a support": float(pos[j])}
 
 
 def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:

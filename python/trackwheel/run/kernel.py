@@ -1,33 +1,22 @@
-"""Translate a :class:`~trackwheel.scene.Scene` into the C++ kernel's parameter structs.
+"""Translate a :class:`~trackwheel.Scene` into the C++ kernel's parameter structs, and read
+the kernel's vehicle matrices back.
 
-The kernel's ``RailModel`` is immutable; it is built once per (scene, mesh) and cached.
+The kernel's ``RailModel`` is immutable; it is built once per (scene, mesh) and cached. The
+rail profile and the wheel's out-of-roundness it carries are built in :mod:`.profile`.
+
+A documented internal module: tests and benchmarks build kernel objects through it
+(``trackwheel.run.kernel.rail_model(scene, n_elements)``).
 """
 
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 
 import numpy as np
 
-from . import _core
-from .scene import Scene
-
-#: The kernel interpolates the rail profile by a cubic spline through samples X_i = i dx over
-#: the whole rail, dx at most PROFILE_DX [m] and at most 1/PROFILE_POINTS_PER_WAVELENGTH of the
-#: profile's shortest wavelength: the spline's error is ~(2 pi dx / lambda)^4 / 384 < 2e-6 of
-#: the amplitude, and a joint's cusp is rounded over about 1 mm only.
-PROFILE_DX = 1e-3
-PROFILE_POINTS_PER_WAVELENGTH = 40
-#: The wheel's out-of-roundness reaches the kernel the same way, as a periodic cubic spline
-#: through samples every WHEEL_ARC_STEP [m] of its circumference (rounding a new flat's corners
-#: over about that arc).
-WHEEL_ARC_STEP = 5e-4
-#: A rail profile of more than STREAM_MIN_CHUNKS spline chunks is streamed into the kernel,
-#: which keeps its chunks STREAM_RETENTION [m] (or four vehicle spans) behind the furthest X
-#: read (:func:`profile`).
-STREAM_MIN_CHUNKS = 3
-STREAM_RETENTION = 200.0
+from .. import _core
+from ..scene import Scene
+from . import profile
 
 
 @lru_cache(maxsize=64)
@@ -66,7 +55,7 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
         s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
         s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
-    return _core.RailModel(p, s, profile(scene, profile_end, profile_shift))
+    return _core.RailModel(p, s, profile.rail_profile(scene, profile_end, profile_shift))
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:
@@ -76,79 +65,6 @@ def beam_params(scene: Scene) -> _core.BeamParams:
         b.shear_stiffness = scene.rail.shear_stiffness
         b.rotary_inertia = scene.rail.rotary_inertia
     return b
-
-
-def profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> _core.Profile:
-    """The scene's rail profile as the kernel's piecewise cubic over [0, L] (or [0, ``end``]
-    [m]; none: empty), patch-filtered if ``scene.contact.patch_filter``, as a function of
-    X - ``shift`` [m].
-
-    A table of more than STREAM_MIN_CHUNKS chunks of SPLINE_CHUNK intervals (a travelling
-    window's run over hundreds of metres) is streamed: the kernel draws its chunks as the
-    vehicle advances and keeps those within :func:`stream_retention` behind the leading
-    wheel, so its memory does not grow with the distance.
-
-    Raises ValueError where the profile curves upwards more sharply than the wheel (r'' >=
-    1/rho0, e.g. a dipped joint's cusp): the wheel would bridge the dip on two points, which
-    the single contact point of the model cannot represent. A streamed profile raises it
-    where the run reaches the chunk that holds the point.
-    """
-    irr = scene.irregularity
-    if irr is None or not irr.parts:
-        return _core.Profile()
-    from . import irregularity
-
-    dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
-    end = scene.rail.length if end is None else end
-    if scene.contact.patch_filter:
-        x0, h, c, worst, at = _filtered_table(irr, end, dx, irregularity.contact_half_width(scene))
-        _check_curvature(scene, worst, at)
-        return _core.Profile(x0 - shift, h, c)
-    x0, h, n = irr.spline_grid(0.0, end, dx)
-    chunk = irregularity.SPLINE_CHUNK  # read here: tests shrink it
-
-    def chunks():
-        for _, c, worst, at in irr.spline_chunks(0.0, end, dx, chunk=chunk):
-            _check_curvature(scene, worst, at)
-            yield c
-            del c  # the kernel has copied it
-
-    if n - 1 > STREAM_MIN_CHUNKS * chunk:
-        return _core.Profile(x0 - shift, h, n - 1, chunks, stream_retention(scene))
-    # chunk by chunk into the kernel: no whole-table array in Python
-    return _core.Profile(x0 - shift, h, n - 1, chunks())
-
-
-def stream_retention(scene: Scene) -> float:
-    """How far behind the furthest X read a streamed profile keeps its chunks [m]: the
-    vehicle's span (its rear wheels read that far behind the leading one) four times over,
-    at least STREAM_RETENTION; the contact point never moves back by more than a rail
-    deflection's slope times the span."""
-    behind, ahead = scene.active_vehicle.span
-    return max(STREAM_RETENTION, 4.0 * (ahead - behind))
-
-
-def _check_curvature(scene: Scene, worst: float, at: float) -> None:
-    if worst >= 1.0 / scene.wheel.radius:
-        raise ValueError(
-            f"Scene.irregularity curves upwards by {worst:.3g} 1/m at X = {at:.4g} m, more "
-            f"than the wheel's 1/rho0 = {1 / scene.wheel.radius:.3g} 1/m: the wheel would "
-            "bridge it on two points, which one contact point cannot represent; allowed: "
-            "r'' < 1/rho0 (round the profile, or set Contact(patch_filter=True) to average it "
-            "over the contact patch)")
-
-
-def _filtered_table(irr, end: float, dx: float, half_width: float):
-    """:meth:`Irregularity.spline_table`'s tuple for the patch-filtered profile, the spline
-    through all samples at once (the filter's running integral spans the whole table)."""
-    from scipy.interpolate import CubicSpline
-
-    x0, h, r = irr.table(0.0, end, dx, half_width=half_width)
-    x = x0 + h * np.arange(r.size)
-    spline = CubicSpline(x, r)
-    curvature = spline(x, 2)
-    worst = int(np.argmax(curvature))
-    return x0, h, spline.c, float(curvature[worst]), float(x[worst])
 
 
 def wheel_params(scene: Scene) -> _core.WheelParams:
@@ -161,7 +77,7 @@ def wheel_params(scene: Scene) -> _core.WheelParams:
     p.torque = w.torque
     p.brake_torque = w.brake_torque
     p.gravity = scene.gravity
-    p.out_of_round = out_of_round(scene)
+    p.out_of_round = profile.out_of_round(scene)
     return p
 
 
@@ -183,7 +99,7 @@ def wheels_params(scene: Scene) -> list:
         p.brake_torque = w.brake_torque
         p.gravity = scene.gravity
         p.x_offset = x
-        p.out_of_round = _out_of_round(w.defects, w.radius)
+        p.out_of_round = profile.defects_profile(w.defects, w.radius)
         out.append(p)
     return out
 
@@ -234,32 +150,6 @@ def _spring(k, c, upper, upper_arm, *, lower_wheel=-1, lower_body=-1):
     return s
 
 
-def out_of_round(scene: Scene) -> _core.Profile:
-    """The wheel's defects summed as the kernel's periodic piecewise cubic Delta rho(psi) over
-    one revolution (round wheel: empty)."""
-    return _out_of_round(scene.wheel.defects, scene.wheel.radius)
-
-
-@lru_cache(maxsize=64)
-def _out_of_round(defects: tuple, rho0: float) -> _core.Profile:
-    # cached: wheel_params is built several times per run (start, step, kernel call) and for
-    # every static solve, and the spline is the same each time
-    if not defects:
-        return _core.Profile()
-    from scipy.interpolate import CubicSpline
-
-    n = max(64, math.ceil(2.0 * math.pi * rho0 / WHEEL_ARC_STEP))
-    drho = sum(d.table(rho0, n)[2] for d in defects)
-    psi = 2.0 * math.pi * np.arange(n + 1) / n
-    spline = CubicSpline(psi, np.append(drho, drho[0]), bc_type="periodic")
-    return _core.Profile(0.0, 2.0 * math.pi / n, spline.c)
-
-
-def radius_change_at_start(scene: Scene) -> float:
-    """Delta rho [m] at psi = 0, where the wheel stands at the start (theta = 0)."""
-    return float(sum(d.delta_rho(0.0, scene.wheel.radius) for d in scene.wheel.defects))
-
-
 def contact_params(scene: Scene) -> _core.ContactParams:
     c = scene.contact
     p = _core.ContactParams()
@@ -273,3 +163,30 @@ def contact_params(scene: Scene) -> _core.ContactParams:
     p.radius = scene.wheel.radius
     p.friction = c.friction
     return p
+
+
+def vehicle_matrices(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """(K_v [N/m], mass diagonal over u) of the scene's vehicle, u = [Y per wheel, (z, phi)
+    per body], from the kernel (``vehicle.hpp``: K_v = sum k g g^T over the suspensions, the
+    bodies' masses and pitch inertias), with the wheels' masses on the wheels' entries (the
+    kernel keeps those with the wheels)."""
+    veh = scene.active_vehicle
+    vm = _core.vehicle_matrices(vehicle_params(scene), veh.n_wheels)
+    mass = np.asarray(vm["mass"], dtype=float).copy()
+    mass[:veh.n_wheels] = [w.mass for w in veh.wheels]
+    return np.asarray(vm["K"]), mass
+
+
+def static_bodies(scene: Scene, y_wheels, gravity: float | None = None) -> np.ndarray:
+    """[z_0, phi_0, z_1, phi_1, ...] [m, rad] of the vehicle's bodies (the bogies, then the car
+    body) in static equilibrium above wheel centres held at heights ``y_wheels`` [m], from the
+    kernel: the bodies' rows of K_v u = -G, each spring compressed by its static force (z = 0
+    where every spring is unstretched). ``gravity`` [m/s^2] on the bodies (None: the scene's;
+    0: only the bogies' constant pivot loads act); empty without bodies."""
+    vp = vehicle_params(scene)
+    if gravity is not None:
+        bodies = list(vp.bodies)
+        for b in bodies:
+            b.gravity = gravity
+        vp.bodies = bodies
+    return np.asarray(_core.static_bodies(vp, np.asarray(y_wheels, dtype=float)))

@@ -1,49 +1,91 @@
-"""What a run returns: :class:`RunSettings` (the settings it used) and :class:`Result`.
+"""What the kernel returns, as tables defined once: :class:`RunSettings` (the settings a run
+used), :class:`Result` (a run) and the static solution's fields.
 
-The kernel returns a dict of named arrays, one per row of its output table
-(:data:`OUTPUT_FIELDS`, defined once in ``cpp/output.cpp``): that table defines Result's array
-fields, their documentation and the output-size estimate, and :func:`result_from_kernel` is the
-only place that turns the dict into a :class:`Result`. Adding an output is one row in C++.
+- :data:`OUTPUT_FIELDS`: the kernel's output table, one row per recorded array (defined once in
+  ``cpp/output.cpp``): Result's array fields, their documentation and the output-size estimate;
+  :func:`result_from_kernel` is the only place that turns the kernel's dict into a Result.
+  Adding an output is one row in C++.
+- :data:`SETTINGS_FIELDS`: RunSettings' fields with their units (the sweep tables' settings
+  columns take theirs from here).
+- :data:`STATIC_FIELDS`: the fields of a static solution (``trackwheel.static``,
+  ``quasi_static``, the vehicle's static state), with the kernel's key of each;
+  :func:`static_from_kernel` reads them from the kernel's dict.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
-from . import _core
-from .scene import Scene
+from .. import _core
+from ..base.fields import Quantity, dataclass_fields, generated_doc
+from ..scene import Scene
 
-__all__ = ["OUTPUT_FIELDS", "Result", "RunSettings", "result_from_kernel", "sample_bytes"]
+__all__ = ["OUTPUT_FIELDS", "SETTINGS_FIELDS", "STATIC_FIELDS", "Result", "RunSettings",
+           "result_from_kernel", "sample_bytes", "static_from_kernel"]
 
 #: The kernel's output table, one row per recorded field: (name, unit, doc, per_wheel, dtype).
 OUTPUT_FIELDS: tuple[tuple[str, str, str, bool, str], ...] = tuple(
     tuple(f) for f in _core.OUTPUT_FIELDS)
 
+#: The settings a run used, after its defaults were resolved: the fields of RunSettings.
+SETTINGS_FIELDS: tuple[Quantity, ...] = (
+    Quantity("integrator", "", '"generalized_alpha" or "explicit"', "str"),
+    Quantity("dt", "s", "time step", "float"),
+    Quantity("n_elements", "", "rail elements", "int"),
+    Quantity("speed", "m/s", "forward speed v", "float"),
+    Quantity("x_start", "m", "wheel-centre start X_0", "float"),
+    Quantity("t_end", "s", "simulated time, steps x dt", "float"),
+    Quantity("output_every", "", "one kept sample every this many steps", "int"),
+    Quantity("rho_inf", "-", "generalized-alpha spectral radius at infinite frequency", "float"),
+    Quantity("baumgarte", "1/s", "Baumgarte alpha of the explicit scheme (0: off)", "float"),
+    Quantity("rolling", "", "rolling constraint with slip (False: frictionless, or a linear "
+             "level)", "bool"),
+    Quantity("start", "", '"static" or "sudden"', "str"),
+    Quantity("drop_height", "m", "height the wheel was lifted above its start", "float"),
+    Quantity("fidelity", "", "model level, one of trackwheel.FIDELITY_LEVELS", "str",
+             default="full"),
+    Quantity("n_modes", "", "modes of the linear levels' modal path (None: all coordinates)",
+             "int | None", default=None),
+)
 
-@dataclass(frozen=True)
-class RunSettings:
-    """The settings a :func:`trackwheel.simulate` run used, after defaults were resolved.
+#: The fields of a static solution with the wheel at rest, and the kernel's key of each
+#: (``static_solve``'s dict): every static result class is built from this table.
+STATIC_FIELDS: tuple[Quantity, ...] = (
+    Quantity("y_wheel", "m", "Y_A, wheel-centre height"),
+    Quantity("contact_s", "m", "s*, rail coordinate of the contact point"),
+    Quantity("y_contact", "m", "y_B = y(s*), rail displacement under the wheel (negative = "
+             "down)"),
+    Quantity("normal_force", "N", "N, the contact force (equals the static wheel load)"),
+    Quantity("iterations", "", "Newton iterations", "int"),
+    Quantity("rail_coordinates", "", "ANCF coordinates e, (4 (n_e + 1),) [m, m, -, -]",
+             "np.ndarray"),
+    Quantity("sleeper_z", "m", "layered supports: sleeper heights z_j (negative = down), one "
+             "per support; else empty", "np.ndarray", factory=lambda: np.empty(0)),
+    Quantity("ballast_force", "N", "layered supports: ballast force under each sleeper, "
+             "-k_b z_j (positive = compression); their sum is the wheel loads plus the weight "
+             "of rail and sleepers on them; else empty", "np.ndarray",
+             factory=lambda: np.empty(0)),
+)
+#: the kernel's key of a static field where it differs from the field's name
+_STATIC_KEYS = {"rail_coordinates": "e"}
 
-    Item access (``settings["dt"]``) works too, for code written when this was a dict.
-    """
 
-    integrator: str  #: "generalized_alpha" or "explicit"
-    dt: float  #: time step [s]
-    n_elements: int  #: rail elements [-]
-    speed: float  #: forward speed v [m/s]
-    x_start: float  #: wheel-centre start X_0 [m]
-    t_end: float  #: simulated time, steps x dt [s]
-    output_every: int  #: one kept sample every this many steps [-]
-    rho_inf: float  #: generalized-alpha spectral radius at infinite frequency [-]
-    baumgarte: float  #: Baumgarte alpha of the explicit scheme [1/s] (0: off)
-    rolling: bool  #: rolling constraint with slip (False: frictionless, or a linear level)
-    start: str  #: "static" or "sudden"
-    drop_height: float  #: height the wheel was lifted above its start [m]
-    fidelity: str = "full"  #: model level, one of trackwheel.FIDELITY_LEVELS
-    n_modes: int | None = None  #: modes of the linear levels' modal path (None: all coordinates)
+def static_from_kernel(d: dict, names) -> dict:
+    """The static fields ``names`` (names of :data:`STATIC_FIELDS`) read from the kernel's
+    ``static_solve`` dict ``d``: the arrays as numpy arrays, the scalars as they are."""
+    kinds = {q.name: q.kind for q in STATIC_FIELDS}
+    out = {}
+    for name in names:
+        value = d[_STATIC_KEYS.get(name, name)]
+        out[name] = np.asarray(value) if kinds[name] == "np.ndarray" else value
+    return out
+
+
+class _SettingsMethods:
+    """Derived views of :class:`RunSettings`."""
 
     @property
     def x_end(self) -> float:
@@ -63,6 +105,13 @@ class RunSettings:
 
     def asdict(self) -> dict:
         return dataclasses.asdict(self)
+
+
+RunSettings = dataclasses.make_dataclass(
+    "RunSettings", dataclass_fields(SETTINGS_FIELDS), bases=(_SettingsMethods,), frozen=True,
+    namespace={"__module__": __name__, "__doc__": generated_doc(
+        "The settings a :func:`trackwheel.simulate` run used, after defaults were resolved "
+        "(item access, ``settings[\"dt\"]``, works too):", SETTINGS_FIELDS)})
 
 
 class _ResultMethods:

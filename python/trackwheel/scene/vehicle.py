@@ -21,8 +21,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from . import _validate as v
-from .scene import Wheel
+from ..base import validate as v
+from .wheel import Wheel
 
 
 @dataclass(frozen=True)
@@ -258,46 +258,6 @@ def _huo_dai_bogie(wheels, centre, load) -> Bogie:
     return Bogie(wheels=wheels, centre=centre, mass=0.5 * p["bogie_mass"],
                  pitch_inertia=0.5 * p["bogie_pitch_inertia"], primary_stiffness=p["k1"],
                  primary_damping=p["c1"], load=load)
-
-
-def suspension_forces(vehicle: Vehicle, gravity: float) -> tuple[tuple[float, ...], ...]:
-    """Static compressive forces [N]: (primary per wheel of each bogie, in bogie order; the
-    secondary per bogie, empty without a car body)."""
-    loads = vehicle.static_loads(gravity)
-    primary = tuple(loads[w] - vehicle.wheels[w].mass * gravity
-                    for b in vehicle.bogies for w in b.wheels)
-    secondary = vehicle.pivot_loads(gravity) if vehicle.car is not None else ()
-    return primary, secondary
-
-
-def _solve_body(points, heights) -> tuple[float, float]:
-    """(z, phi) of a body from the heights [m] of its points at arms ``points`` [m] (one point:
-    phi = 0; two: the line through them)."""
-    if len(points) == 1:
-        return heights[0], 0.0
-    (a1, a2), (h1, h2) = points, heights
-    phi = (h2 - h1) / (a2 - a1)
-    return h1 - a1 * phi, phi
-
-
-def static_bodies(vehicle: Vehicle, gravity: float, y_wheels) -> list[float]:
-    """[z_0, phi_0, z_1, phi_1, ...] of the bodies (bogies, then the car) in static equilibrium
-    above the wheel centres at heights ``y_wheels`` [m]: each spring compressed by its static
-    force, d = z + a phi - y_lower = -F / k (z = 0 where every spring is unstretched)."""
-    loads = vehicle.static_loads(gravity)
-    out: list[float] = []
-    for b in vehicle.bogies:
-        arms = [vehicle.positions[w] - b.centre for w in b.wheels]
-        heights = [y_wheels[w] - (loads[w] - vehicle.wheels[w].mass * gravity)
-                   / b.primary_stiffness for w in b.wheels]
-        out += _solve_body(arms, heights)
-    if vehicle.car is not None:
-        c = vehicle.car
-        arms = [b.centre - c.centre for b in vehicle.bogies]
-        heights = [out[2 * j] - F / c.secondary_stiffness
-                   for j, F in enumerate(vehicle.pivot_loads(gravity))]
-        out += _solve_body(arms, heights)
-    return out
 
 
 def rigid_track_frequencies(vehicle: Vehicle) -> dict[str, float]:

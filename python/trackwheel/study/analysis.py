@@ -22,17 +22,25 @@ sampled signal. Everything is vectorised numpy.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import dataclasses
 from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial import chebyshev
 
-from . import _validate as v
-from .force_statistics import P1_PERIOD, P2_PERIOD, ForceStatistics, result_statistics
-from .results import Result
-from .scene import Scene
-from .statics import linear_quasi_static, quasi_static
+from ..base import validate as v
+from ..base.fields import dataclass_fields, generated_doc
+from .columns import ANALYSIS_FIELDS, OUTPUTS
+from .force_statistics import (  # ForceStatistics: the annotation of Analysis.forces
+    P1_PERIOD,
+    P2_PERIOD,
+    ForceStatistics,  # noqa: F401
+    result_statistics,
+)
+from ..run.results import Result
+from ..scene import Scene
+from ..run.statics import linear_quasi_static, quasi_static
+from .steady import from_time, steady_state
 
 __all__ = [
     "QS_DEGREE",
@@ -198,34 +206,8 @@ def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: boo
 
 
 # --------------------------------------------------------------------------------------------
-@dataclass(frozen=True, eq=False)
-class Analysis:
-    """The measured vibration of one run (docs: Model § Outputs). Arrays have shape (n_samples,)."""
-
-    t: np.ndarray  #: time [s]
-    x_wheel: np.ndarray  #: X_A, wheel-centre position [m]
-    y_contact: np.ndarray  #: y_B, rail displacement under the wheel [m]
-    y_qs: np.ndarray  #: quasi-static line y_qs(X_A(t)) [m]
-    dynamic: np.ndarray  #: d = y_B - y_qs(X_A) [m]
-    amplitude: float  #: max |d| [m]
-    amplitude_time: float  #: time of max |d| [s]
-    main_frequency: float  #: peak of the amplitude spectrum of d [Hz] (NaN if none)
-    frequency_resolution: float  #: 1 / (N dt) of the record [Hz]
-    spectrum: tuple[np.ndarray, np.ndarray]  #: (freqs [Hz], amplitude of d [m]), see below
-    n_fft: int  #: FFT length used (zero padding included)
-    y_qs_error: float  #: estimated interpolation error of y_qs [m] (see QS_DEGREE)
-    normal_force: np.ndarray  #: N [N]
-    min_contact_force: float  #: min N [N]
-    max_contact_force: float  #: max N [N]
-    lost_contact: bool  #: N = 0 at some kept sample
-    acc_contact: np.ndarray  #: d2 y_B/dt2 [m/s^2]
-    acc_A: np.ndarray  #: rho cos(phi) theta' v phi_s [m/s^2] (docs: Model § Outputs, eq. 21)
-    acc_B: np.ndarray  #: rho cos(phi) theta' phi_t [m/s^2]
-    acc_C: np.ndarray  #: rho cos(phi) v^2 phi_s^2 [m/s^2]
-    acc_D: np.ndarray  #: rho cos(phi) phi_t^2 [m/s^2]
-    acc_E: np.ndarray  #: 2 rho cos(phi) phi_t v phi_s [m/s^2]
-    #: contact-force statistics of N (:func:`trackwheel.force_statistics.force_statistics`)
-    forces: ForceStatistics
+class _AnalysisMethods:
+    """Derived views of an :class:`Analysis`."""
 
     def __repr__(self) -> str:
         return (f"<trackwheel.Analysis: {self.t.size} samples, "
@@ -255,9 +237,49 @@ class Analysis:
         return self.forces.loss_duration
 
     @property
+    def force_rms(self) -> float:
+        """RMS of N - mean(N) over the record [N]."""
+        return float(np.std(self.normal_force))
+
+    @property
+    def p1(self) -> float:
+        """P1 [N] after the defect given to :func:`analyse` (NaN: none)."""
+        return self.forces.p1
+
+    @property
+    def p1_time(self) -> float:
+        """Time of P1 [s]."""
+        return self.forces.p1_time
+
+    @property
+    def p2(self) -> float:
+        """P2 [N] after the defect given to :func:`analyse` (NaN: none)."""
+        return self.forces.p2
+
+    @property
+    def p2_time(self) -> float:
+        """Time of P2 [s]."""
+        return self.forces.p2_time
+
+    @property
     def sample_spacing(self) -> float:
         """dt of the record [s] (time step x output_every)."""
         return float(self.t[1] - self.t[0])
+
+    def outputs(self) -> dict:
+        """The scalar outputs (:data:`trackwheel.study.columns.OUTPUTS`) by column name, the
+        row a sweep table holds for this wheel."""
+        return {q.label: getattr(self, q.name) for q in OUTPUTS}
+
+
+_FIELD_NAMES = {q.name for q in ANALYSIS_FIELDS}
+Analysis = dataclasses.make_dataclass(
+    "Analysis", dataclass_fields(ANALYSIS_FIELDS), bases=(_AnalysisMethods,), frozen=True,
+    eq=False, repr=False, namespace={"__module__": __name__, "__doc__": "\n".join([
+        generated_doc("The measured vibration of one run (docs: Model § Outputs), from "
+                      ":func:`analyse`. Fields:", ANALYSIS_FIELDS), "",
+        "Derived outputs (properties):", "",
+        *(f"- {q.describe()}" for q in OUTPUTS if q.name not in _FIELD_NAMES)])})
 
 
 def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
@@ -309,14 +331,10 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
         raise ValueError(f"result has {result.n_wheels} wheels: give wheel = 0 .. "
                          f"{result.n_wheels - 1} (one Analysis per wheel)")
     if steady:
-        from .steady import steady_state
-
         if t_from is not None:
             raise ValueError("give t_from or steady=True, not both")
         t_from = steady_state(result).t_from
     if t_from is not None:
-        from .steady import from_time
-
         result = from_time(result, t_from)
     n = result.t.size
     if n < 4:

@@ -1,4 +1,4 @@
-"""Speed against accuracy: stability limits, derived defaults and automatic convergence (issue 6).
+"""Speed against accuracy: stability limits, derived defaults and automatic convergence.
 
 The stability limit and the derived defaults live in :mod:`trackwheel.defaults` (re-exported
 here); this module adds the automatic refinement.
@@ -24,9 +24,9 @@ import time as _time
 import warnings
 from dataclasses import dataclass, field
 
-from . import _validate as v
+from ..base import validate as v
 from .analysis import analyse
-from .defaults import (
+from ..run.defaults import (
     MeshWarning,
     StabilityWarning,
     check_speed,
@@ -35,9 +35,9 @@ from .defaults import (
     derived_mesh,
     stability_limit,
 )
-from .results import Result
-from .scene import MAX_ELEMENTS, Scene
-from .simulate import simulate
+from ..run.results import Result
+from ..scene import Scene
+from ..run.simulate import simulate
 
 __all__ = [
     "Convergence",
@@ -128,6 +128,51 @@ def _richardson(q_coarse: float, q_mid: float, q_fine: float, p: float, ratio: f
     return max(c_last, c_prev)
 
 
+class _Ladder:
+    """The runs of :func:`converged` at (dt, n_elements), each run once and remembered, and the
+    error estimate of a run from its coarser neighbours."""
+
+    def __init__(self, scene: Scene, speed: float, integrator: str, simulate_kwargs: dict):
+        self.scene, self.speed, self.integrator = scene, speed, integrator
+        self.kwargs = simulate_kwargs
+        self.runs: dict = {}  # (dt, n_elements) -> (Result, amplitude, main frequency)
+        self.history: list = []  # one dict per run, in the order they ran
+        self.spent = 0.0  # simulation wall time so far [s]
+
+    def cap(self, h: float, ne: int) -> float:
+        """``h`` [s], for "explicit" at most a quarter of the mesh's stability limit (4 h
+        stays stable)."""
+        if self.integrator == "explicit":
+            return min(h, 0.25 * stability_limit(self.scene, "explicit", n_elements=ne))
+        return h
+
+    def run(self, h: float, ne: int) -> tuple:
+        """(Result, amplitude [m], main frequency [Hz]) of the run at (h, ne)."""
+        key = (float(h), int(ne))
+        if key not in self.runs:
+            with warnings.catch_warnings():  # the n/4 estimation level may be below 1 per bay
+                warnings.simplefilter("ignore", MeshWarning)
+                r = simulate(self.scene, self.speed, integrator=self.integrator, dt=h,
+                             n_elements=ne, **self.kwargs)
+            amp, freq = headline(r)
+            self.spent += r.wall_time
+            self.runs[key] = (r, amp, freq)
+            self.history.append({"dt": h, "n_elements": ne, "amplitude": amp,
+                                 "main_frequency": freq, "wall_time": r.wall_time})
+        return self.runs[key]
+
+    def estimate(self, h: float, ne: int) -> tuple:
+        """((amplitude error, frequency error), dt part, mesh part) of the run at (h, ne)."""
+        q = [self.run(h * f, ne)[1:] for f in (4, 2, 1)]
+        e_dt = tuple(_richardson(q[0][k], q[1][k], q[2][k], ORDER[self.integrator], 2.0)
+                     for k in (0, 1))
+        n2, n4 = max(1, round(ne / 2)), max(1, round(ne / 4))
+        m = [self.run(h, n)[1:] for n in (n4, n2, ne)]
+        e_x = tuple(_richardson(m[0][k], m[1][k], m[2][k], MESH_ORDER, ne / n2)
+                    for k in (0, 1))
+        return (e_dt[0] + e_x[0], e_dt[1] + e_x[1]), max(e_dt), max(e_x)
+
+
 def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
               integrator: str = "generalized_alpha", dt: float | None = None,
               n_elements: int | None = None, max_refinements: int = 6,
@@ -172,53 +217,17 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
     simulate_kwargs.setdefault("output_every", 1)
     d = default_settings(scene, speed, integrator)
     h = d["dt"] if dt is None else v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
-    ne = d["n_elements"] if n_elements is None else v.integer("n_elements", n_elements, low=4,
-                                                               high=MAX_ELEMENTS)
-    explicit = integrator == "explicit"
-
-    def cap(h_, ne_):
-        if explicit:
-            return min(h_, 0.25 * stability_limit(scene, "explicit", n_elements=ne_))
-        return h_
-
-    runs: dict = {}
-    history: list = []
-    spent = [0.0]
+    ne = d["n_elements"] if n_elements is None else v.n_elements(n_elements, low=4)
+    ladder = _Ladder(scene, speed, integrator, simulate_kwargs)
     t_start = _time.perf_counter()
-
-    def run(h_, ne_):
-        key = (float(h_), int(ne_))
-        if key not in runs:
-            with warnings.catch_warnings():  # the n/4 estimation level may be below 1 per bay
-                warnings.simplefilter("ignore", MeshWarning)
-                r = simulate(scene, speed, integrator=integrator, dt=h_, n_elements=ne_,
-                             **simulate_kwargs)
-            amp, freq = headline(r)
-            spent[0] += r.wall_time
-            runs[key] = (r, amp, freq)
-            history.append({"dt": h_, "n_elements": ne_, "amplitude": amp, "main_frequency": freq,
-                                "wall_time": r.wall_time})
-        return runs[key]
-
-    def estimate(h_, ne_):
-        """((amp_err, freq_err), dt part, mesh part) of the run at (h_, ne_)."""
-        q = [run(h_ * f, ne_)[1:] for f in (4, 2, 1)]
-        e_dt = tuple(_richardson(q[0][k], q[1][k], q[2][k], ORDER[integrator], 2.0)
-                     for k in (0, 1))
-        n2, n4 = max(1, round(ne_ / 2)), max(1, round(ne_ / 4))
-        m = [run(h_, n)[1:] for n in (n4, n2, ne_)]
-        e_x = tuple(_richardson(m[0][k], m[1][k], m[2][k], MESH_ORDER, ne_ / n2)
-                    for k in (0, 1))
-        return (e_dt[0] + e_x[0], e_dt[1] + e_x[1]), max(e_dt), max(e_x)
-
     # Steps coarser than derived_dt (150 per period of the wheel on its contact spring) damp that
     # oscillation numerically and can look converged: on the paper's scene at 300 km/h the
     # levels 4e-5, 2e-5, 1e-5 s changed the amplitude at second order while it was 2.4e-3 off.
-    h = cap(min(h, derived_dt(scene)), ne)
+    h = ladder.cap(min(h, derived_dt(scene)), ne)
     moves = 0
     reason = ""
     while True:
-        err, e_dt, e_x = estimate(h, ne)
+        err, e_dt, e_x = ladder.estimate(h, ne)
         if max(err) < tol:
             ok = True
             break
@@ -226,16 +235,16 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
         if moves >= max_refinements:
             reason = f"max_refinements = {max_refinements} reached"
             break
-        h_new, ne_new = (h / 2, ne) if e_dt >= e_x else (cap(h, 2 * ne), 2 * ne)
-        last = runs[(float(h), int(ne))][0].wall_time
+        h_new, ne_new = (h / 2, ne) if e_dt >= e_x else (ladder.cap(h, 2 * ne), 2 * ne)
+        last = ladder.run(h, ne)[0].wall_time
         need = last * (ne_new / ne) * (h / h_new) * 1.75  # new run + its coarser neighbours
-        if spent[0] + need > max_wall_time:
+        if ladder.spent + need > max_wall_time:
             reason = (f"the next refinement (about {need:.3g} s of simulation) would exceed "
                       f"max_wall_time = {max_wall_time} s")
             break
         moves += 1
         h, ne = h_new, ne_new
-    r0, a0, f0 = runs[(float(h), int(ne))]
+    r0, a0, f0 = ladder.run(h, ne)
     if not ok:
         warnings.warn(ConvergenceWarning(
             f"converged(): budget exhausted before amplitude and main frequency reached "
@@ -245,4 +254,4 @@ def converged(scene: Scene, speed: float, *, tol: float = 1e-3,
     return Convergence(result=r0, dt=float(h), n_elements=int(ne), amplitude=a0,
                        main_frequency=f0, amplitude_error=float(err[0]),
                        frequency_error=float(err[1]), converged=ok, tol=tol,
-                       wall_time=_time.perf_counter() - t_start, history=history)
+                       wall_time=_time.perf_counter() - t_start, history=ladder.history)

@@ -1,4 +1,4 @@
-"""Model no more than a scene needs: fidelity levels side by side (issue 7).
+"""Model no more than a scene needs: fidelity levels side by side.
 
 :func:`adequacy` runs each level of :data:`trackwheel.simulate.FIDELITY_LEVELS` on the same scene
 and speeds, compares its headline outputs with the full model (nonlinear ANCF rail, the scene's
@@ -14,12 +14,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import _validate as v
+from ..base import validate as v
 from .analysis import analyse
-from .defaults import MAX_SPEED, default_settings
-from .irregularity import contact_half_width, filter_attenuation, filter_matters
-from .scene import Scene
-from .simulate import FIDELITY_LEVELS, simulate
+from .columns import ADEQUACY_COLUMNS, HEADLINE, SPEED, SPEED_KMH
+from ..run.defaults import MAX_SPEED, default_settings
+from ..excitation import contact_half_width, filter_attenuation, filter_matters
+from ..scene import Scene, Vehicle
+from ..run.simulate import FIDELITY_LEVELS, simulate
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
     import pandas as pd
@@ -27,7 +28,10 @@ if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import tra
 __all__ = ["VEHICLE_LEVELS", "adequacy", "pinned_pinned_frequencies", "recommend",
            "shear_judgement", "vehicle_adequacy", "vehicle_levels"]
 
-_HEADLINE = ("amplitude", "main_frequency", "peak_contact_force")
+_SPEED, _SPEED_KMH = SPEED.label, SPEED_KMH.label
+_HEAD = {q.name: q.label for q in HEADLINE}  # amplitude -> amplitude_m, ...
+_WALL, _LOST = ({q.name: q.label for q in ADEQUACY_COLUMNS}[n] for n in ("wall_time",
+                                                                         "lost_contact"))
 
 
 def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
@@ -35,11 +39,12 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
              shear: bool = True, **simulate_kwargs) -> pd.DataFrame:
     """Run the fidelity ``levels`` side by side at each of ``speeds`` [m/s].
 
-    Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude``
-    [m] (max |d|, docs: Model § Outputs), ``main_frequency`` [Hz] and ``peak_contact_force`` [N], their
+    Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude_m``
+    (max |d|, docs: Model § Outputs), ``main_frequency_hz`` and ``peak_contact_force_N``, their
     relative differences from the ``reference`` level (``d_amplitude``, ``d_main_frequency``,
-    ``d_peak_contact_force``), ``wall_time`` [s], ``adequate`` (all three differences <= tol)
-    and ``error`` (message if the level failed). ``df.attrs["recommended"]`` is the least
+    ``d_peak_contact_force``), ``wall_time_s``, ``adequate`` (all three differences <= tol)
+    and ``error`` (message if the level failed): the columns of
+    :data:`trackwheel.study.columns.ADEQUACY_COLUMNS`. ``df.attrs["recommended"]`` is the least
     detailed level adequate at every speed (:func:`recommend`); ``df.attrs["tol"]`` the tolerance.
     ``n_modes`` applies to the linear levels (None: all coordinates). All levels run on the same
     mesh and time step: ``simulate_kwargs``' ``dt``/``n_elements``, or else
@@ -84,8 +89,6 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     if "dt" not in simulate_kwargs and "n_elements" not in simulate_kwargs:
         simulate_kwargs = dict(simulate_kwargs, **defaults)
 
-    import pandas as pd  # lazily: keeps `import trackwheel` light
-
     rows = []
     for speed in speeds:
         ref = None
@@ -93,20 +96,11 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
             kw = dict(simulate_kwargs)
             if lv.startswith("linear/") and n_modes is not None:
                 kw["n_modes"] = n_modes
-            row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "level": lv, "error": ""}
-            try:
-                r = simulate(scene, float(speed), fidelity=lv, **kw)
-                row.update(_headline(r), wall_time=r.wall_time)
-            except (ValueError, RuntimeError) as exc:  # DivergenceError is a RuntimeError
-                row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
-                           wall_time=np.nan, lost_contact=False, error=str(exc))
-            if lv == reference:
-                ref = row
-            for key in _HEADLINE:
-                row["d_" + key] = abs(row[key] / ref[key] - 1.0) if ref[key] else np.nan
-            rows.append(row)
-    df = pd.DataFrame(rows)
-    df["adequate"] = (df[["d_" + k for k in _HEADLINE]] <= tol).all(axis=1) & (df.error == "")
+            row = _row(speed, "level", lv, lambda: simulate(scene, float(speed), fidelity=lv,
+                                                            **kw))
+            ref = row if lv == reference else ref
+            rows.append(_with_differences(row, ref))
+    df = _table(rows, tol, "level")
     df.attrs["tol"] = tol
     df.attrs["reference"] = reference
     df.attrs["recommended"] = recommend(df)
@@ -122,13 +116,46 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
 
 
 def _headline(r) -> dict:
-    """Headline outputs of a run; with several wheels those of the worst wheel (largest
-    amplitude max|d|; the peak force is the largest of any wheel)."""
+    """Headline outputs of a run by column; with several wheels those of the worst wheel
+    (largest amplitude max|d|; the peak force is the largest of any wheel)."""
     analyses = [analyse(r, wheel=i) for i in range(r.n_wheels)]
     worst = max(analyses, key=lambda a: a.amplitude)
-    return dict(amplitude=worst.amplitude, main_frequency=worst.main_frequency,
-                peak_contact_force=max(a.max_contact_force for a in analyses),
-                lost_contact=any(a.lost_contact for a in analyses))
+    return {_HEAD["amplitude"]: worst.amplitude, _HEAD["main_frequency"]: worst.main_frequency,
+            _HEAD["peak_contact_force"]: max(a.max_contact_force for a in analyses),
+            _LOST: any(a.lost_contact for a in analyses)}
+
+
+def _row(speed: float, key: str, value: str, run) -> dict:
+    """One row of a fidelity table: the speed [m/s], ``key`` = ``value`` (the level), the
+    headline outputs of ``run()`` and its wall time, or NaN and the error if it failed."""
+    row = {_SPEED: float(speed), _SPEED_KMH: float(speed) * 3.6, key: value, "error": ""}
+    try:
+        r = run()
+        row.update(_headline(r))
+        row[_WALL] = r.wall_time
+    except (ValueError, RuntimeError) as exc:  # DivergenceError is a RuntimeError
+        row.update({c: np.nan for c in _HEAD.values()})
+        row.update({_LOST: False, _WALL: np.nan, "error": str(exc)})
+    return row
+
+
+def _with_differences(row: dict, ref: dict) -> dict:
+    """``row`` with the relative differences d_<output> of its headline outputs from ``ref``."""
+    for name, column in _HEAD.items():
+        row["d_" + name] = abs(row[column] / ref[column] - 1.0) if ref[column] else np.nan
+    return row
+
+
+def _table(rows: list[dict], tol: float, key: str) -> pd.DataFrame:
+    """The fidelity table of ``rows`` (the columns of ADEQUACY_COLUMNS, ``level`` named
+    ``key``), ``adequate`` where every difference is <= tol and the run did not fail."""
+    import pandas as pd  # lazily: keeps `import trackwheel` light
+
+    columns = [key if q.name == "level" else q.label for q in ADEQUACY_COLUMNS
+               if q.name != "adequate"]
+    df = pd.DataFrame(rows, columns=columns)
+    df["adequate"] = (df[["d_" + n for n in _HEAD]] <= tol).all(axis=1) & (df.error == "")
+    return df
 
 
 #: vehicle levels of :func:`vehicle_adequacy`, least detailed first
@@ -142,8 +169,6 @@ def vehicle_levels(scene: Scene) -> dict:
     loads; only with a car body) and the vehicle as given ("half car" with a car body, else
     "bogie")."""
     from dataclasses import replace
-
-    from .vehicle import Vehicle
 
     veh = scene.active_vehicle
     g = scene.gravity
@@ -172,28 +197,17 @@ def vehicle_adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float 
     are in every level."""
     if not isinstance(scene, Scene) or scene.vehicle is None:
         raise ValueError("vehicle_adequacy needs a Scene with a vehicle (Scene(vehicle=...))")
-    import pandas as pd
-
     scenes = vehicle_levels(scene)
     full = list(scenes)[-1]
     rows = []
     for speed in np.atleast_1d(np.asarray(speeds, dtype=float)):
         ref = None
         for name in [full] + [n for n in scenes if n != full]:
-            row = {"speed": float(speed), "speed_kmh": float(speed) * 3.6, "vehicle": name,
-                   "error": ""}
-            try:
-                r = simulate(scenes[name], float(speed), **simulate_kwargs)
-                row.update(_headline(r), wall_time=r.wall_time)
-            except (ValueError, RuntimeError) as exc:
-                row.update(amplitude=np.nan, main_frequency=np.nan, peak_contact_force=np.nan,
-                           wall_time=np.nan, lost_contact=False, error=str(exc))
+            row = _row(speed, "vehicle", name,
+                       lambda: simulate(scenes[name], float(speed), **simulate_kwargs))
             ref = row if ref is None else ref
-            for key in _HEADLINE:
-                row["d_" + key] = abs(row[key] / ref[key] - 1.0) if ref[key] else np.nan
-            rows.append(row)
-    df = pd.DataFrame(rows)
-    df["adequate"] = (df[["d_" + k for k in _HEADLINE]] <= tol).all(axis=1) & (df.error == "")
+            rows.append(_with_differences(row, ref))
+    df = _table(rows, tol, "vehicle")
     ok = df.groupby("vehicle", sort=False)["adequate"].all()
     df.attrs["tol"] = tol
     df.attrs["recommended"] = next((n for n in VEHICLE_LEVELS if ok.get(n, False)), full)
@@ -222,16 +236,16 @@ def shear_judgement(scene: Scene, speeds, *, tol: float = 0.005, **simulate_kwar
     linear/hertz level over the speeds, "matters": any of them > tol}``."""
     f_e, f_t = pinned_pinned_frequencies(scene)
     out = {"pinned_pinned_euler": f_e, "pinned_pinned_timoshenko": f_t}
-    out.update({"d_" + k: 0.0 for k in _HEADLINE})
+    out.update({"d_" + k: 0.0 for k in _HEAD})
     for speed in np.atleast_1d(speeds):
         heads = []
         for beam in ("euler", "timoshenko"):
             sc = dataclasses.replace(scene, rail=dataclasses.replace(scene.rail, beam=beam))
             a = analyse(simulate(sc, float(speed), fidelity="linear/hertz", **simulate_kwargs))
             heads.append((a.amplitude, a.main_frequency, a.max_contact_force))
-        for key, e, t in zip(_HEADLINE, *heads):
+        for key, e, t in zip(_HEAD, *heads):
             out["d_" + key] = max(out["d_" + key], abs(t / e - 1.0) if e else 0.0)
-    out["matters"] = any(out["d_" + k] > tol for k in _HEADLINE)
+    out["matters"] = any(out["d_" + k] > tol for k in _HEAD)
     return out
 
 

@@ -1,4 +1,4 @@
-"""Contact-force statistics a track engineer reads off a run (issue 13), on plain arrays.
+"""Contact-force statistics a track engineer reads off a run, on plain arrays.
 
 Inputs are the recorded time t [s] (uniform, increasing), the wheel position X [m] and the
 contact force N [N] (N = 0 while the wheel is off the rail), and the static wheel load P0 [N].
@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _validate as v
+from ..base import validate as v
 
 #: Default contact-resonance period T_1 [s] for the P1 window.
 P1_PERIOD = 1e-3

@@ -16,8 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _validate as v
-from .results import OUTPUT_FIELDS, Result
+from ..base import validate as v
+from ..run.results import OUTPUT_FIELDS, Result
 
 #: Samples per bay of the resampled signal [-]: the harmonics up to 64 f_s are resolved.
 SAMPLES_PER_BAY = 128
