@@ -75,3 +75,11 @@ def option_error(exc: Exception) -> str:
         text = text.replace(name, "--" + name.replace("_", "-"))
     return text
 
+
+def output_options(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:
+    """Error unless the command's --out table and --plot figure (where it has them and they
+    are given) can be written."""
+    if getattr(args, "out", None) is not None:
+        output_file(args.out, "--out", parser)
+    if getattr(args, "plot", None) is not None:
+        output_file(args.plot, "--plot", parser, formats=figure_formats())

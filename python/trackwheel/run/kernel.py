@@ -68,16 +68,23 @@ def beam_params(scene: Scene) -> _core.BeamParams:
 
 
 def wheel_params(scene: Scene) -> _core.WheelParams:
-    w = scene.wheel
+    """The kernel's wheel of the scene's single wheel ``Scene.wheel`` under its load."""
+    return _wheel(scene.wheel, scene.gravity, scene.wheel.load)
+
+
+def _wheel(w, gravity: float, load: float, x_offset: float = 0.0) -> _core.WheelParams:
+    """The kernel's WheelParams of the Wheel ``w`` under the constant ``load`` [N] at
+    ``x_offset`` [m] along the vehicle."""
     p = _core.WheelParams()
     p.mass = w.mass
     p.inertia = w.polar_inertia
     p.radius = w.radius
-    p.load = w.load
+    p.load = load
     p.torque = w.torque
     p.brake_torque = w.brake_torque
-    p.gravity = scene.gravity
-    p.out_of_round = profile.out_of_round(scene)
+    p.gravity = gravity
+    p.x_offset = x_offset
+    p.out_of_round = profile.defects_profile(w.defects, w.radius)
     return p
 
 
@@ -88,20 +95,8 @@ def wheels_params(scene: Scene) -> list:
     veh = scene.active_vehicle
     if scene.vehicle is None:
         return [wheel_params(scene)]
-    out = []
-    for i, (w, x) in enumerate(zip(veh.wheels, veh.positions)):
-        p = _core.WheelParams()
-        p.mass = w.mass
-        p.inertia = w.polar_inertia
-        p.radius = w.radius
-        p.load = 0.0 if veh.bogie_of(i) is not None else w.load
-        p.torque = w.torque
-        p.brake_torque = w.brake_torque
-        p.gravity = scene.gravity
-        p.x_offset = x
-        p.out_of_round = profile.defects_profile(w.defects, w.radius)
-        out.append(p)
-    return out
+    return [_wheel(w, scene.gravity, 0.0 if veh.bogie_of(i) is not None else w.load, x)
+            for i, (w, x) in enumerate(zip(veh.wheels, veh.positions))]
 
 
 def static_wheels_params(scene: Scene) -> list:

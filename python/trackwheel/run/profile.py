@@ -5,7 +5,7 @@ The kernel interpolates the rail profile by a cubic spline through samples X_i =
 (:func:`spline_grid`), fitted :data:`SPLINE_CHUNK` intervals at a time (:func:`spline_chunks`)
 and, over a long run, streamed: it draws the chunks as the vehicle advances and drops those
 far behind (:func:`rail_profile`). The wheel's defects reach it as a periodic spline over one
-revolution (:func:`out_of_round`).
+revolution (:func:`defects_profile`).
 """
 
 from __future__ import annotations
@@ -182,12 +182,6 @@ def _filtered_table(irr, end: float, dx: float, half_width: float):
     curvature = spline(x, 2)
     worst = int(np.argmax(curvature))
     return x0, h, spline.c, float(curvature[worst]), float(x[worst])
-
-
-def out_of_round(scene: Scene) -> _core.Profile:
-    """The wheel's defects summed as the kernel's periodic piecewise cubic Delta rho(psi) over
-    one revolution (round wheel: empty)."""
-    return defects_profile(scene.wheel.defects, scene.wheel.radius)
 
 
 @lru_cache(maxsize=64)

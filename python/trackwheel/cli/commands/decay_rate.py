@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ...run import frequency
-from ..checks import figure_formats, output_file
+from ..checks import output_options
 from ..formatting import frequency_elements, save_figure, write_csv
 from ..options import mesh_option, positive_int, track_option
 from ..scenes import OptionError, scene_name, track_scene
@@ -41,10 +41,7 @@ def add(sub) -> None:
 
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    if args.out is not None:
-        output_file(args.out, "--out", parser)
-    if args.plot is not None:
-        output_file(args.plot, "--plot", parser, formats=figure_formats())
+    output_options(args, parser)
     try:
         scene = track_scene(args, length=DECAY_LENGTH)
     except OptionError as exc:

@@ -11,7 +11,7 @@ import numpy as np
 from ...run import frequency
 from ...scene import Scene
 from ...study.fidelity import pinned_pinned_frequencies
-from ..checks import figure_formats, option_error, output_file
+from ..checks import option_error, output_options
 from ..formatting import frequency_elements, save_figure, write_csv
 from ..options import finite_float, mesh_option, positive_int, track_option
 from ..scenes import OptionError, scene_name, track_scene
@@ -91,10 +91,7 @@ def _print_receptance(scene: Scene, name: str, x: float, label: str, f: np.ndarr
 
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    if args.out is not None:
-        output_file(args.out, "--out", parser)
-    if args.plot is not None:
-        output_file(args.plot, "--plot", parser, formats=figure_formats())
+    output_options(args, parser)
     try:
         scene = track_scene(args)
         f = _receptance_freqs(args)

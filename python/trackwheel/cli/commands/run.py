@@ -20,7 +20,7 @@ from ...run.simulate import simulate
 from ...scene import Scene, Window
 from ...study.analysis import analyse
 from ...study.force_statistics import defect_position
-from ..checks import figure_formats, option_error, output_file, speeds_kmh
+from ..checks import option_error, output_options, speeds_kmh
 from ..formatting import print_notes, print_warnings
 from ..options import (
     excitation_options,
@@ -161,8 +161,7 @@ def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     speeds_kmh([args.speed_kmh], "--speed-kmh", parser)
-    if args.plot is not None:
-        output_file(args.plot, "--plot", parser, formats=figure_formats())
+    output_options(args, parser)
     if args.vehicle != "single" and args.wheel_flat is not None:
         parser.error("--wheel-flat is only available with --vehicle single")
     if args.vehicle != "single" and args.brake_torque is not None:
@@ -184,21 +183,9 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     print_notes(notes, "run")
     if args.distance is not None:
         return _window_run(scene, args, parser)
-    try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            r = simulate(scene, kmh(args.speed_kmh), **simulate_kwargs(args))
-    except (ValueError, TypeError) as exc:
-        parser.error(option_error(exc))
-    except DivergenceError as exc:
-        print_warnings(caught, "run")
-        print(f"trackwheel run: the simulation diverged: {exc}", file=sys.stderr)
+    r = _simulate(scene, args.speed_kmh, simulate_kwargs(args), parser)
+    if r is None:
         return 1
-    except RuntimeError as exc:  # the kernel's static solve at the start failed
-        print_warnings(caught, "run")
-        print(f"trackwheel run: the simulation could not start: {exc}", file=sys.stderr)
-        return 1
-    print_warnings(caught, "run")
     x_d = defect_position(scene)
     if x_d is not None and not r.x_wheel[0] <= x_d <= r.x_wheel[-1]:
         x_d = None  # the run does not reach the joint's middle
@@ -223,6 +210,27 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     return 0
 
 
+def _simulate(scene: Scene, speed_kmh: float, kw: dict, parser):
+    """``simulate(scene, speed, **kw)``, its warnings printed (one line each); a bad value is a
+    usage error (exit 2), a failed run one line on stderr and None (exit 1)."""
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            r = simulate(scene, kmh(speed_kmh), **kw)
+    except (ValueError, TypeError) as exc:
+        parser.error(option_error(exc))
+    except DivergenceError as exc:
+        print_warnings(caught, "run")
+        print(f"trackwheel run: the simulation diverged: {exc}", file=sys.stderr)
+        return None
+    except RuntimeError as exc:  # the kernel's static solve at the start failed
+        print_warnings(caught, "run")
+        print(f"trackwheel run: the simulation could not start: {exc}", file=sys.stderr)
+        return None
+    print_warnings(caught, "run")
+    return r
+
+
 def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
     """``run --distance``: the passage on the travelling window and its contact-force
     statistics, over the whole run and per 100 m."""
@@ -237,17 +245,9 @@ def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
                       - scene.active_vehicle.span[0])
     elif args.x_start is None:
         parser.error("--distance with --x-end needs --x-start")
-    try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            r = simulate(scene, kmh(args.speed_kmh), **kw)
-    except (ValueError, TypeError) as exc:
-        parser.error(option_error(exc))
-    except DivergenceError as exc:
-        print_warnings(caught, "run")
-        print(f"trackwheel run: the simulation diverged: {exc}", file=sys.stderr)
+    r = _simulate(scene, args.speed_kmh, kw, parser)
+    if r is None:
         return 1
-    print_warnings(caught, "run")
     N = np.atleast_2d(np.asarray(r.normal_force).T).T  # (samples, wheels)
     x = np.asarray(r.x_wheel).reshape(len(r.t), -1)[:, 0]
     w, zones = scene.window, scene.rail.absorbing_ends
