@@ -17,14 +17,7 @@ from ...base.errors import DivergenceError
 from ...run.simulate import simulate
 from ...scene import Scene
 from ..analysis import analyse
-from ..columns import (
-    COLUMNS,
-    FLOAT_COLUMNS,
-    OUTPUTS,
-    SETTINGS_COLUMNS,
-    SWEEP_COLUMNS,
-    label,
-)
+from ..columns import COLUMNS, FLOAT_COLUMNS, SETTINGS_COLUMNS, SWEEP_COLUMNS, label
 from ..force_statistics import defect_position
 
 #: simulate's keyword arguments and their defaults (what a sweep passes on)
@@ -126,5 +119,5 @@ def frame(rows: list[dict]):
     return df
 
 
-__all__ = ["OUTPUTS", "SIMULATE_PARAMS", "case_scene", "error_row", "frame", "long_rows",
+__all__ = ["SIMULATE_PARAMS", "case_scene", "error_row", "frame", "long_rows",
            "run_case", "wheel_outputs"]
