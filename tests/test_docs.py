@@ -14,7 +14,7 @@ import trackwheel as tw
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 #: the texts that cite the model: the package, its tests, the notebooks, the README
-CITING = [*sorted((ROOT / "python" / "trackwheel").glob("*.py")),
+CITING = [*sorted((ROOT / "python" / "trackwheel").rglob("*.py")),
           *sorted((ROOT / "tests").glob("*.py")),
           *sorted((ROOT / "notebooks").glob("*.ipynb")),
           ROOT / "README.md"]

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 
 def fryba(x, t, P, v, L, EI, m, n_terms=60):

@@ -8,7 +8,8 @@ import math
 import numpy as np
 import pytest
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 KATO = tw.Scene.kato2005()

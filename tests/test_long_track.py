@@ -245,7 +245,8 @@ def test_iteration_matrix_with_absorbing_ends_matches_central_differences():
     tests/test_system.py, its step and its 1e-6 tolerance), and the zones' axial entries are
     really there (the x columns inside a zone differ from the plain rail's)."""
     from test_system import DT, _probe_case, central_difference_error
-    from trackwheel import _core, _kernel
+    from trackwheel import _core
+    from trackwheel.run import kernel as _kernel
 
     model, wheels, contact, s, st = _probe_case("hertz", False, 1)
     zoned = _kernel.rail_model(long_scene(5.0, 20, ends=tw.AbsorbingEnds(1.0)), 20)

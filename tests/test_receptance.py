@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 from trackwheel.frequency import decay_rate_limit, decay_rate_positions, en15461_decay
 
@@ -228,3 +229,32 @@ def test_pinned_pinned_peak_of_the_midspan_receptance(beam):
     peak = f[np.argmax(np.abs(tw.receptance(s, 15.25, f)))]
     expected = pinned_pinned_frequencies(s)[0 if beam == "euler" else 1]
     assert peak == pytest.approx(expected, rel=0.01)
+
+
+@pytest.mark.parametrize("f_max", [500.0, 2000.0, 5000.0])
+def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
+    """The frequency-domain mesh (what `receptance` and `decay-rate` use): whole elements per
+    support bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
+    at f_max, and the fewest such (one element per bay less would miss it), never fewer than
+    the scene's own."""
+    from trackwheel.run.defaults import frequency_mesh
+
+    scene = tw.Scene.ballasted_track()
+    r, d = scene.rail, scene.supports.spacing
+    n_bays = round(r.length / d)
+    w = 2.0 * np.pi * f_max
+    wavelength = 2.0 * np.pi * (r.bending_stiffness / (r.mass_per_length * w * w)) ** 0.25
+    n = frequency_mesh(scene, f_max)
+    assert n % n_bays == 0 and n >= r.n_elements
+    assert r.length / n <= wavelength / 10.0
+    assert n == r.n_elements or r.length / (n - n_bays) > wavelength / 10.0
+
+
+def test_frequency_mesh_capped_by_the_element_limit_warns():
+    from trackwheel.base.limits import MAX_ELEMENTS
+    from trackwheel.run.defaults import frequency_mesh
+
+    scene = tw.Scene.ballasted_track(3000.0, elements_per_bay=1)
+    with pytest.warns(tw.MeshWarning, match="fewer than ten per bending wavelength"):
+        n = frequency_mesh(scene, 5000.0)
+    assert n == MAX_ELEMENTS  # 5000 bays, 4 elements each

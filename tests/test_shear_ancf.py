@@ -20,7 +20,8 @@ from test_invariants import cumulative_trapezoid
 from test_system import central_difference_error
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 TIMO = tw.Rail(beam="timoshenko")  # the paper's rail, shear coefficient 0.4

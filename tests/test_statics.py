@@ -7,7 +7,8 @@ import dataclasses
 import numpy as np
 import pytest
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 KATO = tw.Scene.kato2005()
 
@@ -244,3 +245,22 @@ def test_linear_quasi_static_rejects_bad_input():
         tw.linear_quasi_static(scene, [6.0])
     with pytest.raises(ValueError, match="n_modes"):
         tw.linear_quasi_static(scene, [1.0], n_modes=0)
+
+
+def test_the_static_fields_are_the_kernels():
+    """The static result classes come from one table (run.results.STATIC_FIELDS): every field of
+    it is in the kernel's static solution, and StaticResult carries each of them, with the
+    kernel's values."""
+    from trackwheel.run.results import STATIC_FIELDS, static_from_kernel
+
+    scene = tw.Scene.ballasted_track()
+    model = _kernel.rail_model(scene)
+    d = _core.static_solve(model, _kernel.wheel_params(scene), _kernel.contact_params(scene),
+                           15.3)
+    names = [q.name for q in STATIC_FIELDS]
+    values = static_from_kernel(d, names)
+    res = tw.static(scene, 15.3)
+    for name in names:
+        np.testing.assert_array_equal(getattr(res, name), values[name])
+        assert f"``{name}``" in tw.StaticResult.__doc__
+    assert res.sleeper_z.size == len(scene.support_positions)

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 EI, KGA, L_EL = 6.36e6, 2.2e8, 0.125  # a rail-like section and element [N m^2, N, m]

@@ -17,9 +17,11 @@ import pytest
 from test_system import central_difference_error
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
-from trackwheel.results import result_from_kernel
-from trackwheel.simulate import _run, kernel_settings, resolve
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
+from trackwheel.run.plan import resolve
+from trackwheel.run.results import result_from_kernel
+from trackwheel.run.simulate import kernel_settings, run_kernel
 from trackwheel.vehicle import Bogie, CarBody, Vehicle, rigid_track_frequencies
 
 G = 9.8
@@ -54,7 +56,7 @@ def _run_perturbed(scene, body_offset, duration, dt):
     ``body_offset`` [z, phi per body]."""
     plan = _plan(scene, 0.0, duration=duration, dt=dt)
     plan.init.body = np.asarray(plan.init.body) + np.asarray(body_offset)
-    out, wall = _run(plan, kernel_settings(plan), False)
+    out, wall = run_kernel(plan, kernel_settings(plan), False)
     return result_from_kernel(out, plan.scene, plan.settings, wall, False)
 
 
@@ -394,16 +396,16 @@ def test_sweep_has_one_row_per_wheel_and_marks_the_worst(tmp_path):
     speeds = [tw.kmh(100), tw.kmh(200)]
     df = tw.sweep(scene, speeds, max_workers=1, progress=False, dt=5e-5, store=tmp_path)
     assert list(df.wheel) == [0, 1, 0, 1]
-    assert df.groupby("speed").worst.sum().tolist() == [1, 1]
+    assert df.groupby("speed_m_s").worst.sum().tolist() == [1, 1]
     r = tw.simulate(scene, speeds[1], dt=5e-5)
     for i in range(2):
-        row = df[(df.speed == speeds[1]) & (df.wheel == i)].iloc[0]
-        assert row.amplitude == tw.analyse(r, wheel=i).amplitude
+        row = df[(df.speed_m_s == speeds[1]) & (df.wheel == i)].iloc[0]
+        assert row.amplitude_m == tw.analyse(r, wheel=i).amplitude
     worst = df[df.worst]
     best = df[~df.worst]
-    assert np.all(worst.amplitude.to_numpy() >= best.amplitude.to_numpy())
+    assert np.all(worst.amplitude_m.to_numpy() >= best.amplitude_m.to_numpy())
     back = tw.load_sweep(tmp_path)
-    assert back[["wheel", "worst", "amplitude"]].equals(df[["wheel", "worst", "amplitude"]])
+    assert back[["wheel", "worst", "amplitude_m"]].equals(df[["wheel", "worst", "amplitude_m"]])
 
 
 @pytest.mark.parametrize("integrator, dt, bound", [("generalized_alpha", 2e-5, 1e-5),

@@ -17,6 +17,7 @@ import pytest
 
 import trackwheel as tw
 from trackwheel import spectra
+from trackwheel.run import profile
 
 V = tw.kmh(300)
 #: the ballasted preset's static wheel load P = F + M g [N]
@@ -210,7 +211,8 @@ def test_output_size_independent_of_distance():
 
 
 def test_profile_table_built_in_chunks_is_the_one_spline():
-    """The rail profile over a long run is built chunk by chunk (Irregularity.spline_table);
+    """The rail profile over a long run is built chunk by chunk (trackwheel.run.profile.
+    spline_table);
     the chunks (here 1000 intervals, 40 knots of overlap) join to the not-a-knot spline
     through all samples within round-off (the spline's dependence on a sample decays by
     2 - sqrt(3) per knot: 0.27^40 < 1e-22; measured bit-identical), at the samples of
@@ -221,7 +223,7 @@ def test_profile_table_built_in_chunks_is_the_one_spline():
     x0, h, r = irr.table(0.0, 10.0, 1e-3)
     x = x0 + h * np.arange(r.size)
     spline = CubicSpline(x, r)
-    y0, k, c, worst, at = irr.spline_table(0.0, 10.0, 1e-3, chunk=1000)
+    y0, k, c, worst, at = profile.spline_table(irr, 0.0, 10.0, 1e-3, chunk=1000)
     assert (y0, k) == (x0, h) and c.shape == spline.c.shape == (4, 10000)
     scale = np.abs(spline.c).max(axis=1, keepdims=True)
     assert np.all(np.abs(c - spline.c) <= 1e-13 * scale)
@@ -241,16 +243,14 @@ def test_profile_memory_in_python_is_independent_of_distance():
     The table is the one spline's (see above), so the run is unchanged."""
     import tracemalloc
 
-    from trackwheel import _kernel
-
     scene = dc.replace(tw.Scene.ballasted_track(window=tw.Window(5, 5)),
                        irregularity=tw.Irregularity.sine(2.0, 1e-4))
-    _kernel.profile(scene, 10.0)  # imports and first-call allocations
+    profile.rail_profile(scene, 10.0)  # imports and first-call allocations
     peaks = []
     for end in (200.0, 1000.0):
         tracemalloc.start()
         try:
-            table = _kernel.profile(scene, end)
+            table = profile.rail_profile(scene, end)
             peaks.append(tracemalloc.get_traced_memory()[1])
         finally:
             tracemalloc.stop()
