@@ -11,12 +11,14 @@ render their equations without a network.
 import importlib.util
 import re
 import shutil
+import sys
 from pathlib import Path
 
 import trackwheel
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
+sys.path.insert(0, str(DOCS / "_ext"))  # the project's own extensions (docs/_ext)
 
 project = "trackwheel"
 author = "the trackwheel developers"
@@ -27,6 +29,7 @@ version = release
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.napoleon",
+    "tw_text",  # napoleon without its attribute-type split; --options kept as code
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "myst_nb",

@@ -57,3 +57,44 @@ def test_api_reference_lists_the_public_api():
     public = set(tw.__all__) - {"__version__"}
     assert public - documented == set()
     assert documented - public == set()  # nothing documented that is not public
+
+
+# Sphinx's own napoleon reads autodoc's options as a mapping (deprecated in Sphinx 9)
+@pytest.mark.filterwarnings("ignore:The mapping interface for autodoc options")
+def test_built_pages_keep_option_names_and_attribute_docstrings(tmp_path):
+    """The API and command-line references as Sphinx builds them (a one-page project with the
+    docs' own extension, docs/_ext/tw_text.py): an attribute docstring with a colon renders
+    whole (napoleon would split it into a "Type" field at the colon), and ``--out`` in the help
+    texts stays two hyphens in inline code (smart quotes would make it an en dash, which fails
+    when pasted into a shell). The full site runs the same check after every HTML build."""
+    pytest.importorskip("sphinx")
+    pytest.importorskip("sphinxarg")
+    import sys
+
+    from sphinx.application import Sphinx
+
+    sys.path.insert(0, str(DOCS / "_ext"))
+    try:
+        import tw_text
+    finally:
+        sys.path.remove(str(DOCS / "_ext"))
+    (tmp_path / "conf.py").write_text(
+        f"import sys\nsys.path.insert(0, {str(DOCS / '_ext')!r})\n"
+        "extensions = ['sphinx.ext.autodoc', 'sphinxarg.ext', 'tw_text']\n", encoding="utf-8")
+    (tmp_path / "index.rst").write_text(
+        "Page\n====\n\n.. autoclass:: trackwheel.Supports\n   :members:\n\n"
+        ".. argparse::\n   :module: trackwheel.cli\n   :func: build_parser\n"
+        "   :prog: trackwheel\n", encoding="utf-8")
+    out = tmp_path / "html"
+    app = Sphinx(str(tmp_path), str(tmp_path), str(out), str(tmp_path / "doctrees"), "html",
+                 status=None, warning=None, freshenv=True)
+    app.build()
+    html = (out / "index.html").read_text(encoding="utf-8")
+    assert tw_text.glitches(html) == []
+    assert "vertical stiffness of each support [N/m] (layered: pad k_p)" in html
+    assert '<span class="pre">--out</span></code>' in html
+    # and the check finds what it is for
+    assert tw_text.glitches("<p>into \u2013out. Steps</p>")
+    assert tw_text.glitches('<dl><dt class="field-odd">Type<span class="colon">')
+    assert tw_text.split_options("a --out DIR, not x--y or ---z") == [
+        ("a ", False), ("--out", True), (" DIR, not x--y or ---z", False)]
