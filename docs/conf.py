@@ -30,6 +30,7 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.napoleon",
     "tw_text",  # napoleon without its attribute-type split; --options kept as code
+    "tw_validation",  # the Validation page's table from docs/validation.json
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "myst_nb",
@@ -87,6 +88,8 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
 }
 html_show_sourcelink = False
+html_static_path = ["_static"]
+html_css_files = ["trackwheel.css"]
 # no empty "Section Navigation" column on the top-level pages (they have no sub-pages); the
 # notebooks keep it, to move between them
 html_sidebars = {"*": []}

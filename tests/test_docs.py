@@ -98,3 +98,29 @@ def test_built_pages_keep_option_names_and_attribute_docstrings(tmp_path):
     assert tw_text.glitches('<dl><dt class="field-odd">Type<span class="colon">')
     assert tw_text.split_options("a --out DIR, not x--y or ---z") == [
         ("a ", False), ("--out", True), (" DIR, not x--y or ---z", False)]
+
+
+def test_validation_records_are_complete_and_name_existing_tests():
+    """docs/validation.json (the Validation page's data, written by ``pytest tests
+    --refresh-validation``): at least 30 checks, every level of the model and every kind of
+    reference represented, ids unique, each measured error within its tolerance, and each
+    record's test still exists (a renamed or deleted test would leave its record behind; its
+    own run compares the values, tests/conftest.py)."""
+    import json
+
+    from conftest import KINDS, LEVELS
+
+    records = json.loads((DOCS / "validation.json").read_text(encoding="utf-8"))["records"]
+    assert len(records) >= 30
+    assert {r["level"] for r in records} == set(LEVELS)
+    assert {r["kind"] for r in records} == set(KINDS)
+    ids = [r["id"] for r in records]
+    assert len(ids) == len(set(ids))
+    for r in records:
+        assert 0.0 <= r["measured"] <= r["tolerance"], r["id"]
+        path, name = r["test"].split("::", 1)
+        function = name.split("[", 1)[0]
+        source = ROOT / path
+        assert source.exists(), f"{r['id']}: {path} does not exist"
+        assert re.search(rf"^def {function}\(", source.read_text(encoding="utf-8"),
+                         re.MULTILINE), f"{r['id']}: no test {function} in {path}"
