@@ -31,6 +31,7 @@ extensions = [
     "sphinx.ext.napoleon",
     "tw_text",  # napoleon without its attribute-type split; --options kept as code
     "tw_validation",  # the Validation page's table from docs/validation.json
+    "tw_gallery",  # the landing page's notebook gallery, figures from the stored outputs
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "myst_nb",
@@ -48,7 +49,8 @@ for _nb in sorted(_NB_SRC.glob("*.ipynb")):
     if not _target.exists() or _target.read_bytes() != _nb.read_bytes():
         shutil.copy2(_nb, _target)
 
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**.ipynb_checkpoints"]
+exclude_patterns = ["_build", "_generated", "_scripts", "Thumbs.db", ".DS_Store",
+                    "**.ipynb_checkpoints"]
 
 # notebooks are shown as stored, never executed by the docs build
 nb_execution_mode = "off"
