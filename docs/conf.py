@@ -87,7 +87,8 @@ html_theme_options = {
     "header_links_before_dropdown": 5,
     "show_toc_level": 2,
     "navbar_end": ["navbar-icon-links"],
-    "secondary_sidebar_items": ["page-toc"],
+    # no "On this page" column beside the wide Validation table
+    "secondary_sidebar_items": {"**": ["page-toc"], "validation": []},
 }
 html_show_sourcelink = False
 html_static_path = ["_static"]

@@ -21,8 +21,8 @@ from docutils import nodes
 from sphinx.util.docutils import SphinxDirective
 
 JSON = Path(__file__).resolve().parent.parent / "validation.json"
-COLUMNS = (("quantity", 32), ("reference", 30), ("measured", 9), ("tolerance", 12),
-           ("test", 17))
+COLUMNS = (("quantity", 29), ("reference", 30), ("measured", 8), ("tolerance", 12),
+           ("test", 21))
 
 
 def number(x: float) -> str:
@@ -66,7 +66,7 @@ def _row(cells) -> nodes.row:
 
 
 def table(records: list[dict]) -> nodes.table:
-    tab = nodes.table(classes=["tw-validation"])
+    tab = nodes.table(classes=["tw-validation", "colwidths-given"])
     group = nodes.tgroup(cols=len(COLUMNS))
     tab += group
     for _, width in COLUMNS:
