@@ -93,9 +93,10 @@ html_theme_options = {
 html_show_sourcelink = False
 html_static_path = ["_static"]
 html_css_files = ["trackwheel.css"]
-# no empty "Section Navigation" column on the top-level pages (they have no sub-pages); the
-# notebooks keep it, to move between them
-html_sidebars = {"*": []}
+# no empty "Section Navigation" column on the top-level pages (they have no sub-pages), and none
+# on the user guide's pages either, whose code lines need the width (the guide's index lists its
+# pages, and each page links the next); the notebooks keep it, to move between them
+html_sidebars = {"*": [], "guide/*": []}
 
 
 def _copy_mathjax(app, exception):

@@ -13,11 +13,12 @@ import trackwheel as tw
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
-#: the texts that cite the model: the package, its tests, the notebooks, the README
+#: the texts that cite the model: the package, its tests, the notebooks, the README, the guide
 CITING = [*sorted((ROOT / "python" / "trackwheel").glob("*.py")),
           *sorted((ROOT / "tests").glob("*.py")),
           *sorted((ROOT / "notebooks").glob("*.ipynb")),
-          ROOT / "README.md"]
+          ROOT / "README.md",
+          *sorted((ROOT / "docs" / "guide").glob("*.md"))]
 
 pytestmark = pytest.mark.skipif(not (DOCS / "model.md").exists(),
                                 reason="docs/ is not part of this tree")
