@@ -125,3 +125,14 @@ def test_validation_records_are_complete_and_name_existing_tests():
         assert source.exists(), f"{r['id']}: {path} does not exist"
         assert re.search(rf"^def {function}\(", source.read_text(encoding="utf-8"),
                          re.MULTILINE), f"{r['id']}: no test {function} in {path}"
+
+
+def test_pages_that_count_the_validation_checks_count_them_right():
+    """The README and the landing page say how many checks the Validation page holds."""
+    import json
+
+    n = len(json.loads((DOCS / "validation.json").read_text(encoding="utf-8"))["records"])
+    for page in (ROOT / "README.md", DOCS / "index.md"):
+        counts = re.findall(r"(\d+) checks against", page.read_text(encoding="utf-8"))
+        assert counts, page.name
+        assert {int(c) for c in counts} == {n}, (page.name, counts, n)
