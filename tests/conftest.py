@@ -258,8 +258,10 @@ def validation(request, _validation_session):
     """Record checks against independent references for the Validation page (see
     :class:`Validation`). After a passing test, its records must match docs/validation.json;
     with ``--refresh-validation`` they replace those in it instead."""
-    v = Validation(request.node.nodeid, _validation_session["committed"],
-                   _validation_session["same_machine"])
+    # the test's id relative to the repository, whatever pytest's rootdir
+    name = request.node.nodeid.split("::", 1)[1]
+    test = f"{Path(request.node.path).resolve().relative_to(ROOT).as_posix()}::{name}"
+    v = Validation(test, _validation_session["committed"], _validation_session["same_machine"])
     yield v
     report = getattr(request.node, "_report_call", None)
     if report is None or not report.passed:
