@@ -69,7 +69,7 @@ def _frequency(t, x):
     return (len(tc) - 1) / (tc[-1] - tc[0])
 
 
-def test_bogie_bounce_and_pitch_on_a_rigid_track_match_the_closed_forms():
+def test_bogie_bounce_and_pitch_on_a_rigid_track_match_the_closed_forms(validation):
     """Bogie on two held wheels: bounce sqrt(2 k_1 / M_b), pitch sqrt(2 k_1 a^2 / J_b)
     (rigid_track_frequencies); each mode excited alone by displacing z or phi. Tolerance 0.5 %
     (the issue's), well above the track's 3e-4 and generalized-alpha's period error
@@ -83,6 +83,16 @@ def test_bogie_bounce_and_pitch_on_a_rigid_track_match_the_closed_forms():
     fp = _frequency(pitch.t, pitch.body_phi[:, 0])
     assert fb == pytest.approx(f["bogie0_bounce"], rel=5e-3)
     assert fp == pytest.approx(f["bogie0_pitch"], rel=5e-3)
+    validation.record(
+        "vehicle.bogie_bounce", level="vehicle", kind="closed form",
+        quantity="bogie on a rigid track, free vibration: bounce frequency",
+        reference="√(2 k_1/M_b)/2π", measured=abs(fb / f["bogie0_bounce"] - 1.0),
+        tolerance=5e-3)
+    validation.record(
+        "vehicle.bogie_pitch", level="vehicle", kind="closed form",
+        quantity="bogie on a rigid track, free vibration: pitch frequency",
+        reference="√(2 k_1 a²/J_b)/2π", measured=abs(fp / f["bogie0_pitch"] - 1.0),
+        tolerance=5e-3)
     # the modes are uncoupled: the bounce run does not pitch, the pitch run does not bounce
     assert np.ptp(bounce.body_phi[:, 0]) < 1e-3 * 1e-3
     assert np.ptp(pitch.body_z[:, 0]) < 1e-2 * 1e-3
@@ -155,7 +165,8 @@ def _biggs_reference(v, t, n_modes=10):
 
 
 @pytest.mark.parametrize("speed", [27.78, 60.0, 120.0])
-def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(speed):
+def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(speed,
+                                                                              validation):
     """Linear path, moving-mass level: the sprung mass is a one-wheel 'bogie' (5750 kg on
     1.595 MN/m) on a 1 kg wheel held on a bare simply supported beam (no supports, no rail
     weight), 50 Hermite elements, 1e-4 s, rho_inf = 1. Speed parameters v / (2 f_1 L) = 0.12,
@@ -177,6 +188,15 @@ def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(sp
     assert np.max(np.abs(r.y_contact - w)) < 0.02 * np.max(np.abs(w))
     dz = r.body_z[:, 0] - r.body_z[0, 0]
     assert np.max(np.abs(dz - z)) < 0.02 * np.max(np.abs(z))
+    if speed == 60.0:
+        validation.record(
+            "vehicle.sprung_mass_on_a_beam_biggs", level="vehicle", kind="published",
+            quantity="linear/moving_mass: a 5750 kg sprung mass crossing a 25 m simply "
+                     "supported beam at 60 m/s, beam deflection under it",
+            reference="Biggs (1964) example as in Yang, Yau & Wu (2004) ch. 2: its modal "
+                      "equations integrated by scipy",
+            measured=np.max(np.abs(r.y_contact - w)) / np.max(np.abs(w)), tolerance=0.02,
+            metric="of max deflection")
     # and the dynamic amplification is real: the peak exceeds the static mid-span deflection
     # M g L^3 / 48 EI only through the dynamics (speed-dependent); it stays finite
     static = M * G * L**3 / (48 * E * I2)
@@ -201,7 +221,7 @@ def vehicle_probe(scene, speed):
 
 
 @pytest.mark.parametrize("preset", ["bogie", "half_car"])
-def test_iteration_matrix_with_bodies_matches_central_differences(preset):
+def test_iteration_matrix_with_bodies_matches_central_differences(preset, validation):
     """ga_probe's iteration matrix against central differences of its residual with the
     bodies' (z'', phi'') in the border (steps and tolerance as tests/test_system.py: 1e3 m/s^2
     on accelerations, 1 N on multipliers, 1e-6 of each column's largest entry); the scene moves
@@ -218,6 +238,13 @@ def test_iteration_matrix_with_bodies_matches_central_differences(preset):
     h[nf + 2:nf + 3 * nw:3] = 1.0
     err = central_difference_error(R, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
+    if preset == "half_car":
+        validation.record(
+            "vehicle.iteration_matrix", level="vehicle", kind="finite differences",
+            quantity="half car at 300 km/h: generalized-α iteration matrix with the bodies in "
+                     "the border",
+            reference="central differences of the step's residual",
+            measured=np.max(err), tolerance=1e-6, metric="of each column's max")
     # the suspensions couple each wheel's Y row with its bogie's z and phi
     ob = nf + 3 * nw
     for w in range(nw):
@@ -351,7 +378,8 @@ def test_per_wheel_analysis_plot_and_cli(capsys):
     assert "wheel 0 (x = 0 m)" in out and "wheel 1 (x = 2.5 m)" in out
 
 
-def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_modes():
+def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_modes(
+        validation):
     """trackwheel.eigen with the vehicle: on the rigid track (supports and contact 1e12 N/m)
     the two lowest modes are the car body's bounce and pitch of the closed-form 2-DOF systems
     (_car_modes), and the bogies' pitch sqrt(2 k_1 a^2 / J_b) appears twice (both bogies),
@@ -363,6 +391,16 @@ def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_m
     f = r.frequencies[0]
     assert f[0] == pytest.approx(_car_modes(veh, pitch=False)[0], rel=5e-3)
     assert f[1] == pytest.approx(_car_modes(veh, pitch=True)[0], rel=5e-3)
+    validation.record(
+        "vehicle.car_body_bounce_eigen", level="vehicle", kind="closed form",
+        quantity="half car on a rigid track, tw.eigen: car-body bounce frequency",
+        reference="lower root of the two-mass system (car, two bogies) on 2 k_2 and 4 k_1",
+        measured=abs(f[0] / _car_modes(veh, pitch=False)[0] - 1.0), tolerance=5e-3)
+    validation.record(
+        "vehicle.car_body_pitch_eigen", level="vehicle", kind="closed form",
+        quantity="half car on a rigid track, tw.eigen: car-body pitch frequency",
+        reference="lower root of the two-mass system (J_c/l², two bogies) on 2 k_2 and 4 k_1",
+        measured=abs(f[1] / _car_modes(veh, pitch=True)[0] - 1.0), tolerance=5e-3)
     fp = rigid_track_frequencies(veh)["bogie0_pitch"]
     assert np.sum(np.abs(f / fp - 1.0) < 5e-3) == 2
     assert np.all(r.body_fraction[0][f < 20.0] > 0.99)
