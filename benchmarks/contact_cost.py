@@ -35,7 +35,7 @@ RUN = """
 import dataclasses, json, sys, time
 sys.path.insert(0, {bench!r})
 import trackwheel as tw
-from trackwheel.vehicle import Bogie, Vehicle
+from trackwheel import Bogie, Vehicle
 g = 9.81
 base = tw.Scene.ballasted_track(elements_per_bay=8)
 rail = dataclasses.replace(base.rail, beam="timoshenko", shear_coefficient=0.4)

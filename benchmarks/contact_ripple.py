@@ -30,7 +30,7 @@ import numpy as np
 from _common import write_csv
 
 import trackwheel as tw
-from trackwheel.vehicle import Bogie, Vehicle
+from trackwheel import Bogie, Vehicle
 
 G = 9.81
 WHEEL_LOAD = 80e3

@@ -21,7 +21,7 @@ import numpy as np
 from _common import write_csv
 
 import trackwheel as tw
-from trackwheel.vehicle import Bogie, Vehicle
+from trackwheel import Bogie, Vehicle
 
 
 def scene(epb: int, compliance: bool | None) -> tw.Scene:

@@ -29,6 +29,7 @@ HermiteValues shear_centre_line(const ShearSection& c, double xi) {
 }
 
 ShearQuadrature make_shear_quadrature(const ShearSection& c) {
+  check_gauss(c.n_gauss);
   ShearQuadrature q;
   q.n = c.n_gauss;
   double xi[10];

@@ -158,9 +158,9 @@ ProgressFn python_progress(py::object progress) {
 // The RailModel validates its own section; a ShearSection built directly is checked here (the
 // element divides by kGA and l).
 void check_shear_section(const ShearSection& c) {
-  if (!(c.length > 0 && c.kGA > 0 && std::isfinite(c.kGA) && c.n_gauss >= 1 && c.n_gauss <= 10))
-    throw std::invalid_argument(
-        "ShearSection: length must be > 0 m, kGA finite > 0 N, n_gauss in [1, 10]");
+  if (!(c.length > 0 && c.kGA > 0 && std::isfinite(c.kGA)))
+    throw std::invalid_argument("ShearSection: length must be > 0 m, kGA finite > 0 N");
+  check_gauss(c.n_gauss);
 }
 
 using PpolyArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -600,6 +600,36 @@ PYBIND11_MODULE(_core, m) {
       "(the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the "
       "sleepers' z_j on layered supports)");
 
+  // ---------------------------------------------------------------- the vehicle's own matrices
+  m.def(
+      "vehicle_matrices",
+      [](const VehicleParams& vehicle, int n_wheels) {
+        check_vehicle(vehicle, n_wheels);
+        const VehicleMatrices vm = vehicle_matrices(vehicle, n_wheels);
+        py::dict d;
+        d["K"] = vm.K;
+        d["C"] = vm.C;
+        d["mass"] = vm.mass;
+        d["G"] = vm.G;
+        return d;
+      },
+      py::arg("vehicle"), py::arg("n_wheels"),
+      "The vehicle's constant matrices over u = [Y_A per wheel, (z, phi) per body] "
+      "(vehicle.hpp): {'K' [N/m], 'C' [N s/m]: sum k g g^T, sum c g g^T over the suspensions; "
+      "'mass': the bodies' masses [kg] and pitch inertias [kg m^2], the wheels' entries 0; 'G': "
+      "the bodies' weights and loads [N]}");
+  m.def(
+      "static_bodies",
+      [](const VehicleParams& vehicle, const Eigen::VectorXd& y_wheels) {
+        const int nw = static_cast<int>(y_wheels.size());
+        check_vehicle(vehicle, nw);
+        if (vehicle.empty()) return Eigen::VectorXd(Eigen::VectorXd::Zero(0));
+        return static_bodies(vehicle_matrices(vehicle, nw), y_wheels);
+      },
+      py::arg("vehicle"), py::arg("y_wheels"),
+      "[z_0, phi_0, z_1, phi_1, ...] [m, rad] of the bodies in static equilibrium above wheel "
+      "centres held at heights y_wheels [m]: the bodies' rows of K_v u = -G (vehicle.hpp)");
+
   // ---------------------------------------------------------------- linear beam, frequency domain
   py::class_<BeamParams>(m, "BeamParams")
       .def(py::init<>())
@@ -727,7 +757,7 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const DivergenceError& e) {
-      py::object cls = py::module_::import("trackwheel._errors").attr("DivergenceError");
+      py::object cls = py::module_::import("trackwheel").attr("DivergenceError");
       py::object exc = cls(e.what(), e.time, e.step, e.cause);
       PyErr_SetObject(cls.ptr(), exc.ptr());
     }
@@ -738,6 +768,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("MAX_DENSE_EIGEN_DOF") = limits::kMaxDenseEigenDof;
   m.attr("GAUSS_RANGE") = py::make_tuple(limits::kMinGauss, limits::kMaxGauss);
   m.attr("MAX_SPEED") = limits::kMaxSpeed;
+  m.attr("MAX_SUPPORTS") = limits::kMaxSupports;
 
   m.def(
       "simulate",

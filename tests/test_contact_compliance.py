@@ -24,7 +24,8 @@ from test_contact import RHO0, bent_rail
 from test_system import central_difference_error
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 KGA = tw.Rail(beam="timoshenko").shear_stiffness  # the paper's rail, kappa 0.4 [N]
 RHO_I = tw.Rail().rotary_inertia  # [kg m]
@@ -325,7 +326,7 @@ def quarter_car(elements_per_bay, compliance=None, window=True, length=30.0):
     one-wheel bogie on a 1.2 MN/m primary spring, 80 kN static load, linear contact
     1.3374e9 N/m, on the ballasted UIC60 track with the Timoshenko rail (kappa 0.4); on a
     travelling window of 20 + 20 bays, or a fixed rail of ``length``."""
-    from trackwheel.vehicle import Bogie, Vehicle
+    from trackwheel import Bogie, Vehicle
 
     base = tw.Scene.ballasted_track(length=length, elements_per_bay=elements_per_bay)
     g = base.gravity

@@ -20,7 +20,8 @@ from test_invariants import cumulative_trapezoid
 from test_system import central_difference_error
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 TIMO = tw.Rail(beam="timoshenko")  # the paper's rail, shear coefficient 0.4
@@ -83,7 +84,7 @@ def test_force_is_the_gradient_of_the_energy(exact, i_state):
 
 @pytest.mark.parametrize("exact", [True, False])
 @pytest.mark.parametrize("i_state", range(len(STATES)))
-def test_tangent_matches_central_differences(exact, i_state):
+def test_tangent_matches_central_differences(exact, i_state, validation):
     """K = dQ/de by central differences of Q (same tolerance logic); K is symmetric (the
     Hessian of U)."""
     c = shear_section(exact=exact)
@@ -92,6 +93,13 @@ def test_tangent_matches_central_differences(exact, i_state):
     K_fd, tol = fd_with_tolerance(lambda x: _core.shear_elastic(c, x)[0], e, H_FD, K)
     assert tol < TOL_CEILING
     assert rel(K_fd, K) < tol
+    if exact and i_state == 3:
+        validation.record(
+            "element.shear_tangent", level="element", kind="finite differences",
+            quantity="shear-deformable ANCF element: tangent stiffness of a sheared, "
+                     "stretched and rotated element",
+            reference="central differences of the elastic force (K = dQ/de)",
+            measured=rel(K_fd, K), tolerance=tol, metric="relative")
     assert np.linalg.norm(K - K.T) < 1e-12 * np.linalg.norm(K)
 
 
@@ -149,7 +157,7 @@ def test_euler_bernoulli_limit_is_the_cable(exact, i_state):
     assert rel(_core.shear_mass(s), _core.cable_mass(cab)) < 10 * phi
 
 
-def test_linearised_element_is_the_iie_timoshenko_beam():
+def test_linearised_element_is_the_iie_timoshenko_beam(validation):
     """At the straight reference the y block of K is the IIE stiffness EI mu/l^3 [12 6l ...]
     (closed form, exact with n_gauss >= 3: psi'^2 has degree 2, gamma is constant), the y block
     of M the IIE mass with rotary inertia, and y does not couple with x; to round-off (1e-12)."""
@@ -160,6 +168,14 @@ def test_linearised_element_is_the_iie_timoshenko_beam():
     k_ref = _core.timoshenko_stiffness(c.EI, c.kGA, L_EL)
     m_ref = _core.timoshenko_mass(c.rhoA, c.rhoI, c.EI, c.kGA, L_EL)
     np.testing.assert_allclose(K[iy], k_ref, rtol=0, atol=1e-12 * np.abs(k_ref).max())
+    validation.record(
+        "element.shear_linearised_is_iie_timoshenko", level="element", kind="closed form",
+        quantity="shear-deformable ANCF element linearised at the straight rail: vertical "
+                 "stiffness",
+        reference="interdependent-interpolation (IIE) Timoshenko beam element EI μ/l³ "
+                  "[12 6l ...]",
+        measured=np.abs(K[iy] - k_ref).max() / np.abs(k_ref).max(), tolerance=1e-12,
+        metric="of max |K|")
     np.testing.assert_allclose(M[iy], m_ref, rtol=0, atol=1e-13 * np.abs(m_ref).max())
     assert np.abs(K[ix]).max() < 1e-12 * np.abs(K).max()
     assert np.abs(M[ix]).max() < 1e-13 * np.abs(M).max()

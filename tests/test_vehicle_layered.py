@@ -19,7 +19,8 @@ from test_system import central_difference_error
 from test_vehicle import vehicle_probe
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.statics import vehicle_static
 from trackwheel.vehicle import Vehicle
 

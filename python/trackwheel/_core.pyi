@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -1088,6 +1088,10 @@ def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParam
     """
     Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)
     """
+def static_bodies(vehicle: VehicleParams, y_wheels: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    [z_0, phi_0, z_1, phi_1, ...] [m, rad] of the bodies in static equilibrium above wheel centres held at heights y_wheels [m]: the bodies' rows of K_v u = -G (vehicle.hpp)
+    """
 def static_solve(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     ...
 def static_solve_wheels(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contacts: collections.abc.Sequence[ContactParams], x_wheels: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list:
@@ -1122,6 +1126,10 @@ def track_static(arg0: RailModel) -> dict:
     """
     Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}
     """
+def vehicle_matrices(vehicle: VehicleParams, n_wheels: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    """
+    The vehicle's constant matrices over u = [Y_A per wheel, (z, phi) per body] (vehicle.hpp): {'K' [N/m], 'C' [N s/m]: sum k g g^T, sum c g g^T over the suspensions; 'mass': the bodies' masses [kg] and pitch inertias [kg m^2], the wheels' entries 0; 'G': the bodies' weights and loads [N]}
+    """
 def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.SupportsIndex, arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], arg4: typing.SupportsInt | typing.SupportsIndex) -> tuple:
     """
     Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
@@ -1130,4 +1138,5 @@ GAUSS_RANGE: tuple = (2, 10)
 MAX_DENSE_EIGEN_DOF: int = 4000
 MAX_ELEMENTS: int = 20000
 MAX_SPEED: float = 300.0
+MAX_SUPPORTS: int = 100000
 OUTPUT_FIELDS: tuple = (('t', 's', 'time', False, 'float64'), ('x_wheel', 'm', 'X_A, wheel-centre position (prescribed X_0 + v t)', True, 'float64'), ('y_wheel', 'm', 'Y_A, wheel-centre height', True, 'float64'), ('ydot_wheel', 'm/s', 'dY_A/dt', True, 'float64'), ('theta', 'rad', 'rolling angle', True, 'float64'), ('thetadot', 'rad/s', 'rolling rate', True, 'float64'), ('contact_s', 'm', 's*, rail coordinate of the contact point', True, 'float64'), ('y_contact', 'm', 'y_B = y(s*), rail displacement under the wheel', True, 'float64'), ('normal_force', 'N', 'N, normal contact force (0 without contact)', True, 'float64'), ('tangential_force', 'N', 'lambda, tangential contact force on the wheel', True, 'float64'), ('slip', 'm/s', 'slip velocity t.(V_A - S edot) - rho thetadot', True, 'float64'), ('slip_state', '', '0 no contact, 1 stick, 2 slide', True, 'int32'), ('v_error', '%', "paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100", True, 'float64'), ('phi', 'rad', 'rail obliquity at the contact point', True, 'float64'), ('acc_contact', 'm/s^2', "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss (s'' y_s neglected)", True, 'float64'), ('acc_A', 'm/s^2', "rho cos(phi) theta' v phi_s (docs: Model § Outputs)", True, 'float64'), ('acc_B', 'm/s^2', "rho cos(phi) theta' phi_t", True, 'float64'), ('acc_C', 'm/s^2', 'rho cos(phi) v^2 phi_s^2', True, 'float64'), ('acc_D', 'm/s^2', 'rho cos(phi) phi_t^2', True, 'float64'), ('acc_E', 'm/s^2', '2 rho cos(phi) phi_t v phi_s', True, 'float64'), ('reaction', 'N', 'horizontal force holding X_A = X_0 + v t', True, 'float64'), ('penetration', 'm', 'rho0 - rho (negative: gap)', True, 'float64'), ('energy', 'J', 'total mechanical energy (recorded on request only)', False, 'float64'))
