@@ -1,0 +1,575 @@
+"""The periodic level: the steady response of a wheel at constant speed on the linear track
+periodic in its sleeper bay, in the frequency domain (docs: Model § The periodic level).
+
+:func:`periodic_response` solves, for the sleeper passing and for each harmonic of the running
+surfaces, the harmonic balance of the moving contact over the side bands Omega + p w_s
+(w_s = 2 pi v / d): with the moving-load receptance matrix A of the rail (``_moving``), the
+wheel's receptance alpha_W and the contact's alpha_C,
+
+    (diag(alpha_C(w_p) + alpha_W(w_p)) + A) N = r - P A[:, 0] (sleeper passing only),
+
+N_p the contact-force harmonics at w_p = Omega + p w_s [N] (upward on the wheel), r the
+running-surface excitation [m]. No time stepping, no mesh, no start-up transient.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .. import _validate as v
+from ..irregularity import (
+    Irregularity,
+    Polygon,
+    SineProfile,
+    contact_half_width,
+    filter_attenuation,
+)
+from ..scene import Scene
+from ._moving import receptance_matrix
+from ._track import PeriodicTrack
+
+if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
+    import pandas as pd
+
+__all__ = ["DEFAULT_HARMONICS", "PERIODIC_FIDELITIES", "PeriodicResponse", "moving_receptance",
+           "periodic_response", "periodic_track"]
+
+#: Sleeper-passing harmonics and side bands on each side kept by default [-]
+DEFAULT_HARMONICS = 8
+#: The time-domain levels the periodic level reproduces (the linear track with the wheel's
+#: contact law linear or linearised): "linear/sprung" (linear spring k), "linear/hertz"
+#: (Hertz linearised at the static wheel load), "linear/moving_mass" (rigid contact),
+#: "linear/moving_force" (a constant force P, no wheel dynamics)
+PERIODIC_FIDELITIES = ("linear/sprung", "linear/hertz", "linear/moving_mass",
+                       "linear/moving_force")
+#: Harmonics kept beyond the reported ones on each side of the balance [-]
+HARMONIC_MARGIN = 2
+#: Default relative tolerance of the k quadrature of the receptance matrix [-]
+DEFAULT_RTOL = 1e-7
+#: Bay phases sampled for the force's extremes [-]
+PHASES = 512
+_FULL = ("full", "ancf/sprung", "ancf/hertz")
+
+
+def periodic_track(scene: Scene) -> PeriodicTrack:
+    """The scene's linear track as the periodic level sees it: the infinite rail (the scene's
+    beam theory) on its supports every ``Supports.spacing``, checked to be periodic and
+    damped. The rail's length, its end supports and absorbing zones, a travelling window and
+    the track's own weight do not enter (an infinite track; a static preload)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    sup, rail = scene.supports, scene.rail
+    if sup.positions is not None:
+        raise ValueError("the periodic level needs a track periodic in its sleeper bay: equal "
+                         "supports every Supports.spacing (Supports.positions must be None, got "
+                         f"{len(sup.positions)} explicit positions)")
+    track = PeriodicTrack(
+        bay=sup.spacing, bending_stiffness=rail.bending_stiffness,
+        mass_per_length=rail.mass_per_length,
+        shear_stiffness=rail.shear_stiffness if rail.beam == "timoshenko" else math.inf,
+        rotary_inertia=rail.rotary_inertia if rail.beam == "timoshenko" else 0.0,
+        pad_stiffness=sup.stiffness, pad_damping=sup.damping,
+        sleeper_mass=sup.sleeper_mass or 0.0, ballast_stiffness=sup.ballast_stiffness or 0.0,
+        ballast_damping=sup.ballast_damping)
+    if not track.damped:
+        raise ValueError("the periodic level needs damping in the supports (Supports.damping > 0, "
+                         "or Supports.ballast_damping > 0 with sleepers): on an undamped "
+                         "periodic track the waves the moving wheel excites never decay, so "
+                         "there is no steady state to compute (the time domain never settles "
+                         "either)")
+    return track
+
+
+@dataclass(frozen=True)
+class _Wheel:
+    """What the harmonic balance needs of the wheel and its contact."""
+
+    load: float  #: P, the static wheel load [N]
+    mass: float  #: M [kg]
+    contact_stiffness: float  #: k [N/m]; inf: rigid (moving mass)
+    contact_damping: float  #: [N s/m]
+    static_compression: float  #: delta at the static load [m]
+    radius: float  #: rho0 [m]
+    vehicle: object  #: the Vehicle with bodies, or None
+    gravity: float
+
+
+def _wheel_of(scene: Scene, fidelity: str) -> _Wheel:
+    veh = scene.active_vehicle
+    if veh.n_wheels != 1:
+        raise ValueError(
+            f"the periodic level takes one wheel (with its vehicle's bodies and suspensions); "
+            f"the scene's vehicle has {veh.n_wheels}: its wheels would interact through the "
+            "rail, which the periodic level does not model; use simulate, or one wheel of the "
+            "vehicle")
+    w = veh.wheels[0]
+    if w.brake_torque > 0.0:
+        raise ValueError("Wheel.brake_torque > 0 needs the wheel's rotation, which the periodic "
+                         "level (the linear levels' vertical model) does not have")
+    P = float(veh.static_loads(scene.gravity)[0])
+    c = scene.contact
+    if fidelity == "linear/sprung":
+        # the linear/sprung level's spring: the given k, or Hertz linearised at the static load
+        k = scene.contact_stiffness
+        comp = P / k
+    elif fidelity == "linear/hertz":
+        ch = c.stiffness if (c.law == "hertz" and c.stiffness is not None) else scene.hertz_constant
+        if c.law == "linear" and c.stiffness is not None:
+            # a given linear k becomes the Hertz constant with that stiffness at the static load
+            # (as simulate's linear/hertz level does)
+            ch = (c.stiffness / (1.5 * scene.static_load ** (1.0 / 3.0))) ** 1.5
+        k = 1.5 * ch ** (2.0 / 3.0) * P ** (1.0 / 3.0)  # dN/d delta at N = P
+        comp = (P / ch) ** (2.0 / 3.0)
+    else:
+        k, comp = math.inf, 0.0
+    bodies = scene.vehicle if (scene.vehicle is not None and scene.vehicle.n_bodies) else None
+    return _Wheel(load=P, mass=w.mass, contact_stiffness=k, contact_damping=c.damping,
+                  static_compression=comp, radius=w.radius, vehicle=bodies,
+                  gravity=scene.gravity)
+
+
+def _wheel_receptance(wheel: _Wheel, w: np.ndarray) -> np.ndarray:
+    """alpha_W(w) [m/N]: the wheel centre's displacement per upward force on it at w [rad/s]
+    (w != 0): -1/(M w^2) for a free wheel, else from the vehicle's dynamic stiffness
+    K_v + i w C_v - w^2 M_v over u = [Y_wheel, (z, phi) per body] (docs: Model § The
+    vehicle)."""
+    w = np.asarray(w, dtype=float)
+    if wheel.vehicle is None:
+        return -1.0 / (wheel.mass * w * w) + 0j
+    M, K, C = _vehicle_matrices(wheel.vehicle)
+    Z = K[None] + 1j * w[:, None, None] * C[None] - (w * w)[:, None, None] * M[None]
+    rhs = np.zeros((w.size, M.shape[0], 1), complex)
+    rhs[:, 0, 0] = 1.0
+    return np.linalg.solve(Z, rhs)[:, 0, 0]
+
+
+def _vehicle_matrices(veh):
+    """(M, K, C) of a one-wheel vehicle over u = [Y, z_0, phi_0, ...]: the masses and
+    inertias, and sum k_s g_s g_s^T, sum c_s g_s g_s^T over its suspensions, g_s the
+    gradient of the extension d_s = z_u + a_u phi_u - (Y or z_l + a_l phi_l) (the kernel's
+    convention, docs: Model § The vehicle)."""
+    nb = veh.n_bodies
+    n = 1 + 2 * nb
+    M = np.zeros((n, n))
+    K = np.zeros((n, n))
+    C = np.zeros((n, n))
+    M[0, 0] = veh.wheels[0].mass
+    springs = []
+    for j, b in enumerate(veh.bogies):
+        M[1 + 2 * j, 1 + 2 * j], M[2 + 2 * j, 2 + 2 * j] = b.mass, b.pitch_inertia
+        for w in b.wheels:
+            g = np.zeros(n)
+            g[1 + 2 * j] += 1.0
+            g[2 + 2 * j] += veh.positions[w] - b.centre
+            g[w] -= 1.0
+            springs.append((b.primary_stiffness, b.primary_damping, g))
+    if veh.car is not None:
+        jc = len(veh.bogies)
+        c = veh.car
+        M[1 + 2 * jc, 1 + 2 * jc], M[2 + 2 * jc, 2 + 2 * jc] = c.mass, c.pitch_inertia
+        for j, b in enumerate(veh.bogies):
+            g = np.zeros(n)
+            g[1 + 2 * jc] += 1.0
+            g[2 + 2 * jc] += b.centre - c.centre
+            g[1 + 2 * j] -= 1.0
+            springs.append((c.secondary_stiffness, c.secondary_damping, g))
+    for k, c, g in springs:
+        K += k * np.outer(g, g)
+        C += c * np.outer(g, g)
+    return M, K, C
+
+
+def own_weight_sag(scene: Scene, n: int) -> np.ndarray:
+    """Fourier coefficients c_p, p = -n..n, of the track's rest state under its own weight
+    (``Scene.rail_gravity``): the rail's height w_g(X) = sum_p c_p e^{i 2 pi p X / d} [m], X
+    from a support. By symmetry each support carries the weight of one bay, q d (q = rho A g),
+    and the rail has zero slope there, so each bay is a clamped-clamped beam under q:
+    w_g = y_s - q x^2 (d - x)^2 / (24 EI) - q x (d - x) / (2 kappa G A) (the last term
+    Timoshenko only), with the supports' own deflection y_s = -q d / k_s, or for pad-sleeper-
+    ballast supports -q d / k_p - (q d + m_s g) / k_b. Its harmonics, c_p = q d^4 / (16 EI
+    pi^4 p^4) + q d^2 / (4 kappa G A pi^2 p^2), are a bay-periodic profile the wheel rolls
+    over: the rail sags between the sleepers under its own weight."""
+    p = np.arange(-n, n + 1)
+    out = np.zeros(p.size, complex)
+    if not scene.rail_gravity:
+        return out
+    rail, sup = scene.rail, scene.supports
+    d, q = sup.spacing, rail.mass_per_length * scene.gravity
+    EI = rail.bending_stiffness
+    shear = rail.beam == "timoshenko"
+    GA = rail.shear_stiffness
+    if sup.layered:
+        y_s = -q * d / sup.stiffness - (q * d + sup.sleeper_mass * scene.gravity) / (
+            sup.ballast_stiffness)
+    else:
+        y_s = -q * d / sup.stiffness
+    out[n] = y_s - q * d**4 / (720.0 * EI) - (q * d * d / (12.0 * GA) if shear else 0.0)
+    pp = p[p != 0].astype(float)
+    out[p != 0] = q * d**4 / (16.0 * EI * math.pi**4 * pp**4) + (
+        q * d * d / (4.0 * GA * math.pi**2 * pp**2) if shear else 0.0)
+    return out
+
+
+@dataclass(frozen=True)
+class _Sine:
+    """One harmonic of the running surfaces under the wheel: r(t) = Re(amplitude e^{i w t}),
+    t = X_A / v."""
+
+    omega: float  #: w = 2 pi v / lambda [rad/s]
+    amplitude: complex  #: complex amplitude [m]
+    label: str  #: e.g. "rail sine 0.05 m"
+    wavelength: float  #: on the track [m]
+
+
+def _sines(scene: Scene, irregularity, speed: float, radius: float) -> list[_Sine]:
+    irr = scene.irregularity if irregularity is None else irregularity
+    if irr is not None and not isinstance(irr, Irregularity):
+        raise TypeError(f"irregularity must be a trackwheel.Irregularity or None, got "
+                        f"{type(irr).__name__}")
+    a_patch = contact_half_width(scene) if scene.contact.patch_filter else None
+    out = []
+    for i, p in enumerate(() if irr is None else irr.parts):
+        if not isinstance(p, SineProfile):
+            what = getattr(p, "kind", type(p).__name__)
+            hint = (" (for a random profile give its spectrum to trackwheel.random_response)"
+                    if what == "random" else "")
+            raise ValueError(
+                f"irregularity part {i} is a {what!r} profile: the periodic level takes rail "
+                "profiles that are sums of sines (Irregularity.sine), whose response is a sum "
+                f"of steady harmonics; a discrete or measured shape has none{hint}; use "
+                "simulate")
+        if p.amplitude == 0.0:
+            continue
+        gain = 1.0 if a_patch is None else float(filter_attenuation(p.wavelength, a_patch)[0])
+        # a sin(2 pi X / lambda + phi) = Re(-i a e^{i phi} e^{i 2 pi X / lambda}), X = v t
+        out.append(_Sine(2.0 * math.pi * speed / p.wavelength,
+                         -1j * p.amplitude * gain * np.exp(1j * p.phase),
+                         f"rail sine {p.wavelength:g} m", p.wavelength))
+    for j, d in enumerate(scene.active_vehicle.wheels[0].defects):
+        if not isinstance(d, Polygon):
+            raise ValueError(
+                f"Wheel.defects[{j}] is a {d.kind!r}: the periodic level takes out-of-round "
+                "wheels that are sums of sines (Polygon); a flat's impacts need simulate")
+        if d.amplitude == 0.0:
+            continue
+        # Delta rho = a cos(m psi + phi), psi = X_A / rho0 (the mark in contact at X = 0)
+        out.append(_Sine(d.order * speed / radius, d.amplitude * np.exp(1j * d.phase) + 0j,
+                         f"polygon order {d.order}", 2.0 * math.pi * radius / d.order))
+    return out
+
+
+_COLUMNS = ["frequency_hz", "amplitude_n", "phase_rad", "source", "order", "component"]
+
+
+def _table(rows) -> pd.DataFrame:
+    import pandas as pd
+
+    return pd.DataFrame(rows, columns=_COLUMNS)
+
+
+@dataclass(frozen=True)
+class PeriodicResponse:
+    """The steady response of :func:`periodic_response` (docs: Model § The periodic level).
+
+    Signals are sums of cosines over the rows of their tables,
+    ``value(t) = mean + sum amplitude cos(2 pi f t + phase)``, t [s] counted from the instant
+    the wheel is over a support (X_A = 0; supports at X = j d), so that the force at the wheel
+    position X is N(X / v). Rows with ``source`` "sleeper_passing" are the harmonics k v/d of
+    the smooth track (``order`` k); rows "irregularity" the response to each harmonic of the
+    running surfaces (``component`` names it) at its frequency (``order`` 0) and its
+    parametric side bands f + k v/d (``order`` k). Displacements are upward positive: the
+    rail's under the wheel from the undeformed straight rail (as ``Result.y_contact``: the
+    track's own-weight sag included), the wheel centre's from where it would stand on the
+    undeformed rail with an unloaded contact (``Result.y_wheel`` minus rho0).
+    """
+
+    scene: Scene
+    speed: float  #: v [m/s]
+    fidelity: str  #: the time-domain level it reproduces (``PERIODIC_FIDELITIES``)
+    n_harmonics: int  #: n, harmonics and side bands reported on each side [-]
+    sleeper_frequency: float  #: f_s = v / d [Hz]
+    mean_force: float  #: P, the static wheel load (the steady mean) [N]
+    mean_rail_displacement: float  #: mean of the rail under the wheel [m] (negative: down)
+    mean_wheel_displacement: float  #: mean of the wheel centre [m]
+    min_force: float  #: the least contact force over all phases of the steady state [N]
+    max_force: float  #: the largest [N]
+    contact_stiffness: float  #: k of the linear(ised) contact [N/m] (inf: rigid)
+    #: the rows: (frequency [Hz], N, y, Y (complex amplitudes, [N], [m], [m]), the moving
+    #: receptance [m/N], source, order, component); built into the tables on access
+    rows: tuple = ()
+
+    def _harmonics(self, column: int) -> pd.DataFrame:
+        return _table([(r[0], abs(r[column]), float(np.angle(r[column])), r[5], r[6], r[7])
+                       for r in self.rows])
+
+    @cached_property
+    def force_harmonics(self) -> pd.DataFrame:
+        """Contact-force harmonics: frequency_hz, amplitude_n [N], phase_rad, source, order,
+        component."""
+        return self._harmonics(1)
+
+    @cached_property
+    def rail_harmonics(self) -> pd.DataFrame:
+        """The rail's displacement under the wheel, rows as ``force_harmonics`` (the
+        ``amplitude_n`` column holds metres)."""
+        return self._harmonics(2)
+
+    @cached_property
+    def wheel_harmonics(self) -> pd.DataFrame:
+        """The wheel centre's displacement, rows as ``force_harmonics`` (metres)."""
+        return self._harmonics(3)
+
+    @cached_property
+    def moving_receptance(self) -> pd.DataFrame:
+        """The moving (Doppler) receptance seen by the contact at each force harmonic's
+        frequency: the rail's bay-averaged displacement at that frequency per unit force moving
+        with the wheel, A_0(f) [m/N, complex] (frequency_hz, receptance, source, order,
+        component)."""
+        import pandas as pd
+
+        return pd.DataFrame([(r[0], r[4], r[5], r[6], r[7]) for r in self.rows],
+                            columns=["frequency_hz", "receptance", "source", "order",
+                                     "component"])
+
+    @property
+    def dynamic_factor(self) -> float:
+        """max N / P [-]."""
+        return self.max_force / self.mean_force
+
+    def force(self, t) -> np.ndarray:
+        """N(t) [N] at times t [s] (t = 0: the wheel over a support), all rows summed with the
+        running surfaces' phases as given."""
+        return self._signal(self.mean_force, 1, t)
+
+    def rail_displacement(self, t) -> np.ndarray:
+        """The rail's displacement under the wheel at t [s] [m]."""
+        return self._signal(self.mean_rail_displacement, 2, t)
+
+    def wheel_displacement(self, t) -> np.ndarray:
+        """The wheel centre's displacement at t [s] [m]."""
+        return self._signal(self.mean_wheel_displacement, 3, t)
+
+    def _signal(self, mean, column, t):
+        t = np.asarray(t, dtype=float)
+        if not self.rows:
+            return np.full(t.shape, mean)
+        f = np.array([r[0] for r in self.rows])
+        a = np.array([r[column] for r in self.rows])
+        return mean + (np.abs(a) * np.cos(2.0 * math.pi * np.multiply.outer(t, f)
+                                          + np.angle(a))).sum(axis=-1)
+
+    def __repr__(self) -> str:
+        first = next((abs(r[1]) for r in self.rows if r[5] == "sleeper_passing"), 0.0)
+        return (f"PeriodicResponse({self.fidelity} at {self.speed * 3.6:.4g} km/h: "
+                f"P = {self.mean_force / 1e3:.4g} kN, sleeper passing {self.sleeper_frequency:.4g}"
+                f" Hz with first harmonic {first:.4g} N, N in [{self.min_force / 1e3:.4g}, "
+                f"{self.max_force / 1e3:.4g}] kN, {len(self.rows)} harmonics)")
+
+
+@dataclass(frozen=True)
+class _Balance:
+    """One harmonic balance: the harmonics p = -n..n at w_p = omega + p w_s."""
+
+    w: np.ndarray  #: w_p [rad/s]
+    A: np.ndarray  #: the rail's moving-load receptance matrix [m/N]
+    N: np.ndarray  #: force harmonics [N]
+    y: np.ndarray  #: the rail's displacement harmonics under the wheel [m]
+    Y: np.ndarray  #: the wheel centre's [m]
+    static: np.ndarray  #: harmonics at zero frequency (bool)
+
+
+def _balance(track, wheel, fidelity, speed, omega, n, rhs, *, mean=None, rtol=DEFAULT_RTOL):
+    """Solve the harmonic balance at base frequency ``omega`` [rad/s] for the excitation
+    ``rhs`` (the running surfaces' harmonics under the wheel, (2n+1,) [m]). ``mean`` = P
+    [N]: the sleeper passing, whose harmonic p = 0 is the static load (known; its equation
+    gives the mean displacements)."""
+    p = np.arange(-n, n + 1)
+    i0 = n
+    ws = 2.0 * math.pi * speed / track.bay
+    w = omega + p * ws
+    A = receptance_matrix(track, speed, omega, n, rtol=rtol)[0]
+    # a harmonic at zero frequency carries no force: the wheel's mean acceleration is zero
+    static = np.abs(w) < 1e-9 * max(ws, abs(omega))
+    if mean is not None:
+        static = p == 0
+    wsafe = np.where(static, 1.0, w)
+    free = ~static
+    N = np.zeros(p.size, complex)
+    if mean is not None:
+        N[i0] = mean
+    if fidelity != "linear/moving_force":
+        Z = A[np.ix_(free, free)] + np.diag(_alpha(wheel, wsafe[free]))
+        N[free] = np.linalg.solve(Z, rhs[free] - A[np.ix_(free, static)] @ N[static])
+    y = -A @ N
+    if mean is not None:
+        y = y + rhs  # the own-weight sag: part of the rail's height under the wheel
+    Y = np.where(static, 0.0, _wheel_receptance(wheel, wsafe)) * N
+    if fidelity == "linear/moving_force":
+        Y = y + (0.0 if mean is not None else rhs)
+    return _Balance(w, A, N, y, Y, static)
+
+
+def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity | None = None,
+                      n_harmonics: int = DEFAULT_HARMONICS, fidelity: str | None = None,
+                      rtol: float = DEFAULT_RTOL, linearisation_tol: float = 0.02
+                      ) -> PeriodicResponse:
+    """The steady response of the scene's wheel at constant ``speed`` [m/s] on its linear
+    track, periodic in the sleeper bay, in the frequency domain (docs: Model § The periodic
+    level): the sleeper-passing harmonics k v/d and the response to each sine of the running
+    surfaces with its side bands, without time stepping.
+
+    Parameters
+    ----------
+    scene : the track (equal supports every ``Supports.spacing``, single or pad-sleeper-
+        ballast, with damping; Euler-Bernoulli or Timoshenko rail; the rail's length, end
+        zones and window do not enter: the track is infinite) and one wheel, free under its
+        static load or on its vehicle's suspensions (one wheel: a ``Vehicle`` whose bogie and
+        car body rest on it).
+    speed : v in (0, ``MAX_SPEED``] [m/s].
+    irregularity : the rail profile, a sum of ``Irregularity.sine``; None takes
+        ``scene.irregularity`` (``Irregularity()`` for a smooth rail). Random, dipped-joint and
+        sampled profiles are refused (a random profile's force spectrum comes from its
+        spectrum: ``random_response``). Polygonal wheels (``Wheel.defects`` of ``Polygon``) are
+        taken too, with the wheel angle psi = X_A / rho0.
+    n_harmonics : n, sleeper-passing harmonics (1..n) and side bands (-n..n) reported [-],
+        1..64; the balance keeps HARMONIC_MARGIN more on each side, so the reported ones do not
+        feel the truncation.
+    fidelity : the linear level reproduced (``PERIODIC_FIDELITIES``); None: "linear/hertz" for
+        a Hertzian scene contact, else "linear/sprung". "full" and "ancf/..." are refused.
+    rtol : relative tolerance of the wavenumber quadrature [-].
+    linearisation_tol : "linear/hertz" only: the largest estimated error of the linearised
+        Hertz law, max |N - P| / (6 P) [-] (the second-order term of N = C_H delta^1.5 against
+        the first); above it the response is refused.
+
+    Raises ValueError (naming why) where the level does not apply: a non-periodic or undamped
+    track, several wheels, a profile that is not a sum of sines, contact loss predicted by the
+    linear result (min N <= 0), the Hertz law beyond its linearisation, the full ANCF model.
+    """
+    fidelity = _fidelity(scene, fidelity)
+    track = periodic_track(scene)
+    speed = v.number("speed", speed, low=0.0, high=v.MAX_SPEED, low_open=True, unit="m/s")
+    n_out = v.integer("n_harmonics", n_harmonics, low=1, high=64)
+    rtol = v.number("rtol", rtol, low=1e-13, high=1e-2)
+    linearisation_tol = v.number("linearisation_tol", linearisation_tol, low=0.0, low_open=True)
+    wheel = _wheel_of(scene, fidelity)
+    sines = _sines(scene, irregularity, speed, wheel.radius)
+    P = wheel.load
+    n = n_out + HARMONIC_MARGIN
+    i0 = n
+    rows = []
+    # the sleeper passing: N_0 = P known; the wheel rolls over the rail's own-weight sag
+    # between the sleepers too (a bay-periodic profile)
+    sag = own_weight_sag(scene, n)
+    sp = _balance(track, wheel, fidelity, speed, 0.0, n, sag, mean=P, rtol=rtol)
+    mean_rail = float(sp.y[i0].real)
+    mean_wheel = mean_rail - wheel.static_compression
+    for q in range(1, n_out + 1):
+        j = i0 + q
+        rows.append((sp.w[j] / (2.0 * math.pi), 2.0 * sp.N[j], 2.0 * sp.y[j], 2.0 * sp.Y[j],
+                     sp.A[j, j], "sleeper_passing", q, ""))
+    envelopes = []  # per sine: the force harmonics, whose sum over p is its envelope
+    for s in sines:
+        rhs = np.zeros(2 * n + 1, complex)
+        rhs[i0] = s.amplitude
+        b = _balance(track, wheel, fidelity, speed, s.omega, n, rhs, rtol=rtol)
+        envelopes.append(b.N)
+        for j in range(i0 - n_out, i0 + n_out + 1):
+            if b.static[j]:
+                continue
+            f = b.w[j] / (2.0 * math.pi)
+            # a component at negative frequency is the complex conjugate at |f|
+            fix = (lambda z: z) if f > 0 else np.conj
+            rows.append((abs(f), fix(b.N[j]), fix(b.y[j]), fix(b.Y[j]), fix(b.A[j, j]),
+                         "irregularity", j - i0, s.label))
+    lo, hi = _extremes(sp.N, envelopes, n)
+    if fidelity != "linear/moving_force":
+        _check_applies(fidelity, P, lo, hi, linearisation_tol)
+    return PeriodicResponse(
+        scene=scene, speed=speed, fidelity=fidelity, n_harmonics=n_out,
+        sleeper_frequency=speed / track.bay, mean_force=P, mean_rail_displacement=mean_rail,
+        mean_wheel_displacement=mean_wheel, min_force=lo, max_force=hi,
+        contact_stiffness=wheel.contact_stiffness, rows=tuple(rows))
+
+
+def _fidelity(scene, fidelity) -> str:
+    if fidelity is None:
+        return "linear/hertz" if getattr(scene.contact, "law", "") == "hertz" else "linear/sprung"
+    if fidelity in _FULL:
+        raise ValueError(
+            f"fidelity = {fidelity!r}: the periodic level is the linear track in the frequency "
+            "domain; the full ANCF model (large-rotation rail, contact-point search with "
+            "obliquity, rolling constraint with slip) is nonlinear, so its steady state is not a "
+            "superposition of harmonics; use simulate(scene, speed, fidelity="
+            f"{fidelity!r}); allowed here: {', '.join(PERIODIC_FIDELITIES)}")
+    v.choice("fidelity", fidelity, set(PERIODIC_FIDELITIES))
+    return fidelity
+
+
+def _alpha(wheel: _Wheel, w) -> np.ndarray:
+    """alpha_C + alpha_W at w [rad/s] (w != 0) [m/N]."""
+    k = wheel.contact_stiffness
+    contact = 0.0 if math.isinf(k) else 1.0 / (k + 1j * np.asarray(w) * wheel.contact_damping)
+    return contact + _wheel_receptance(wheel, w)
+
+
+def _extremes(Nsp, envelopes, n) -> tuple[float, float]:
+    """(min N, max N) [N] over all phases: the sleeper passing at the bay phase theta plus,
+    per sine, its envelope |G(theta)| at the least and the most favourable phase of the sine
+    (exact for sines incommensurate with the bay, a bound otherwise)."""
+    theta = 2.0 * math.pi * np.arange(PHASES) / PHASES
+    p = np.arange(-n, n + 1)
+    e = np.exp(1j * np.multiply.outer(theta, p))
+    base = (e @ Nsp).real
+    spread = sum((np.abs(e @ N) for N in envelopes), np.zeros(theta.size))
+    return float((base - spread).min()), float((base + spread).max())
+
+
+def _check_applies(fidelity, P, lo, hi, tol, loss=True):
+    if loss and lo <= 0.0:
+        raise ValueError(
+            f"the linear steady state predicts contact loss (least contact force {lo:.4g} N <= 0 "
+            f"against the static load {P:.4g} N): the wheel would leave the rail, which the "
+            "periodic level (a linear, bilateral contact) cannot follow; use simulate with "
+            "fidelity 'linear/hertz' or 'full'")
+    if fidelity == "linear/hertz":
+        err = max(hi - P, P - lo) / (6.0 * P)
+        if err > tol:
+            raise ValueError(
+                f"the Hertz contact is beyond its linearisation: the force swings by "
+                f"{max(hi - P, P - lo):.4g} N about P = {P:.4g} N, an estimated error of "
+                f"{err:.3g} > linearisation_tol = {tol:g} (the second-order term of "
+                "N = C_H delta^1.5 against the first, |N - P| / (6 P)); use "
+                "fidelity='linear/sprung' (a linear spring) or simulate with 'linear/hertz'")
+
+
+def moving_receptance(scene: Scene, speed: float, freqs, *, n_harmonics: int = 4,
+                      position: float | None = None, rtol: float = DEFAULT_RTOL) -> np.ndarray:
+    """The moving (Doppler) receptance of the scene's periodic track [m/N]: a vertical force
+    e^{i 2 pi f t} moving at ``speed`` v [m/s] (>= 0) displaces the rail under it by
+    sum_n A_n(f) e^{i 2 pi (f + n v/d) t}; returns A_n at each of ``freqs`` f [Hz], shape
+    (n_freq, 2 n + 1) for n = -n_harmonics..n_harmonics (column n_harmonics is A_0, the
+    bay-averaged moving receptance). With ``position`` x [m] (in the bay, from a support) the
+    receptance at the instant the force passes x, sum_n A_n e^{i 2 pi n x / d}, shape
+    (n_freq,): at v = 0 the point receptance at x of the infinite track (``receptance`` of a
+    long rail). f != 0 when v = 0."""
+    track = periodic_track(scene)
+    speed = v.number("speed", speed, low=0.0, high=v.MAX_SPEED, unit="m/s")
+    f = np.atleast_1d(np.asarray(freqs, dtype=float))
+    if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)):
+        raise ValueError("freqs must be a non-empty 1-d sequence of finite frequencies [Hz]")
+    if speed == 0.0 and np.any(f == 0.0):
+        raise ValueError("freqs = 0 Hz with speed = 0 m/s is the static deflection of an "
+                         "infinite free rail point: allowed f != 0 at v = 0")
+    n = v.integer("n_harmonics", n_harmonics, low=0, high=64)
+    out = np.empty((f.size, 2 * n + 1), complex)
+    for i, fi in enumerate(f):
+        out[i] = receptance_matrix(track, speed, 2.0 * math.pi * fi, n, rtol=rtol)[0][:, n]
+    if position is None:
+        return out
+    x = v.number("position", position, unit="m")
+    return out @ np.exp(2j * math.pi * np.arange(-n, n + 1) * x / track.bay)
