@@ -165,7 +165,8 @@ def test_pinned_pinned_frequency_is_where_two_free_waves_meet(beam):
 # --------------------------------------------------------------------------------------------
 # the moving-load receptance
 def test_receptance_matrix_quadrature_against_a_dense_midpoint_rule():
-    """The pole-subtracted adaptive Gauss-Kronrod quadrature against the midpoint rule with
+    """The kernel's pole-subtracted adaptive Gauss-Kronrod quadrature against the midpoint rule
+    of the numpy integrand (``_moving._Line``) with
     dk = 2e-3 rad/m over [-K, K] (exponentially accurate for an integrand analytic in a strip:
     the narrowest peaks here are ~0.06 rad/m wide) plus 200-point Gauss-Legendre tails: to 1e-7
     of the largest entry (rtol 1e-8 asked)."""
@@ -429,6 +430,7 @@ def test_wheel_receptance_of_the_primary_suspended_wheel_is_the_two_mass_closed_
     np.testing.assert_allclose(got, ref, rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_time_domain_steady_state_timoshenko(slow):
     """The Timoshenko rail (kappa = 0.4) as the Euler-Bernoulli test, 16 elements per bay: the
     sleeper passing (1575 N: the rail's shear sag under its own weight and under the wheel
@@ -584,6 +586,7 @@ def test_band_rms_sums_to_the_variance():
     assert total == pytest.approx(rr.rms**2, rel=1e-3)
 
 
+@pytest.mark.slow
 def test_force_psd_against_monte_carlo_of_time_domain_runs(slow):
     """ISO 3095 roughness over 4.4-44 cm (f = 63-631 Hz) at 100 km/h on the ballasted preset
     (window 25 + 25 bays, linear/sprung): the one-third-octave band mean squares of 12
