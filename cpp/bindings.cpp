@@ -651,11 +651,12 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "periodic_receptance_matrix",
       [](const PeriodicTrackParams& track, double speed, double omega, int n,
-         const std::vector<double>& offsets, double rtol) {
+         const std::vector<double>& offsets, double rtol, bool with_stats) -> py::object {
         std::vector<Eigen::MatrixXcd> a;
+        PeriodicStats st;
         {
           py::gil_scoped_release nogil;
-          a = periodic_receptance_matrix(track, speed, omega, n, offsets, rtol);
+          a = periodic_receptance_matrix(track, speed, omega, n, offsets, rtol, &st);
         }
         const py::ssize_t M = 2 * n + 1, no = static_cast<py::ssize_t>(a.size());
         py::array_t<std::complex<double>> out({no, M, M});
@@ -663,11 +664,18 @@ PYBIND11_MODULE(_core, m) {
         for (py::ssize_t j = 0; j < no; ++j)
           for (py::ssize_t p = 0; p < M; ++p)
             for (py::ssize_t q = 0; q < M; ++q) r(j, p, q) = a[j](p, q);
-        return out;
+        if (!with_stats) return out;
+        py::dict d;
+        d["points"] = st.points;
+        d["poles"] = st.poles;
+        d["rounds"] = st.rounds;
+        d["den_evaluations"] = st.den_evaluations;
+        return py::make_tuple(out, d);
       },
       py::arg("track"), py::arg("speed"), py::arg("omega"), py::arg("n"), py::arg("offsets"),
-      py::arg("rtol"),
-      "Moving-load receptance matrices (n_offsets, 2n+1, 2n+1) [m/N] of the periodic track");
+      py::arg("rtol"), py::arg("stats") = false,
+      "Moving-load receptance matrices (n_offsets, 2n+1, 2n+1) [m/N] of the periodic track; "
+      "with stats=True also the work counts {points, poles, rounds, den_evaluations}");
   m.def("periodic_lattice_sum", &periodic_lattice_sum, py::arg("track"), py::arg("k"), py::arg("w"),
         "The lattice sum S(k, w) [m/N] of the periodic track");
 

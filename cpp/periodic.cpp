@@ -145,6 +145,53 @@ class Track {
     return out;
   }
 
+  // 1 / D(k, w) [m^2/N] for real k and w: real (the rail is undamped)
+  double inverse_stiffness(double k, double w) const {
+    const double w2 = w * w, k2 = k * k;
+    if (!timo_) return 1.0 / (p_.EI * k2 * k2 - p_.mass * w2);
+    const double G = p_.shear, J = p_.rotary, EI = p_.EI, m = p_.mass;
+    const double q = G * EI * k2 * k2 - (G * J + m * EI) * w2 * k2 - m * w2 * (G - J * w2);
+    return (EI * k2 + G - J * w2) / q;
+  }
+
+  // S(k, w) [m/N] for real k and w != 0: real. Per root a^2 of the partial fractions: a real
+  // root gives c / (4a) (cot(x - y) - cot(x + y)), an imaginary one a = i alpha gives
+  // c sinh(2y) / (2 alpha (cosh 2y - cos 2x)) (x = k d/2, y = |a| d/2), written with
+  // exp(-2y) so that it does not overflow.
+  double lattice_sum(double k, double w) const {
+    double a2[2], c[2];
+    const double w2 = w * w, EI = p_.EI, m = p_.mass;
+    if (!timo_) {
+      const double lam2 = std::sqrt(m * w2 / EI);
+      a2[0] = lam2;
+      a2[1] = -lam2;
+      c[0] = 1.0 / (2.0 * EI * lam2);
+      c[1] = -c[0];
+    } else {
+      const double G = p_.shear, J = p_.rotary, alpha = G * EI;
+      const double beta = (G * J + m * EI) * w2, gamma = m * w2 * (G - J * w2);
+      const double root = std::sqrt(beta * beta + 4.0 * alpha * gamma);  // real for w != 0
+      a2[0] = (beta + root) / (2.0 * alpha);
+      a2[1] = -gamma / (alpha * a2[0]);
+      const double rest = G - J * w2;
+      c[0] = (EI * a2[0] + rest) / (alpha * (a2[0] - a2[1]));
+      c[1] = (EI * a2[1] + rest) / (alpha * (a2[1] - a2[0]));
+    }
+    const double x = 0.5 * p_.bay * k;
+    double out = 0.0;
+    for (int r = 0; r < 2; ++r) {
+      if (a2[r] >= 0.0) {
+        const double a = std::sqrt(a2[r]), y = 0.5 * p_.bay * a;
+        out += c[r] / (4.0 * a) * (1.0 / std::tan(x - y) - 1.0 / std::tan(x + y));
+      } else {
+        const double al = std::sqrt(-a2[r]), y = 0.5 * p_.bay * al;
+        const double e2 = std::exp(-2.0 * y), e4 = e2 * e2;
+        out += c[r] / (2.0 * al) * (1.0 - e4) / (1.0 + e4 - 2.0 * std::cos(2.0 * x) * e2);
+      }
+    }
+    return out;
+  }
+
   // s(w) [N/m]
   cd support(cd w) const {
     const cd sp = p_.pad_stiffness + cd(0.0, 1.0) * w * p_.pad_damping;
@@ -185,27 +232,38 @@ class Line {
     return 1.0 + tr_.support(w) * tr_.lattice_sum(k, w);
   }
 
+  // 1 + s S at real k (the real lattice sum)
+  cd den_real(double k) const {
+    k = off_static(k);
+    const double w = om_ - k * v_;
+    return 1.0 + tr_.support(w) * tr_.lattice_sum(k, w);
+  }
+
   // d(1 + s S)/dk by the fourth-order central difference
   cd den_slope(cd k, double step) const {
     return (den(k - 2.0 * step) - 8.0 * den(k - step) + 8.0 * den(k + step) - den(k + 2.0 * step)) /
            (12.0 * step);
   }
 
-  // h (M), c and the diagonal (M) at real k (docs of periodic.hpp)
-  void parts(double k, cd* h, cd& c, cd* diag) const {
+  // h (M, real: the free rail is undamped), c and the diagonal (M) at real k (docs of
+  // periodic.hpp). Where |s h_m| is large the diagonal's two terms d h_m and c h_m^2 nearly
+  // cancel: there it is d h_m (1 + s S_m') / (1 + s S), S_m' the lattice sum without term m.
+  void parts(double k, double* h, cd& c, cd* diag) const {
     k = off_static(k);
     const double d = tr_.bay(), w = om_ - k * v_;
     const cd s = tr_.support(w);
+    const double abs_s = std::abs(s);
     const cd den = 1.0 + s * tr_.lattice_sum(k, w);
-    c = -d * s / den;
+    const cd inv_den = std::conj(den) / std::norm(den);
+    c = -d * s * inv_den;
     for (int q = 0; q < M_; ++q) {
       const double kq = k + 2.0 * kPi * (q - n_) / d;
       h[q] = tr_.inverse_stiffness(kq, w) / d;
-      if (std::abs(s * h[q]) > kCancellation) {
-        const cd excl = tr_.lattice_sum_excluding(k, w, q - n_);
-        diag[q] = d * h[q] * (1.0 + s * excl) / den;
+      if (abs_s * std::abs(h[q]) > kCancellation) {
+        const cd excl = tr_.lattice_sum_excluding(cd(k), cd(w), q - n_);
+        diag[q] = d * h[q] * (1.0 + s * excl) * inv_den;
       } else {
-        diag[q] = d * h[q] + c * h[q] * h[q];
+        diag[q] = d * h[q] + c * (h[q] * h[q]);
       }
     }
   }
@@ -281,7 +339,7 @@ void free_poles(const Line& line, double lo, double hi, std::vector<double>& ks,
   }
 }
 
-std::vector<Pole> find_poles(const Line& line, const std::vector<double>& edges) {
+std::vector<Pole> find_poles(const Line& line, const std::vector<double>& edges, long& evals) {
   const Track& tr = line.track();
   const double d = tr.bay(), half = kPi / d, lo = edges.front(), hi = edges.back();
   std::vector<cd> starts;
@@ -291,7 +349,8 @@ std::vector<Pole> find_poles(const Line& line, const std::vector<double>& edges)
     for (int i = 0; i < kScanPerPanel; ++i)
       scan.push_back(edges[e] + (edges[e + 1] - edges[e]) * (i + 0.5) / kScanPerPanel);
   std::vector<double> mag(scan.size());
-  for (std::size_t i = 0; i < scan.size(); ++i) mag[i] = std::abs(line.den(scan[i]));
+  for (std::size_t i = 0; i < scan.size(); ++i) mag[i] = std::abs(line.den_real(scan[i]));
+  evals += static_cast<long>(scan.size());
   for (std::size_t i = 1; i + 1 < scan.size(); ++i)
     if (mag[i] < mag[i - 1] && mag[i] < mag[i + 1]) starts.emplace_back(scan[i], 0.0);
   // next to the free rail's poles: 1 + s S = 0 at first order where
@@ -319,13 +378,19 @@ std::vector<Pole> find_poles(const Line& line, const std::vector<double>& edges)
     for (int it = 0; ok && it < kSecantSteps; ++it) {
       cd dk = f * (k - k_old) / (f - f_old);
       if (!std::isfinite(dk.real()) || !std::isfinite(dk.imag())) dk = 0.0;
-      if (std::abs(dk) > limit) dk *= limit / std::abs(dk);
+      const double n2 = std::norm(dk);
+      if (n2 > limit * limit) dk *= limit / std::sqrt(n2);
       k_old = k;
       f_old = f;
       k -= dk;
       f = line.den(k);
-      if (!std::isfinite(std::abs(f))) ok = false;
-      if (std::abs(dk) < 1e-12 * half) break;
+      ++evals;
+      const double fn = std::norm(f);
+      if (!std::isfinite(fn)) ok = false;
+      if (std::norm(dk) < 1e-22 * half * half) break;
+      // a start without a zero nearby wanders with |1 + s S| ~ 1 (a shallow minimum of the
+      // scan, far from any resonance): give it up
+      if ((it >= 8 && fn > 0.5) || std::abs(k.imag()) > 4.0 * kPoleStrip * half) ok = false;
     }
     if (ok && std::abs(f) < 1e-9 && std::abs(k.imag()) < kPoleStrip * half && k.real() > lo &&
         k.real() < hi)
@@ -375,7 +440,7 @@ std::complex<double> periodic_lattice_sum(const PeriodicTrackParams& track, std:
 std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackParams& p, double speed,
                                                          double omega, int n,
                                                          const std::vector<double>& offsets,
-                                                         double rtol) {
+                                                         double rtol, PeriodicStats* stats) {
   auto finite_pos = [](double x) { return std::isfinite(x) && x > 0.0; };
   if (!finite_pos(p.bay) || !finite_pos(p.EI) || !finite_pos(p.mass) || p.shear < 0.0 ||
       p.rotary < 0.0 || !finite_pos(p.pad_stiffness) || p.pad_damping < 0.0 || p.sleeper_mass < 0.0)
@@ -398,7 +463,11 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
       std::sort(edges.begin(), edges.end());
     }
   }
-  const std::vector<Pole> poles = find_poles(line, edges);
+  PeriodicStats local;
+  PeriodicStats& st = stats ? *stats : local;
+  st = PeriodicStats();
+  const std::vector<Pole> poles = find_poles(line, edges, st.den_evaluations);
+  st.poles = static_cast<int>(poles.size());
   const int nc = static_cast<int>(poles.size());
   // pole amplitudes rho e^{i k_c Delta} and their error proxies (diagonal, column 0)
   Eigen::MatrixXcd amp(n_off, nc);
@@ -416,9 +485,12 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
   std::vector<Eigen::VectorXcd> diag(n_off, Eigen::VectorXcd::Zero(M));
   Eigen::VectorXcd fix = Eigen::VectorXcd::Zero(nc);
   double scale = 0.0;
-  std::vector<cd> h(M), dg(M);
+  std::vector<cd> dg(M);
+  Eigen::MatrixXd H(M, 15), Wr(15, n_off), Wi(15, n_off), Rr(M, M), Ri(M, M);
   for (int round = 0; round < kMaxRounds; ++round) {
     const std::size_t P = panels.size();
+    st.rounds = round + 1;
+    st.points += 15 * static_cast<long>(P);
     std::vector<PanelResult> res(P);
     double err_sum = 0.0;
     Eigen::VectorXcd est = Eigen::VectorXcd::Zero(M);  // the diagonal so far, for the scale
@@ -426,7 +498,7 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
     for (std::size_t ip = 0; ip < P; ++ip) {
       const Panel& pn = panels[ip];
       PanelResult& r = res[ip];
-      r.rank.assign(n_off, Eigen::MatrixXcd::Zero(M, M));
+      r.rank.assign(n_off, Eigen::MatrixXcd(M, M));
       r.diag.assign(n_off, Eigen::VectorXcd::Zero(M));
       std::vector<Eigen::VectorXcd> ed(n_off, Eigen::VectorXcd::Zero(M)),
           ec(n_off, Eigen::VectorXcd::Zero(M));
@@ -436,7 +508,8 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
         for (int c = 0; c < nc; ++c) {
           const cd kc = poles[c].k;
           const double dx = std::max({pn.a - kc.real(), kc.real() - pn.b, 0.0});
-          if (std::hypot(dx, kc.imag()) < pn.b - pn.a) near.push_back(c);
+          const double width = pn.b - pn.a;
+          if (dx * dx + kc.imag() * kc.imag() < width * width) near.push_back(c);
         }
       std::vector<cd> lk(near.size(), 0.0), ld(near.size(), 0.0);
       const double mid = 0.5 * (pn.a + pn.b), hw = 0.5 * (pn.b - pn.a);
@@ -448,25 +521,33 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
           jac = hw * K / (t * t);
         }
         cd c;
-        line.parts(k, h.data(), c, dg.data());
+        line.parts(k, H.col(i).data(), c, dg.data());
         const double wk = jac * kRule.wk[i] / (2.0 * kPi), wd = jac * kRule.wd[i] / (2.0 * kPi);
         for (std::size_t a = 0; a < near.size(); ++a) {
-          const cd inv = 1.0 / (k - poles[near[a]].k);
+          const cd z = k - poles[near[a]].k;
+          const cd inv = std::conj(z) / std::norm(z);
           lk[a] += wk * inv;
           ld[a] += wd * inv;
         }
         for (int j = 0; j < n_off; ++j) {
           const cd ph = offsets[j] == 0.0 ? cd(1.0) : std::exp(cd(0.0, k * offsets[j]));
           const cd wck = wk * c * ph, wkp = wk * ph, wdp = wd * ph;
-          Eigen::MatrixXcd& R = r.rank[j];
+          Wr(i, j) = wck.real();
+          Wi(i, j) = wck.imag();
+          const cd wdc = wdp * c * H(i0, i);
           for (int b = 0; b < M; ++b) {
-            const cd hb = wck * h[b];
-            for (int a2 = 0; a2 <= b; ++a2) R(a2, b) += hb * h[a2];
             r.diag[j](b) += wkp * dg[b];
             ed[j](b) += wdp * dg[b];
-            ec[j](b) += (b == i0 ? wdp * dg[b] : wdp * c * h[b] * h[i0]);
+            ec[j](b) += (b == i0 ? wdp * dg[b] : wdc * H(b, i));
           }
         }
+      }
+      // the rank-one part: sum_i w_i c_i h_i h_i^T, h real (upper triangle suffices)
+      for (int j = 0; j < n_off; ++j) {
+        Rr.noalias() = H * Wr.col(j).asDiagonal() * H.transpose();
+        Ri.noalias() = H * Wi.col(j).asDiagonal() * H.transpose();
+        r.rank[j].real() = Rr;
+        r.rank[j].imag() = Ri;
       }
       // exact integrals of the subtracted pole terms over this panel
       for (std::size_t a = 0; a < near.size(); ++a) {
@@ -523,14 +604,16 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
     if (next.empty()) {
       std::vector<Eigen::MatrixXcd> out(n_off);
       for (int j = 0; j < n_off; ++j) {
-        Eigen::MatrixXcd A = rank[j].selfadjointView<Eigen::Upper>();
-        // selfadjointView conjugates the mirror: the matrix is symmetric, not Hermitian
-        for (int b = 0; b < M; ++b)
-          for (int a2 = 0; a2 < b; ++a2) A(b, a2) = rank[j](a2, b);
+        Eigen::MatrixXcd A = rank[j];
         for (int b = 0; b < M; ++b) A(b, b) = diag[j](b);  // the stable diagonal
-        for (int c = 0; c < nc; ++c) {
-          const cd f = fix(c) * amp(j, c);
-          A.noalias() += f * poles[c].h * poles[c].h.transpose();
+        if (nc > 0) {  // the poles' exact-minus-Kronrod terms: sum_c f_c h_c h_c^T
+          Eigen::MatrixXcd Hc(M, nc);
+          Eigen::VectorXcd f(nc);
+          for (int c = 0; c < nc; ++c) {
+            Hc.col(c) = poles[c].h;
+            f(c) = fix(c) * amp(j, c);
+          }
+          A.noalias() += Hc * f.asDiagonal() * Hc.transpose();
         }
         out[j] = A;
       }

@@ -43,6 +43,14 @@ struct PeriodicTrackParams {
   double ballast_damping = 0.0;    // c_b [N s/m]
 };
 
+// Work counts of one periodic_receptance_matrix call (machine-independent costs).
+struct PeriodicStats {
+  long points = 0;           // integrand evaluations (each: 2n+1 harmonics)
+  int poles = 0;             // zeros of 1 + s S subtracted
+  int rounds = 0;            // bisection rounds
+  long den_evaluations = 0;  // evaluations of 1 + s S while finding the poles
+};
+
 // A (one (2n+1) x (2n+1) matrix per offset) [m/N]: the moving-load receptance matrix above for
 // harmonics p, m = -n..n at speed v [m/s] (>= 0) and base frequency omega [rad/s] (v > 0 or
 // omega != 0), read at each of offsets Delta [m]; converged to rtol of its largest entry.
@@ -51,7 +59,8 @@ struct PeriodicTrackParams {
 std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackParams& track,
                                                          double speed, double omega, int n,
                                                          const std::vector<double>& offsets,
-                                                         double rtol);
+                                                         double rtol,
+                                                         PeriodicStats* stats = nullptr);
 
 // The lattice sum S(k, w) [m/N] (w != 0), for tests of the kernel's closed form.
 std::complex<double> periodic_lattice_sum(const PeriodicTrackParams& track, std::complex<double> k,

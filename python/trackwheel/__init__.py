@@ -18,6 +18,13 @@ from .fidelity import adequacy, recommend
 from .force_statistics import ForceStatistics, force_statistics
 from .frequency import decay_rate, receptance
 from .irregularity import Irregularity, Polygon, WheelFlat
+from .periodic import (
+    PeriodicResponse,
+    RandomResponse,
+    moving_receptance,
+    periodic_response,
+    random_response,
+)
 from .results import Result, RunSettings
 from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, Window, kmh
 from .simulate import FIDELITY_LEVELS, simulate
@@ -78,4 +85,9 @@ __all__ = [
     "CarBody",
     "receptance",
     "decay_rate",
+    "PeriodicResponse",
+    "RandomResponse",
+    "moving_receptance",
+    "periodic_response",
+    "random_response",
 ]

@@ -1,5 +1,6 @@
-"""The infinite periodic track in the wavenumber-frequency domain (docs: Model § The periodic
-level).
+"""The infinite periodic track in the wavenumber-frequency domain.
+
+Docs: Model § The periodic level.
 
 Everything here is exact for the continuous beam: no mesh. Conventions: time dependence
 exp(+i w t), space dependence exp(+i k X); w [rad/s] is the frequency in the track's frame, k

@@ -136,8 +136,8 @@ def _wheel_of(scene: Scene, fidelity: str) -> _Wheel:
 def _wheel_receptance(wheel: _Wheel, w: np.ndarray) -> np.ndarray:
     """alpha_W(w) [m/N]: the wheel centre's displacement per upward force on it at w [rad/s]
     (w != 0): -1/(M w^2) for a free wheel, else from the vehicle's dynamic stiffness
-    K_v + i w C_v - w^2 M_v over u = [Y_wheel, (z, phi) per body] (docs: Model § The
-    vehicle)."""
+    K_v + i w C_v - w^2 M_v over u = [Y_wheel, (z, phi) per body]
+    (docs: Model § The vehicle)."""
     w = np.asarray(w, dtype=float)
     if wheel.vehicle is None:
         return -1.0 / (wheel.mass * w * w) + 0j
@@ -419,9 +419,9 @@ def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity 
                       rtol: float = DEFAULT_RTOL, linearisation_tol: float = 0.02
                       ) -> PeriodicResponse:
     """The steady response of the scene's wheel at constant ``speed`` [m/s] on its linear
-    track, periodic in the sleeper bay, in the frequency domain (docs: Model § The periodic
-    level): the sleeper-passing harmonics k v/d and the response to each sine of the running
-    surfaces with its side bands, without time stepping.
+    track, periodic in the sleeper bay, in the frequency domain: the sleeper-passing harmonics
+    k v/d and the response to each sine of the running surfaces with its side bands, without
+    time stepping (docs: Model § The periodic level).
 
     Parameters
     ----------
@@ -521,11 +521,15 @@ def _extremes(Nsp, envelopes, n) -> tuple[float, float]:
     """(min N, max N) [N] over all phases: the sleeper passing at the bay phase theta plus,
     per sine, its envelope |G(theta)| at the least and the most favourable phase of the sine
     (exact for sines incommensurate with the bay, a bound otherwise)."""
-    theta = 2.0 * math.pi * np.arange(PHASES) / PHASES
     p = np.arange(-n, n + 1)
-    e = np.exp(1j * np.multiply.outer(theta, p))
-    base = (e @ Nsp).real
-    spread = sum((np.abs(e @ N) for N in envelopes), np.zeros(theta.size))
+
+    def at_phases(N):  # sum_p N_p e^{i p theta_j}, theta_j = 2 pi j / PHASES
+        spread = np.zeros(PHASES, complex)
+        np.add.at(spread, p % PHASES, N)
+        return np.fft.ifft(spread) * PHASES
+
+    base = at_phases(Nsp).real
+    spread = sum((np.abs(at_phases(N)) for N in envelopes), np.zeros(PHASES))
     return float((base - spread).min()), float((base + spread).max())
 
 

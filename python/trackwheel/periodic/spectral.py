@@ -1,5 +1,6 @@
-"""The contact force under a random rail profile, straight from its spectrum (docs: Model §
-The periodic level, "Random profiles").
+"""The contact force under a random rail profile, straight from its spectrum.
+
+Docs: Model § The periodic level ("Random profiles").
 
 A Gaussian profile of one-sided spatial PSD S(Omega) [m^2/(rad/m)] is, under a wheel at
 speed v, the temporal process of one-sided PSD S_f(f) = (2 pi / v) S(2 pi f / v) [m^2/Hz]. Its
