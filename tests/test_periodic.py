@@ -484,7 +484,7 @@ def test_result_tables_and_signals():
     # the wheel's dynamics: M Y'' = N - P at every harmonic
     wh = r.wheel_harmonics
     w = 2 * np.pi * fh.frequency_hz.to_numpy()
-    np.testing.assert_allclose(900.0 * w**2 * wh.amplitude_n, fh.amplitude_n, rtol=1e-10)
+    np.testing.assert_allclose(900.0 * w**2 * wh.amplitude_m, fh.amplitude_n, rtol=1e-10)
     # the moving receptance seen by the contact at each force harmonic
     assert r.moving_receptance.receptance.shape == (len(fh),)
 

@@ -263,13 +263,11 @@ def _sines(scene: Scene, irregularity, speed: float, radius: float) -> list[_Sin
     return out
 
 
-_COLUMNS = ["frequency_hz", "amplitude_n", "phase_rad", "source", "order", "component"]
-
-
-def _table(rows) -> pd.DataFrame:
+def _table(rows, amplitude: str) -> pd.DataFrame:
     import pandas as pd
 
-    return pd.DataFrame(rows, columns=_COLUMNS)
+    return pd.DataFrame(rows, columns=["frequency_hz", amplitude, "phase_rad", "source", "order",
+                                       "component"])
 
 
 @dataclass(frozen=True)
@@ -303,26 +301,27 @@ class PeriodicResponse:
     #: receptance [m/N], source, order, component); built into the tables on access
     rows: tuple = ()
 
-    def _harmonics(self, column: int) -> pd.DataFrame:
+    def _harmonics(self, column: int, amplitude: str) -> pd.DataFrame:
         return _table([(r[0], abs(r[column]), float(np.angle(r[column])), r[5], r[6], r[7])
-                       for r in self.rows])
+                       for r in self.rows], amplitude)
 
     @cached_property
     def force_harmonics(self) -> pd.DataFrame:
         """Contact-force harmonics: frequency_hz, amplitude_n [N], phase_rad, source, order,
         component."""
-        return self._harmonics(1)
+        return self._harmonics(1, "amplitude_n")
 
     @cached_property
     def rail_harmonics(self) -> pd.DataFrame:
-        """The rail's displacement under the wheel, rows as ``force_harmonics`` (the
-        ``amplitude_n`` column holds metres)."""
-        return self._harmonics(2)
+        """The rail's displacement under the wheel, rows as ``force_harmonics``, its amplitude
+        in ``amplitude_m`` [m]."""
+        return self._harmonics(2, "amplitude_m")
 
     @cached_property
     def wheel_harmonics(self) -> pd.DataFrame:
-        """The wheel centre's displacement, rows as ``force_harmonics`` (metres)."""
-        return self._harmonics(3)
+        """The wheel centre's displacement, rows as ``force_harmonics``, its amplitude in
+        ``amplitude_m`` [m]."""
+        return self._harmonics(3, "amplitude_m")
 
     @cached_property
     def moving_receptance(self) -> pd.DataFrame:
