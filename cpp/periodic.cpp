@@ -31,8 +31,8 @@ constexpr double kWg[4] = {0.129484966168869693270611432679082, 0.27970539148927
                            0.381830050505118944950369775488975,
                            0.417959183673469387755102040816327};
 
-constexpr int kExtraZones = 2;      // zones beyond the highest harmonic in [-K, K]
-constexpr int kScanPerPanel = 12;   // scan points per half zone for the minima of |1 + s S|
+constexpr int kExtraZones = 4;      // zones beyond the highest harmonic in [-K, K]
+constexpr int kScanPerPanel = 4;    // scan points per half zone for the minima of |1 + s S|
 constexpr double kPoleStrip = 0.5;  // poles kept within this many half zones of the real axis
 constexpr int kSecantSteps = 30;
 constexpr double kCancellation = 1e3;  // |s h_m| above which the diagonal avoids cancelling
@@ -60,12 +60,13 @@ struct Rule {
 };
 const Rule kRule;
 
-// cot z without overflow: i (1 + e) / (e - 1), e = exp(2 i z) (|e| <= 1), mirrored for Im z < 0
+// cot(x + i y) = (sin 2x - i sinh 2y) / (cosh 2y - cos 2x), written with exp(-2|y|) so that it
+// does not overflow: (2 e sin 2x - i sign(y) (1 - e^2)) / (1 + e^2 - 2 e cos 2x), e = exp(-2|y|)
 cd cot(cd z) {
-  const bool up = z.imag() >= 0.0;
-  const cd e = std::exp(cd(0.0, 2.0) * (up ? z : -z));
-  const cd val = cd(0.0, 1.0) * (1.0 + e) / (e - 1.0);
-  return up ? val : -val;
+  const double e = std::exp(-2.0 * std::abs(z.imag()));
+  const double s2 = std::sin(2.0 * z.real()), c2 = std::cos(2.0 * z.real());
+  const double den = 1.0 + e * e - 2.0 * e * c2;
+  return cd(2.0 * e * s2, -std::copysign(1.0 - e * e, z.imag())) / den;
 }
 
 // g(z) = cot z - 1/z, smooth at 0: its Taylor series near 0, else directly
@@ -256,9 +257,9 @@ class Line {
     const cd den = 1.0 + s * tr_.lattice_sum(k, w);
     const cd inv_den = std::conj(den) / std::norm(den);
     c = -d * s * inv_den;
+    const double g = 2.0 * kPi / d, k0 = k - n_ * g;
+    for (int q = 0; q < M_; ++q) h[q] = tr_.inverse_stiffness(k0 + q * g, w) / d;  // vectorised
     for (int q = 0; q < M_; ++q) {
-      const double kq = k + 2.0 * kPi * (q - n_) / d;
-      h[q] = tr_.inverse_stiffness(kq, w) / d;
       if (abs_s * std::abs(h[q]) > kCancellation) {
         const cd excl = tr_.lattice_sum_excluding(cd(k), cd(w), q - n_);
         diag[q] = d * h[q] * (1.0 + s * excl) * inv_den;

@@ -17,7 +17,7 @@
 //   A_pm = (1 / 2 pi) int dk exp(i k Delta) I_pm(k),
 //   I_pm = d delta_pm h_m + c h_p h_m,  h_q = 1 / (d D(k_q, w')),  c = -d s / (1 + s S),
 // at w' = Omega - k v. The integral runs over the real k axis: half Brillouin zones over
-// [-K, K] (K = 2 pi (n + 2) / d) and the tails k = +-K / u, u in (0, 1]; the zeros of 1 + s S
+// [-K, K] (K = 2 pi (n + 4) / d) and the tails k = +-K / u, u in (0, 1]; the zeros of 1 + s S
 // near the real axis (the track's lightly damped Bloch waves, the integrand's only poles) are
 // found first and their pole terms subtracted near them and added back exactly; adaptive
 // Gauss-Kronrod (7/15) bisection to rtol of the largest entry.

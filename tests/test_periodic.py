@@ -90,7 +90,9 @@ def test_lattice_sum_closed_form_equals_the_direct_sum(beam):
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
 def test_kernel_lattice_sum_is_the_closed_form(beam):
     """The C++ kernel's lattice sum (complex k and w, where the pole finder evaluates it)
-    equals the numpy closed form checked above against the direct sum, to 1e-12."""
+    equals the numpy closed form checked above against the direct sum, to 1e-10 (the two
+    evaluate cot differently, exp(2iz) against sin, cos and exp(-2|y|), and the difference
+    cot((k - a) d/2) - cot((k + a) d/2) amplifies their round-off)."""
     from trackwheel import _core
     from trackwheel.periodic._moving import kernel_params
 
@@ -99,7 +101,7 @@ def test_kernel_lattice_sum_is_the_closed_form(beam):
     for k in (0.3, 2.0 + 0.1j, -7.0 - 0.5j, 40.0 + 2j):
         for w in (30.0, 2000.0 - 50j, -7000.0, 3e4 + 1e3j):
             np.testing.assert_allclose(_core.periodic_lattice_sum(p, k, w),
-                                       tr.lattice_sum(k, w), rtol=1e-12)
+                                       tr.lattice_sum(k, w), rtol=1e-10)
 
 
 def _fe_bay(tr: PeriodicTrack, w: float, n_el: int = 32):

@@ -13,8 +13,8 @@ is read (0: under the force). The free rail's waves (poles of h_m, on the real a
 undamped rail) cancel between the two terms; I is analytic on the real axis except near the
 zeros of 1 + s S, the track's Bloch waves at w' (lightly damped ones make narrow peaks).
 
-The kernel (cpp/periodic.cpp) integrates over the whole real k axis: [-K, K] (K = 2 pi (n + 2) / d for harmonics |p| <= n)
-in panels of half a Brillouin zone, the tails k = +-K / u over u in (0, 1] (the integrand falls
+The kernel (cpp/periodic.cpp) integrates over the whole real k axis: [-K, K]
+(K = 2 pi (n + 4) / d for harmonics |p| <= n) in panels of half a Brillouin zone, the tails k = +-K / u over u in (0, 1] (the integrand falls
 like 1/k^4, Timoshenko 1/k^2, so it stays bounded in u). The zeros k_c of 1 + s S near the
 real axis are found first (secant iterations from the minima of |1 + s S| on a scan and from the free
 rail's poles along the line) and their pole terms rho_c h(k_c) h(k_c)^T / (k - k_c),
@@ -35,7 +35,7 @@ from ._track import PeriodicTrack
 
 #: Zones beyond the highest harmonic in the central part of the k axis [-] (the kernel's
 #: kExtraZones)
-EXTRA_ZONES = 2
+EXTRA_ZONES = 4
 #: |s h_m| above which the diagonal is formed without cancellation (``_Line.parts``) [-]
 CANCELLATION = 1e3
 
