@@ -627,7 +627,9 @@ std::vector<Eigen::MatrixXcd> periodic_receptance_matrix(const PeriodicTrackPara
       "the k quadrature of the moving-load receptance did not converge to rtol = " +
       std::to_string(rtol) + " (speed " + std::to_string(speed) + " m/s, frequency " +
       std::to_string(omega / (2.0 * kPi)) +
-      " Hz): the track is nearly undamped at a wave the wheel excites; add support damping");
+      " Hz): the tolerance is below the integrand's round-off, or the track is nearly undamped "
+      "at a wave the wheel excites (a larger rtol, or more support damping)");
+  add support damping ");
 }
 
 }  // namespace trackwheel

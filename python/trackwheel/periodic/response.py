@@ -442,7 +442,8 @@ def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity 
         feel the truncation.
     fidelity : the linear level reproduced (``PERIODIC_FIDELITIES``); None: "linear/hertz" for
         a Hertzian scene contact, else "linear/sprung". "full" and "ancf/..." are refused.
-    rtol : relative tolerance of the wavenumber quadrature [-].
+    rtol : relative tolerance of the wavenumber quadrature, of the receptance matrix's largest
+        entry [-], in [1e-10, 1e-2].
     linearisation_tol : "linear/hertz" only: the largest estimated error of the linearised
         Hertz law, max |N - P| / (6 P) [-] (the second-order term of N = C_H delta^1.5 against
         the first); above it the response is refused.
@@ -455,7 +456,7 @@ def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity 
     track = periodic_track(scene)
     speed = v.number("speed", speed, low=0.0, high=v.MAX_SPEED, low_open=True, unit="m/s")
     n_out = v.integer("n_harmonics", n_harmonics, low=1, high=64)
-    rtol = v.number("rtol", rtol, low=1e-13, high=1e-2)
+    rtol = v.number("rtol", rtol, low=1e-10, high=1e-2)
     linearisation_tol = v.number("linearisation_tol", linearisation_tol, low=0.0, low_open=True)
     wheel = _wheel_of(scene, fidelity)
     sines = _sines(scene, irregularity, speed, wheel.radius)
@@ -571,6 +572,7 @@ def moving_receptance(scene: Scene, speed: float, freqs, *, n_harmonics: int = 4
         raise ValueError("freqs = 0 Hz with speed = 0 m/s is the static deflection of an "
                          "infinite free rail point: allowed f != 0 at v = 0")
     n = v.integer("n_harmonics", n_harmonics, low=0, high=64)
+    rtol = v.number("rtol", rtol, low=1e-10, high=1e-2)
     out = np.empty((f.size, 2 * n + 1), complex)
     for i, fi in enumerate(f):
         out[i] = receptance_matrix(track, speed, 2.0 * math.pi * fi, n, rtol=rtol)[0][:, n]
