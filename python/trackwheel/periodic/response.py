@@ -6,10 +6,12 @@ surfaces, the harmonic balance of the moving contact over the side bands Omega +
 (w_s = 2 pi v / d): with the moving-load receptance matrix A of the rail (``_moving``), the
 wheel's receptance alpha_W and the contact's alpha_C,
 
-    (diag(alpha_C(w_p) + alpha_W(w_p)) + A) N = r - P A[:, 0] (sleeper passing only),
+    (diag(alpha_C(w_p) + alpha_W(w_p)) + A) N = r,
 
 N_p the contact-force harmonics at w_p = Omega + p w_s [N] (upward on the wheel), r the
-running-surface excitation [m]. No time stepping, no mesh, no start-up transient.
+running-surface excitation [m]; for the sleeper passing N_0 = P is known and r is the rail's
+own-weight sag between the sleepers (``own_weight_sag``), the rows p != 0 solved. No time
+stepping, no mesh, no start-up transient.
 """
 
 from __future__ import annotations
