@@ -21,6 +21,13 @@ from .excitation import spectra as spectra  # the module (trackwheel.spectra.fra
 from .run.defaults import MeshWarning, StabilityWarning, default_settings, stability_limit
 from .run.eigen import EigenResult, eigen
 from .run.frequency import decay_rate, receptance
+from .run.periodic import (
+    PeriodicResponse,
+    RandomResponse,
+    moving_receptance,
+    periodic_response,
+    random_response,
+)
 from .run.results import Result, RunSettings
 from .run.simulate import FIDELITY_LEVELS, simulate
 from .run.statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
@@ -122,4 +129,9 @@ __all__ = [
     "CarBody",
     "receptance",
     "decay_rate",
+    "PeriodicResponse",
+    "RandomResponse",
+    "moving_receptance",
+    "periodic_response",
+    "random_response",
 ]

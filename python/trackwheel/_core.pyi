@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'periodic_lattice_sum', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -605,6 +605,89 @@ class BeamParams:
     @shear_stiffness.setter
     def shear_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class PeriodicTrackParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def EI(self) -> float:
+        """
+        bending stiffness [N m^2]
+        """
+    @EI.setter
+    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ballast_damping(self) -> float:
+        """
+        c_b [N s/m]
+        """
+    @ballast_damping.setter
+    def ballast_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ballast_stiffness(self) -> float:
+        """
+        k_b [N/m]
+        """
+    @ballast_stiffness.setter
+    def ballast_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bay(self) -> float:
+        """
+        d, support spacing [m]
+        """
+    @bay.setter
+    def bay(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mass(self) -> float:
+        """
+        rho A [kg/m]
+        """
+    @mass.setter
+    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pad_damping(self) -> float:
+        """
+        c_s or c_p [N s/m]
+        """
+    @pad_damping.setter
+    def pad_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pad_stiffness(self) -> float:
+        """
+        k_s or k_p [N/m]
+        """
+    @pad_stiffness.setter
+    def pad_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotary(self) -> float:
+        """
+        rho I [kg m]
+        """
+    @rotary.setter
+    def rotary(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shear(self) -> float:
+        """
+        kappa G A [N]; 0: Euler-Bernoulli
+        """
+    @shear.setter
+    def shear(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sleeper_mass(self) -> float:
+        """
+        m_s [kg]; 0: single
+        """
+    @sleeper_mass.setter
+    def sleeper_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class Integrator:
     """
     Members:
@@ -1055,6 +1138,14 @@ def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, a
 def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
     Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; element_compliance: the element's own deflection under the load G(X_i) P included.
+    """
+def periodic_lattice_sum(track: PeriodicTrackParams, k: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex, w: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex) -> complex:
+    """
+    The lattice sum S(k, w) [m/N] of the periodic track
+    """
+def periodic_receptance_matrix(track: PeriodicTrackParams, speed: typing.SupportsFloat | typing.SupportsIndex, omega: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsInt | typing.SupportsIndex, offsets: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, stats: bool = False) -> typing.Any:
+    """
+    Moving-load receptance matrices (n_offsets, 2n+1, 2n+1) [m/N] of the periodic track; with stats=True also the work counts {points, poles, rounds, den_evaluations}
     """
 def quasi_static(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
     ...

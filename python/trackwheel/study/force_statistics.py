@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..base import validate as v
+from ..base.bands import third_octave_bands
 
 #: Default contact-resonance period T_1 [s] for the P1 window.
 P1_PERIOD = 1e-3
@@ -45,18 +46,6 @@ def _series(t, n):
     if np.any(dt <= 0.0) or np.ptp(dt) > 1e-6 * dt.mean():
         raise ValueError("t must be uniformly spaced and increasing [s]")
     return t, n, float(dt.mean())
-
-
-def third_octave_bands(f_min: float, f_max: float) -> tuple[np.ndarray, np.ndarray]:
-    """(centres [Hz], edges [Hz] shape (n, 2)) of the IEC 61260-1 base-10 one-third-octave
-    bands lying wholly inside [f_min, f_max] [Hz]."""
-    f_min = v.positive("f_min", f_min, "Hz")
-    f_max = v.number("f_max", f_max, low=f_min, low_open=True, unit="Hz")
-    half = 10.0 ** 0.05
-    k_lo = math.ceil(10.0 * math.log10(f_min * half / 1000.0) - 1e-9)
-    k_hi = math.floor(10.0 * math.log10(f_max / half / 1000.0) + 1e-9)
-    centres = 1000.0 * 10.0 ** (np.arange(k_lo, k_hi + 1) / 10.0)
-    return centres, np.column_stack((centres / half, centres * half))
 
 
 def band_rms(t, n) -> tuple[np.ndarray, np.ndarray]:
