@@ -403,7 +403,7 @@ def test_moving_contact_converges_to_the_fine_mesh_at_the_default_mesh(validatio
     is converged to 0.01 %), and the force's content above 1 kHz is below 150 N rms (measured
     123 N, and 111/95/91 N at 16/32/64: what remains is the track's own, the sleeper-passing
     harmonics near the pinned-pinned resonance). Without it the same mesh overstates the peak
-    by 3.3 % and rings with 660 N rms (the node-crossing kicks at v/l_e = 741 Hz and
+    by 3.4 % and rings with 660 N rms (the node-crossing kicks at v/l_e = 741 Hz and
     harmonics)."""
     v = tw.kmh(200)
     mx8, mn8, rip8 = _steady(quarter_car(8), v, distance=18.0)
@@ -443,10 +443,10 @@ def test_director_length_follows_the_centre_line_on_fine_meshes():
     """The shear-deformable ANCF rail at 64 elements per bay (l = 9.4 mm, phi = 12 EI /
     (kGA l^2) = 3500), static under the wheel on the ballasted track: the nodal director's
     length equals |r_s| within 1e-6 (its departure is of the order of the squared strains,
-    measured 1e-7; it was 2.8 % before the director's stretch had its EA term, which made the
+    measured 1e-8; it was 2.8 % before the director's stretch had its EA term, which made the
     rail 5 % softer on fine meshes), and the deflection under the wheel equals the linear IIE
     track's (independent element, with the same element compliance) within 3e-4 (measured
-    2e-6), as test_shear_ancf.py's coarse-mesh check."""
+    1.4e-6), as test_shear_ancf.py's coarse-mesh check."""
     s = dc.replace(tw.Scene.ballasted_track(length=7.2, elements_per_bay=64),
                    rail=dc.replace(tw.Scene.ballasted_track().rail, length=7.2,
                                    n_elements=12 * 64, beam="timoshenko"))
@@ -468,11 +468,12 @@ def test_linear_newton_satisfies_the_series_law(level):
     """The linear levels with the element compliance: the Newton iterate each step accepts
     satisfies the contact law at the recorded state -- N = k delta_c (sprung: the level takes one
     Newton step, exact for its linear system only if the iteration matrix holds the series
-    slope k / (1 + k G); to 1e-9 of P, round-off of the 1e6 N/m x 1e-4 m products), N = C_H
-    delta_c^1.5 (Hertz: within Newton's force tolerance 1e-6 P), and the moving mass rides on the
+    slope k / (1 + k G); to 1e-9 of P, measured 5e-13: round-off), N = C_H delta_c^1.5 (Hertz:
+    within Newton's force tolerance 1e-6 P, measured 9e-13), and the moving mass rides on the
     rail under the load, Y_A = y_contact + rho0 with y_contact the interpolated rail minus G N
-    (1e-12 m) -- and the Hertz level needs no more Newton iterations than without the
-    compliance (+2 %; measured equal): the matrix is the derivative of the residual."""
+    (1e-12 m, measured 6e-17 m) -- and the Hertz level needs no more Newton iterations than
+    without the compliance (+2 %; measured +0.2 %): the matrix is the derivative of the
+    residual. (With the law's slope k in place of k / (1 + k G) the first two fail.)"""
     v, kw = tw.kmh(200), dict(distance=3.0, progress=False)
     s = quarter_car(8)
     fid = {"sprung": "linear/sprung", "hertz": "linear/hertz", "moving_mass": "linear/moving_mass"}
