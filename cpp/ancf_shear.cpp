@@ -124,7 +124,7 @@ void shear_force(const ShearSection& c, const Vec8& e, Vec8& Q, double* U,
     const double stretch = 0.5 * (dd - rs.squaredNorm());  // the director's, against r_s's
     const double wl = q.w[g] * c.length;
     const double fa = wl * c.EA * eps, fb = wl * c.EI * kappa, fs = wl * c.kGA * gamma;
-    const double ft = wl * c.EA * stretch;
+    const double ft = wl * c.kGA * stretch;
     if (U) *U += 0.5 * (fa * eps + fb * kappa + fs * gamma + ft * stretch);
     // dkappa/dd = gb (d_s.y, -d_s.x) - 2 p kappa d / dd, dkappa/dd_s = gb perp;
     // dgamma/dd = (r_s.y, -r_s.x) / dd - 2 gamma d / dd, dgamma/dr_s = perp / dd
@@ -167,11 +167,12 @@ void shear_elastic(const ShearSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
     const double wl = q.w[g] * c.length;
     const double sa = wl * c.EA, sb = wl * c.EI, ss = wl * c.kGA;
     if (U)
-      *U += 0.5 * (sa * (eps * eps + stretch * stretch) + sb * kappa * kappa + ss * gamma * gamma);
+      *U +=
+          0.5 * (sa * eps * eps + ss * stretch * stretch + sb * kappa * kappa + ss * gamma * gamma);
     if (Q)
-      *Q += (sa * eps) * deps + (sa * stretch) * dstretch + (sb * kappa) * dk + (ss * gamma) * dgam;
+      *Q += (sa * eps) * deps + (ss * stretch) * dstretch + (sb * kappa) * dk + (ss * gamma) * dgam;
     if (K) {
-      K->noalias() += sa * deps * deps.transpose() + sa * dstretch * dstretch.transpose() +
+      K->noalias() += sa * deps * deps.transpose() + ss * dstretch * dstretch.transpose() +
                       sb * dk * dk.transpose() + ss * dgam * dgam.transpose();
       *K += (sb * kappa) * d2k + (ss * gamma) * d2gam;
       // the Hessians of eps and of the stretch: ws_i ws_j and psi_i psi_j - ws_i ws_j on both
@@ -179,7 +180,7 @@ void shear_elastic(const ShearSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
       for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) {
           const double v =
-              sa * (eps - stretch) * s.ws[i] * s.ws[j] + sa * stretch * s.psi[i] * s.psi[j];
+              (sa * eps - ss * stretch) * s.ws[i] * s.ws[j] + ss * stretch * s.psi[i] * s.psi[j];
           (*K)(2 * i, 2 * j) += v;
           (*K)(2 * i + 1, 2 * j + 1) += v;
         }
