@@ -16,9 +16,9 @@
 // analytic. The director's length has no meaning of its own (the section turns, it does not
 // stretch); without eps_d it entered U only through the centre line's interpolation, with weight
 // 1/(1 + phi) ~ l^2, and the rail had a branch of near-free director-stretch modes that softened
-// with the mesh (docs: Model, section "Shear-deformable rail"). eps_d holds |d| at |r_s| with the
-// shear stiffness: linearised, the director's departure from the tangent costs
-// kGA |r_s - d|^2 / 2 in either direction (gamma: its turn, eps_d: its length). eps_d vanishes
+// with the mesh (docs: Model, section "Shear-deformable rail (Timoshenko)"). eps_d holds |d| at
+// |r_s| with the shear stiffness: linearised, the director's departure from the tangent costs kGA
+// |r_s - d|^2 / 2 in either direction (gamma: its turn, eps_d: its length). eps_d vanishes
 // identically at phi = 0 (d = r_s, the cable) and has no linear part in y, so the linearised
 // element's y part is unchanged.
 #pragma once

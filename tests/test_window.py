@@ -414,10 +414,11 @@ def test_full_model_on_a_window_equals_a_fixed_rail_at_any_mesh(per_bay):
     - the wheel sticks throughout, and Newton needs as many iterations per step as on the fixed
       rail within 5 % (measured 0.0-0.1 %).
 
-    Before the director's stretch had its stiffness (docs: Model § Shear-deformable rail) the
-    window's shifts excited its near-free modes: here the tangential force reached 3.6 kN
-    (4.4e-2 P off the fixed rail) at 32 el/bay, and at 64 el/bay the wheel slid (mu N = 24 kN)
-    from 2.7 m on, with 18 % more Newton iterations per step than on the fixed rail."""
+    Before the director's stretch had its stiffness (docs: Model, section "Shear-deformable
+    rail (Timoshenko)") the window's shifts excited its near-free modes: here the tangential
+    force reached 3.6 kN (4.4e-2 P off the fixed rail) at 32 el/bay, and at 64 el/bay the wheel
+    slid (mu N = 24 kN) from 2.7 m on, with 18 % more Newton iterations per step than on the
+    fixed rail."""
     fixed = _timoshenko_track_with_a_sprung_wheel(per_bay)
     window = _timoshenko_track_with_a_sprung_wheel(per_bay, bays_behind=20, bays_ahead=20)
     zones = window.rail.absorbing_ends
