@@ -21,6 +21,10 @@
 // |r_s - d|^2 / 2 in either direction (gamma: its turn, eps_d: its length). eps_d vanishes
 // identically at phi = 0 (d = r_s, the cable) and has no linear part in y, so the linearised
 // element's y part is unchanged.
+// Mass M = int (rhoA N^T N + rhoI Psi^T Psi) ds (constant): the rhoI |d_dot|^2 term is the
+// rotary inertia rhoI psi_dot^2 of the section, and also gives the director's stretch rate
+// d_x_dot a tiny inertia (relative to the axial inertia of a wave of wavenumber k: (r_g k)^2,
+// r_g = sqrt(I/A) the radius of gyration).
 #pragma once
 
 #include <Eigen/Core>
