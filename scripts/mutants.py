@@ -296,6 +296,12 @@ def make_venv(tmp: Path, src: Path) -> Path:
     site = Path(site.stdout.strip())
     (site / "0_scratch.pth").write_text(f"{src / 'python'}\n")
     dev = [p for p in sys.path if p.endswith("site-packages") and Path(p).is_dir()]
+    # a development set-up may put trackwheel's installed metadata (a dist-info directory, no
+    # code) on sys.path instead of installing the package; importlib.metadata reads the version
+    # from it (tests/test_cli.py checks it), so the scratch suite needs it too
+    dev += [p for p in sys.path if p and p not in dev and Path(p).is_dir()
+            and any(Path(p).glob("trackwheel-*.dist-info"))
+            and not (Path(p) / "trackwheel").exists()]
     (site / "1_packages.pth").write_text("".join(f"{p}\n" for p in dev))
     return py
 
