@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "banded.hpp"
-#include "generalized_alpha.hpp"
+#include "ga_scheme.hpp"
 #include "linear_rail.hpp"
 #include "sleepers.hpp"
 #include "window.hpp"
@@ -59,7 +59,7 @@ class LinearStepper : public Stepper {
   double vibration_energy() const override;
   double wheel_height(int w) const override { return wh_[w].Y; }
   void record(long n) override { record_sample(n * set_.dt); }
-  void record_sample(double t);
+  void record_sample(double t) override;
 
  private:
   // The track coordinate of wheel w at t [m] (outputs, excitation), and its rail coordinate
@@ -141,7 +141,7 @@ LinearStepper::LinearStepper(const Model& model, const SimSettings& set, const L
       tr_(model.rail, opt.n_modes, opt.beam),
       out_(out),
       div_(div),
-      c_(set.rho_inf),
+      c_(set.rho_inf, set.dt),
       nw_(model.n_wheels()),
       sl_(model.rail),
       damped_(!tr_.C.is_zero()),
@@ -714,23 +714,11 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
         "a vehicle with bodies needs wheel dynamics: wheel_model moving_mass, sprung or hertz, "
         "not moving_force");
   SimOutput out;
-  out.rec.start(model.n_wheels(), set.record_energy,
-                static_cast<std::size_t>(n_steps_of(set) / set.output_every + 2));
-  out.rec.start_bodies(model.n_bodies());
   const Divergence div(set, [&set] {
     return "the time step " + format3(set.dt) + " s is too large for the contact";
   });
   LinearStepper stepper(model, set, opt, out, div);
-  Watchdog wd;
-  for (int w = 0; w < model.n_wheels(); ++w) {
-    const WheelParams& p = model.wheels[w];
-    wd.energy_cap += 100.0 * std::max(p.total_load(), 1.0) * p.radius;
-    wd.y0.push_back(stepper.wheel_height(w));
-    wd.reach.push_back(10.0 * p.radius);
-  }
-  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
-  stepper.record_sample(0.0);
-  run_time_loop(stepper, set, wd, div, out, progress);
+  run_time_loop(stepper, model, set, div, out, progress);
   return out;
 }
 
