@@ -16,7 +16,8 @@ from ...base.limits import MAX_SEED
 from ...scene import Scene
 from ..columns import SPEED_KMH, SWEEP_COLUMNS, doc_table, label
 from ..fidelity import adequacy
-from . import cases, pool
+from ...run.simulate import PERIODIC_LEVEL
+from . import cases, periodic, pool
 from . import store as store_module  # sweep's argument `store` is the directory
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
@@ -88,6 +89,8 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     seed_axis = _seeds(seeds, scene)
     kwargs = _simulate_kwargs(simulate_kwargs)
     auto = None
+    if kwargs.get("fidelity") == PERIODIC_LEVEL:
+        periodic.check_keywords(kwargs)
     if kwargs.get("fidelity") == "auto":
         auto = _auto_fidelity(scene, speeds, stiffs, kwargs, fidelity_tol)
         kwargs["fidelity"] = auto["chosen"]
@@ -132,8 +135,10 @@ def _compute(case_list, rows, todo, kwargs, store_dir, executor, workers, progre
         rows[i] = row
         bar.update(1)
 
+    # the periodic level's cases take milliseconds: a pool would cost more than it saves
+    serial = workers == 1 or len(todo) == 1 or kwargs.get("fidelity") == PERIODIC_LEVEL
     try:
-        if todo and executor is None and (workers == 1 or len(todo) == 1):
+        if todo and executor is None and serial:
             for i in todo:
                 finish(i, cases.run_case(case_list[i][3], case_list[i][0], kwargs))
         elif todo:
