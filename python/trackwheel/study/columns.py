@@ -140,6 +140,26 @@ SWEEP_COLUMNS: tuple[Column, ...] = (
 )
 #: the sweep table's column names, in order
 COLUMNS: tuple[str, ...] = tuple(c.label for c in SWEEP_COLUMNS)
+#: What the periodic level (``fidelity="periodic/linear"``, the steady state in the frequency
+#: domain) puts in each output column of the sweep table, by quantity name: the steady
+#: state's counterpart of the time-domain measure, or None where it has none (the column is
+#: then NaN). Its settings columns are empty (NaN, <NA>, None) but ``fidelity``.
+PERIODIC_OUTPUTS: dict[str, str | None] = {
+    "amplitude": "max |d| over the steady state, d = y_B - y_qs on the infinite track (exact "
+                 "for sines incommensurate with the bay, else an upper bound)",
+    "main_frequency": "the frequency of d's largest line (exact: no record)",
+    "frequency_resolution": None,  # no record
+    "min_contact_force": "the least N over all phases of the steady state",
+    "max_contact_force": "the largest N over all phases of the steady state",
+    "lost_contact": "False (a steady state that would lose contact is refused)",
+    "dynamic_factor": "max N / P",
+    "loss_duration": "0 (as lost_contact)",
+    "force_rms": "RMS of N - P over a long run, from the lines' amplitudes",
+    "p1": None,  # joints are refused: no P1/P2
+    "p1_time": None,
+    "p2": None,
+    "p2_time": None,
+}
 #: the columns of the sweep table that hold floats (NaN where a case failed)
 FLOAT_COLUMNS: tuple[str, ...] = tuple(c.label for c in SWEEP_COLUMNS if c.dtype == "float64")
 #: the output columns of one wheel (a vehicle's case has one row per wheel)
@@ -169,6 +189,12 @@ def old_name(column: Column) -> str:
     units (the quantity's name; ``speed_kmh`` as it was)."""
     q = column.quantity
     return q.label if q.unit == "km/h" else q.name
+
+
+def periodic_doc_table() -> str:
+    """Docstring lines saying what the periodic level puts in each output column."""
+    return "\n".join(f"- ``{_OUT[name].label}``: {what or 'NaN'}"
+                     for name, what in PERIODIC_OUTPUTS.items())
 
 
 def doc_table(columns) -> str:

@@ -1,6 +1,9 @@
-"""The harmonic balance of the wheel on the periodic track (docs: Model § The periodic level):
-the scene's track as the periodic level sees it, the rail's own-weight sag the wheel rolls
-over, and one balance of the contact over the side bands Omega + p w_s."""
+"""The harmonic balance of the wheel on the periodic track: the scene's track, its own-weight
+sag and one balance over the side bands (docs: Model § The periodic level).
+
+``periodic_track`` is the scene's track as the periodic level sees it, ``own_weight_sag`` the
+rail's sag between the sleepers that the wheel rolls over, ``balance`` one balance of the
+contact over the side bands Omega + p w_s."""
 
 from __future__ import annotations
 

@@ -1,7 +1,9 @@
-"""What a time-domain analysis measures, from a periodic response: the quasi-static line, the
-dynamic part d = y_B - y_qs of the rail under the wheel, its amplitude max |d| and main
-frequency, and the contact force's extremes and RMS (docs: Model § The periodic level,
-§ Outputs).
+"""What a time-domain analysis measures, from a periodic response.
+
+Docs: Model § The periodic level, § Outputs.
+
+The quasi-static line, the dynamic part d = y_B - y_qs of the rail under the wheel, its
+amplitude max |d| and main frequency, and the contact force's extremes and RMS.
 
 The steady signals are sums of lines: the sleeper passing (the bay phase theta = w_s t) and,
 per sine of the running surfaces, a carrier exp(i Omega t) times its own bay-periodic envelope

@@ -1,6 +1,8 @@
 """The periodic level's cases of a sweep (``fidelity="periodic/linear"``): each case's row from
-:func:`trackwheel.periodic_response`, the steady state on the infinite periodic track in the
-frequency domain (docs: Model § The periodic level), in milliseconds.
+:func:`trackwheel.periodic_response`, in milliseconds.
+
+The row is the steady state on the infinite periodic track in the frequency domain (docs:
+Model § The periodic level).
 
 What the row holds (:data:`trackwheel.study.columns.PERIODIC_OUTPUTS` says it per column): the
 outputs of the steady state -- max |d| over it, the frequency of d's largest line, the force's
