@@ -117,8 +117,8 @@ SWEEP_COLUMNS: tuple[Column, ...] = (
     *(Column(q, "boolean" if q.kind == "bool" else "float64") for q in OUTPUTS),
     Column(Quantity("error", "", '"" if the case ran, else "DivergenceError: ..." / '
                     '"ValueError: ..."', "str"), "str"),
-    _float(Quantity("wall_time", "s", "simulate's wall time (time to failure for failed "
-                    "cases)")),
+    _float(Quantity("wall_time", "s", "simulate's wall time, or periodic_response's at the "
+                    "periodic level (time to failure for failed cases)")),
     # the settings used (from Result.settings; for failed cases the requested or default ones)
     Column(_SETTINGS["integrator"]),
     _float(_SETTINGS["dt"]),
@@ -221,7 +221,7 @@ ADEQUACY_COLUMNS: tuple[Quantity, ...] = (
     Quantity("error", "", "the message if the level failed, else \"\"", "str"),
     *HEADLINE,
     _OUT["lost_contact"],
-    Quantity("wall_time", "s", "simulate's wall time"),
+    Quantity("wall_time", "s", "simulate's wall time (the periodic level: its call's)"),
     *(Quantity(f"d_{q.name}", "-", f"relative difference of {q.name} from the reference level")
       for q in HEADLINE),
     Quantity("adequate", "", "every relative difference <= tol and no error", "bool"),
