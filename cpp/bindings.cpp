@@ -416,7 +416,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("stiffness", &ContactParams::stiffness)
       .def_readwrite("damping", &ContactParams::damping)
       .def_readwrite("radius", &ContactParams::radius)
-      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
+      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]")
+      .def_readwrite("element_compliance", &ContactParams::element_compliance,
+                     "the rail element's fixed-end compliance under the load in series with the "
+                     "law (docs: Model § Contact)");
 
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())
@@ -480,6 +483,16 @@ PYBIND11_MODULE(_core, m) {
         d["K"] = cf.K;
         d["C"] = cf.C;
         d["grad_rho"] = cf.grad_rho;
+        Vec10 sq;
+        Mat10 sqq;
+        contact_parameter_derivatives(pt, sq, &sqq);
+        d["ds_dq"] = sq;
+        d["d2s_dq2"] = sqq;
+        d["compression"] = cf.compression;
+        d["deflection"] = cf.deflection;
+        d["rolling_radius"] = pt.rho + cf.deflection;
+        d["compliance"] = pt.compliance.G;
+        d["energy"] = cf.energy;
         return d;
       },
       "Contact point and force for q = [X_A, Y_A, e_el]");
@@ -548,9 +561,10 @@ PYBIND11_MODULE(_core, m) {
   });
   m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("beam"),
         py::arg("load"), py::arg("x"), py::arg("n_modes") = 0,
-        py::call_guard<py::gil_scoped_release>(),
+        py::arg("element_compliance") = false, py::call_guard<py::gil_scoped_release>(),
         "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
-        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.");
+        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; "
+        "element_compliance: the element's own deflection under the load G(X_i) P included.");
   m.def(
       "vertical_modes",
       [](const RailModel& rail, double M, double k, const std::vector<double>& x, int n_modes) {
@@ -639,6 +653,25 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("xi"), py::arg("l"), py::arg("phi"),
       "IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]");
+  m.def(
+      "fixed_end_compliance",
+      [](double EI, double shear_compliance, double l, double a) {
+        const ElementCompliance g = fixed_end_compliance(EI, shear_compliance, l, a);
+        return py::make_tuple(g.G, g.Ga, g.Gaa);
+      },
+      py::arg("EI"), py::arg("shear_compliance"), py::arg("l"), py::arg("a"),
+      "The element's clamped-clamped compliance under a point load at a in [0, l]: (G [m/N], "
+      "dG/da, d2G/da2); shear_compliance = 1/kGA [1/N], 0 for Euler-Bernoulli");
+  m.def(
+      "series_contact",
+      [](ContactLaw law, double stiffness, double G, double delta) {
+        const SeriesForce f = series_normal_force(law, stiffness, G, delta);
+        return py::make_tuple(f.N, f.slope, f.compression,
+                              series_potential(law, stiffness, G, delta));
+      },
+      py::arg("law"), py::arg("stiffness"), py::arg("G"), py::arg("delta"),
+      "The contact law in series with a compliance G [m/N] at the approach delta [m]: (N [N], "
+      "dN/d(delta) [N/m], the law's compression [m], the stored energy [J])");
   m.def(
       "receptance",
       [](const RailModel& rail, const BeamParams& beam, double x, const std::vector<double>& xr,

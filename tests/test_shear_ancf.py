@@ -305,10 +305,11 @@ def _damped(beam: str) -> tw.Scene:
 def test_full_timoshenko_passage_matches_the_linear_timoshenko_track(level):
     """300 km/h over the damped paper's track (as test_paths_agree's Euler-Bernoulli check):
     the ANCF level with the shear-deformable rail agrees with the linear level on the
-    Timoshenko beam within TOL_TRACE of the amplitude (measured 0.02 % amplitude, 0.12 % trace:
-    10x the Euler-Bernoulli difference, and growing with P and with 1/kGA -- the centre line's
-    slope, which sets the full model's contact normal and point, carries the shear angle) and
-    the normal force within 1e-3 of the static load (measured 7e-5). Shear matters here: the
+    Timoshenko beam within TOL_TRACE of the amplitude (measured 0.004 % amplitude, 0.02 % trace
+    with the element compliance of both paths, 0.09 % without: 2x and 8x the Euler-Bernoulli
+    difference, growing with P and with 1/kGA -- the centre line's slope, which sets the full
+    model's contact normal and point, carries the shear angle) and the normal force within 1e-3
+    of the static load (measured 7e-5). Shear matters here: the
     Euler-Bernoulli amplitude is 16 % lower, 30x the tolerance."""
     kw = {"n_elements": 20, "dt": 1e-5}
     v = tw.kmh(300)
@@ -406,7 +407,10 @@ def test_linear_path_does_not_see_the_shear_element(layered, monkeypatch):
     sleepers' rail weights come from RailModel.locate: now the IIE w functions (those the linear
     beam's pads use) instead of the Hermite ones, equal at the nodes where these supports sit up
     to the rounding of mu (1 + phi) = 1, so the results agree to round-off (1e-12; measured
-    7e-14) -- and between nodes the sleepers now couple consistently with the pads."""
+    7e-14) -- and between nodes the sleepers now couple consistently with the pads. The Hertz
+    force N = C_H delta^1.5 sees that rounding of the rail height y relative to the compression
+    delta, amplified by 1.5 |y| / delta ~ 15 (measured 1.0e-12; 8.6e-13 without the element
+    compliance): 1e-11 for it."""
     s = tw.Scene.kato2005()
     s = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko"))
     if layered:
@@ -425,9 +429,9 @@ def test_linear_path_does_not_see_the_shear_element(layered, monkeypatch):
     finally:
         monkeypatch.undo()
         _kernel.rail_model.cache_clear()
-    for a, b in zip(with_shear[:-1], euler[:-1]):
+    for i, (a, b) in enumerate(zip(with_shear[:-1], euler[:-1])):
         if layered:
-            np.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
+            np.testing.assert_allclose(a, b, rtol=1e-11 if i == 1 else 1e-12, atol=0)
         else:
             np.testing.assert_array_equal(a, b)
     assert not np.array_equal(with_shear[-1], euler[-1])

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'periodic_lattice_sum', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'periodic_lattice_sum', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -511,6 +511,14 @@ class ContactParams:
         ...
     @damping.setter
     def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def element_compliance(self) -> bool:
+        """
+        the rail element's fixed-end compliance under the load in series with the law (docs: Model § Contact)
+        """
+    @element_compliance.setter
+    def element_compliance(self, arg0: bool) -> None:
         ...
     @property
     def friction(self) -> float:
@@ -1111,6 +1119,10 @@ def direction_pencil(rail: RailModel, component: typing.SupportsInt | typing.Sup
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
+def fixed_end_compliance(EI: typing.SupportsFloat | typing.SupportsIndex, shear_compliance: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float]:
+    """
+    The element's clamped-clamped compliance under a point load at a in [0, l]: (G [m/N], dG/da, d2G/da2); shear_compliance = 1/kGA [1/N], 0 for Euler-Bernoulli
+    """
 def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, vehicle: VehicleParams = ...) -> dict:
     """
     Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, z'' per sleeper] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}
@@ -1123,9 +1135,9 @@ def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, a
     """
     omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
     """
-def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
-    Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.
+    Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; element_compliance: the element's own deflection under the load G(X_i) P included.
     """
 def periodic_lattice_sum(track: PeriodicTrackParams, k: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex, w: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex) -> complex:
     """
@@ -1146,6 +1158,10 @@ def receptance(rail: RailModel, beam: BeamParams, x: typing.SupportsFloat | typi
 def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"], arg6: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     """
     Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
+    """
+def series_contact(law: ContactLaw, stiffness: typing.SupportsFloat | typing.SupportsIndex, G: typing.SupportsFloat | typing.SupportsIndex, delta: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float, float]:
+    """
+    The contact law in series with a compliance G [m/N] at the approach delta [m]: (N [N], dN/d(delta) [N/m], the law's compression [m], the stored energy [J])
     """
 def shear_elastic(arg0: ShearSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
     """

@@ -158,7 +158,15 @@ def contact_params(scene: Scene) -> _core.ContactParams:
     p.damping = c.damping
     p.radius = scene.wheel.radius
     p.friction = c.friction
+    p.element_compliance = element_compliance(scene)
     return p
+
+
+def element_compliance(scene: Scene) -> bool:
+    """``Contact.element_compliance`` resolved: None is on for the Timoshenko rail, off for the
+    Euler-Bernoulli one."""
+    c = scene.contact.element_compliance
+    return scene.rail.beam == "timoshenko" if c is None else bool(c)
 
 
 class VehicleMatrices(NamedTuple):

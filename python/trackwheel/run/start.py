@@ -66,11 +66,12 @@ def _vehicle_state(scene: Scene, model, speed: float, x_start: float, start: str
 
 def _wheel_state(model, e, x: float, y: float, contact, speed: float) -> _core.WheelState:
     """A wheel at (x, y) [m] on the rail e, rolling purely at ``speed`` [m/s]: t . V_A =
-    rho theta'."""
+    rho_r theta', rho_r the rolling radius (rho plus the element's deflection under the load
+    with the element compliance)."""
     c = _core.contact_eval(model, e, x, y, x, contact, np.zeros(10))
     w = _core.WheelState()
     w.y, w.ydot, w.theta = y, 0.0, 0.0
-    w.thetadot = float(c["tangent"][0]) * speed / c["rho"]
+    w.thetadot = float(c["tangent"][0]) * speed / (c["rho"] + c["deflection"])
     w.s = c["s"]
     w.state = _core.SlipState.stick if c["active"] else _core.SlipState.free
     return w

@@ -172,4 +172,5 @@ def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = Non
     model = kernel.rail_model(scene, mesh(scene, n_elements))
     modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
     return np.asarray(_core.linear_static_line(model, kernel.beam_params(scene),
-                                               scene.static_load, x.tolist(), modes))
+                                               scene.static_load, x.tolist(), modes,
+                                               kernel.element_compliance(scene)))

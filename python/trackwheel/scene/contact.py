@@ -25,10 +25,18 @@ class Contact:
     #: the wheel sees the rail profile averaged over its static Hertz patch, length 2a (the 1D
     #: contact filter; :func:`trackwheel.irregularity.contact_half_width` gives a)
     patch_filter: bool = False
+    #: add the rail element's own fixed-end compliance G(a) under the load, in series with the
+    #: law: the interpolated rail misses the deflection of the element under a load between
+    #: its nodes, which on a shear-deformable rail kicks the wheel at every node it crosses
+    #: (docs: Model § Contact, "The rail under the load between nodes"). True, False, or None:
+    #: on for ``Rail(beam="timoshenko")``, off for "euler" (the paper's model unchanged)
+    element_compliance: bool | None = None
 
     def __post_init__(self):
         v.choice("Contact.law", self.law, {"linear", "hertz"})
         v.boolean("Contact.patch_filter", self.patch_filter)
+        if self.element_compliance is not None:
+            v.boolean("Contact.element_compliance", self.element_compliance)
         if self.stiffness is not None:
             v.positive("Contact.stiffness", self.stiffness,
                        "N/m" if self.law == "linear" else "N/m^1.5")
