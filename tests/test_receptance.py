@@ -178,7 +178,7 @@ def test_layered_support_with_a_stiff_ballast_and_light_sleeper_is_the_single_sp
         sp.stiffness = [s.supports.stiffness] * n
         sp.damping = [s.supports.damping] * n
         sp.sleeper_mass, sp.ballast_stiffness, sp.ballast_damping = [ms] * n, [kb] * n, [cb] * n
-        return np.asarray(_core.receptance(_core.RailModel(p, sp), beam, 2.25, [2.25], f))[:, 0]
+        return np.asarray(_core.receptance(_core.RailModel(p, sp), beam, [2.25], [2.25], f))[:, 0]
 
     single = tw.receptance(s, 2.25, f)
     np.testing.assert_allclose(layered(1e-9, 1e16, 0.0), single, rtol=1e-6)

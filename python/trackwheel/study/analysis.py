@@ -37,10 +37,13 @@ from .force_statistics import (  # ForceStatistics: the annotation of Analysis.f
     ForceStatistics,  # noqa: F401
     result_statistics,
 )
+from .. import _core
+from ..run import kernel
+from ..run.defaults import measured_stretch
 from ..run.results import Result
 from ..scene import Scene
-from ..run.statics import linear_quasi_static, quasi_static
-from .steady import from_time, steady_state
+from ..run.statics import linear_quasi_static, quasi_static, vehicle_static
+from .steady import from_time, samples, steady_state
 
 __all__ = [
     "QS_DEGREE",
@@ -205,6 +208,126 @@ def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: boo
     return chebyshev.chebval(t, coef[:, k], tensor=False), err
 
 
+def _window_reference(scene: Scene, x_ref: np.ndarray) -> np.ndarray:
+    """The vehicle's reference positions [m] on a fixed rail, or on a travelling window the same
+    place in the bay with the vehicle in the window's middle (the periodic track's line)."""
+    if scene.window is None:
+        return x_ref
+    d = scene.supports.spacing
+    rear, front = scene.active_vehicle.span
+    n_bays = round(scene.rail.length / d)
+    first = max((n_bays - math.ceil((front - rear) / d - 1e-9)) // 2, 0)
+    return first * d + np.mod(x_ref + rear, d) - rear
+
+
+@lru_cache(maxsize=16)
+def _vehicle_breakpoints(scene: Scene, n_elements: int) -> np.ndarray:
+    """The reference positions [m] where some wheel of the vehicle crosses a node of the mesh
+    (and the ends of the range the vehicle can take): between two of them every wheel stays
+    inside one element, so each wheel's static displacement is smooth there."""
+    veh = scene.active_vehicle
+    rear, front = veh.span
+    lo, hi = -rear, scene.rail.length - front
+    le = scene.rail.length / n_elements
+    nodes = np.arange(n_elements + 1) * le
+    b = np.sort(np.concatenate([nodes - p for p in veh.positions] + [[lo, hi]]))
+    b = b[(b >= lo) & (b <= hi)]
+    keep = np.concatenate(([True], np.diff(b) > 1e-9 * le))
+    return b[keep]
+
+
+@lru_cache(maxsize=128)
+def _vehicle_qs_series(scene: Scene, n_elements: int, s0: int, s1: int, linear: bool):
+    """Chebyshev series of every wheel's quasi-static line on the segments s0 .. s1-1 between
+    :func:`_vehicle_breakpoints`: the static contact-point displacement of each wheel with the
+    whole vehicle resting on the track under the lever-rule loads (the ANCF statics of
+    :func:`trackwheel.statics.vehicle_static`, or for ``linear`` the linear track's, the
+    superposition of each wheel's own line and the static flexibility, the receptance at 0 Hz,
+    to its neighbours' loads). Returns (coefficients (QS_DEGREE + 1, s1 - s0, n_wheels) [m],
+    error estimate [m]); cached like :func:`_qs_series`."""
+    n = QS_DEGREE
+    b = _vehicle_breakpoints(scene, n_elements)
+    t = -np.cos(np.pi * np.arange(n + 1) / n)
+    a, w = b[s0:s1], b[s0 + 1:s1 + 1] - b[s0:s1]
+    x = (a[:, None] + 0.5 * (t[None, :-1] + 1.0) * w[:, None]).ravel()
+    x = np.append(x, b[s1])
+    veh = scene.active_vehicle
+    if linear:
+        y = _linear_vehicle_line(scene, n_elements, x)
+    else:
+        y = np.array([vehicle_static(scene, xi, n_elements=n_elements).y_contact for xi in x])
+    idx = np.arange(s1 - s0)[:, None] * n + np.arange(n + 1)[None, :]  # (n_seg, n + 1)
+    values = y[idx]  # (n_seg, n + 1, n_wheels)
+    inv = np.linalg.inv(chebyshev.chebvander(t, n))
+    coef = np.einsum("kj,sjw->ksw", inv, values)
+    coef.setflags(write=False)
+    err = float(np.max(np.abs(coef[-2]) + np.abs(coef[-1]))) if veh.n_wheels else 0.0
+    return coef, err
+
+
+def _linear_vehicle_line(scene: Scene, n_elements: int, x_ref: np.ndarray) -> np.ndarray:
+    """(n, n_wheels) [m]: each wheel's static displacement on the linear track with the vehicle's
+    reference at ``x_ref``: its own line (:func:`trackwheel.linear_quasi_static` under its
+    lever-rule load) minus sum_j P_j alpha_0(X_i, X_j) over the other wheels, alpha_0 the
+    track's static flexibility (the receptance at 0 Hz of the same linear track)."""
+    veh = scene.active_vehicle
+    loads = veh.static_loads(scene.gravity)
+    model = kernel.rail_model(scene, n_elements)
+    beam = kernel.beam_params(scene)
+    X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
+    y = np.empty_like(X)
+    for i in range(veh.n_wheels):
+        y[:, i] = _core.linear_static_line(model, beam, loads[i], X[:, i].tolist(), 0)
+    for k in range(X.shape[0]):
+        alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
+                                            [0.0])).real.reshape(veh.n_wheels, veh.n_wheels)
+        # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
+        for i in range(veh.n_wheels):
+            y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(veh.n_wheels) if j != i)
+    return y
+
+
+def _vehicle_quasi_static_line(scene: Scene, n_elements: int, x_ref: np.ndarray, wheel: int,
+                               linear: bool = False):
+    """Wheel ``wheel``'s quasi-static line with the whole vehicle resting at the reference
+    positions ``x_ref`` [m], and the estimate of its error [m]."""
+    x = _window_reference(scene, x_ref)
+    b = _vehicle_breakpoints(scene, n_elements)
+    last = b.size - 2
+    k = np.clip(np.searchsorted(b, x, side="right") - 1, 0, last)
+    s0, s1 = int(k.min()), int(k.max()) + 1
+    coef, err = _vehicle_qs_series(scene, n_elements, s0, s1, linear)
+    a, w = b[k], b[k + 1] - b[k]
+    t = np.clip(2.0 * (x - a) / w - 1.0, -1.0, 1.0)
+    return chebyshev.chebval(t, coef[:, k - s0, wheel], tensor=False), err
+
+
+def _measured(result: Result, wheel: int, measure, defect_at) -> tuple[float, float] | None:
+    """The X range [m] of wheel ``wheel``'s centre to measure, or None for every sample."""
+    if isinstance(measure, str):
+        v.choice("measure", measure, {"default", "run"})
+        if measure == "run":
+            return None
+        s = result.settings
+        stretch = measured_stretch(result.scene, float(s.speed), float(s.x_start),
+                                   float(s.x_end))
+        if stretch is None:
+            return None
+        offset = result.scene.active_vehicle.positions[wheel] if result.n_wheels > 1 else 0.0
+        lo, hi = stretch[0] + offset, stretch[1] + offset
+        if defect_at is not None and not lo <= defect_at <= hi:
+            return None  # the defect's P1/P2 need the run around it
+        return lo, hi
+    try:
+        lo, hi = (float(x) for x in measure)
+    except (TypeError, ValueError):
+        raise ValueError(f"measure = {measure!r}: allowed 'default', 'run' or (x_from, x_to) "
+                         "[m]") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"measure = ({lo}, {hi}) m: allowed x_from < x_to, both finite")
+    return lo, hi
+
+
 # --------------------------------------------------------------------------------------------
 class _AnalysisMethods:
     """Derived views of an :class:`Analysis`."""
@@ -285,9 +408,20 @@ Analysis = dataclasses.make_dataclass(
 def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
             p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD,
             wheel: int | None = None, t_from: float | None = None,
-            steady: bool = False) -> Analysis:
+            steady: bool = False, measure="default") -> Analysis:
     """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model §
     Outputs).
+
+    **What is measured** (``measure``; ``Analysis.x_range`` says which X range it was):
+    ``"default"`` the part of the run that neither the rail's rigid ends nor the start-up
+    transient dominate (:func:`trackwheel.run.defaults.measured_stretch`: from one decay
+    length of the wheel's bounce on the track after the start, while every wheel is at least
+    :func:`~trackwheel.run.defaults.end_clearance` from both rail ends), or the whole run where
+    the rail is too short for such a stretch -- the paper's 5 m rail, measured whole as the
+    paper does -- or where it would leave out the ``defect_at`` given; ``"run"`` every sample;
+    ``(x_from, x_to)`` [m] the samples with the wheel's centre in that range. ``t_from`` [s]
+    measures the samples from that time on instead, ``steady=True`` from the start of the
+    steady state in the sleeper bay (:func:`trackwheel.steady_state` of the contact force).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
     .n_elements``) and the run's model: the ANCF statics (:func:`trackwheel.quasi_static`) for
@@ -295,11 +429,11 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     (:func:`trackwheel.linear_quasi_static`) for the ``linear/*`` levels, so that every
     run starts at d = 0 (a modal run with its truncation error of the static deflection: that
     error is the modal level's, and d shows it). It is solved at 8 Chebyshev points
-    per element crossed (cached per scene, mesh, model and range) and interpolated by each element's degree-8 Chebyshev series (see
-    :data:`QS_DEGREE`): the error (< 2e-13 m for the paper's scene, ``Analysis.y_qs_error``
-    estimates it for any scene) is negligible against the dynamic part. The spectrum and main
-    frequency are those of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling
-    interval is ``dt x output_every``.
+    per element crossed (cached per scene, mesh, model and range) and interpolated by each
+    element's degree-8 Chebyshev series (see :data:`QS_DEGREE`): the error (< 2e-13 m for the
+    paper's scene, ``Analysis.y_qs_error`` estimates it for any scene) is negligible against
+    the dynamic part. The spectrum and main frequency are those of :func:`main_frequency` on
+    d(t) (``n_fft`` as there); the sampling interval is ``dt x output_every``.
 
     The contact-force statistics (``Analysis.forces``, see
     :mod:`trackwheel.force_statistics`) are taken against the static load P0 = F + M g [N]:
@@ -310,56 +444,74 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     t_d the time the wheel centre reaches X_d and T_1 = ``p1_period``, T_2 = ``p2_period`` [s].
 
     A vehicle with several wheels is measured one wheel at a time: ``wheel`` = i analyses
-    ``result.wheel(i)``, wheel i alone under its static load of the weight distribution
-    (its quasi-static line is that wheel's alone; the neighbours' static deflection is part
-    of its dynamic part d).
+    wheel i under its static load of the weight distribution. Its quasi-static line is its own
+    static displacement with the whole vehicle resting on the track (every wheel under its
+    lever-rule load, solved where any wheel crosses a node and interpolated between), so its
+    d starts at 0 as a single wheel's does, and the neighbours' static deflection is not
+    counted as dynamic.
 
-    ``t_from`` [s] measures only the samples from that time on; ``steady=True`` from the start
-    of the steady state in the sleeper bay (:func:`trackwheel.steady_state` of the contact
-    force: the start-up transient left out). On a travelling window (``scene.window``) the
-    quasi-static line is the periodic track's: solved in the window's middle bay at the wheel's
-    position in its bay.
+    On a travelling window (``scene.window``) the quasi-static line is the periodic track's:
+    solved in the window's middle bay at the wheel's (the vehicle's) position in its bay.
 
-    Raises ValueError if the run kept fewer than 4 samples, if ``defect_at`` is not passed
-    in the run, or if the run has several wheels and ``wheel`` is not given.
+    Raises ValueError if fewer than 4 samples are measured, if ``defect_at`` is not passed
+    in them, if the run has several wheels and ``wheel`` is not given, or for a bad
+    ``measure`` (or one given with ``t_from`` / ``steady``).
     """
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
     if wheel is not None:
-        result = result.wheel(wheel)
+        one = result.wheel(wheel)
     elif result.n_wheels > 1:
         raise ValueError(f"result has {result.n_wheels} wheels: give wheel = 0 .. "
                          f"{result.n_wheels - 1} (one Analysis per wheel)")
+    else:
+        one = result
+    i = 0 if wheel is None else int(wheel)
+    if steady and t_from is not None:
+        raise ValueError("give t_from or steady=True, not both")
+    if (steady or t_from is not None) and not (isinstance(measure, str)
+                                              and measure == "default"):
+        raise ValueError("give measure or t_from / steady=True, not both")
     if steady:
-        if t_from is not None:
-            raise ValueError("give t_from or steady=True, not both")
-        t_from = steady_state(result).t_from
+        t_from = steady_state(one).t_from
     if t_from is not None:
-        result = from_time(result, t_from)
-    n = result.t.size
+        one = from_time(one, t_from)
+    else:
+        stretch = _measured(result, i, measure, defect_at)
+        if stretch is not None:
+            x = np.asarray(one.x_wheel, dtype=float)
+            tiny = 1e-9 * max(1.0, abs(stretch[1]))
+            one = samples(one, (x >= stretch[0] - tiny) & (x <= stretch[1] + tiny))
+    n = one.t.size
     if n < 4:
-        raise ValueError(f"result has {n} samples; the analysis needs at least 4 "
-                         "(lower output_every or run longer)")
-    s = result.settings
+        raise ValueError(f"result has {n} samples in the measured part; the analysis needs at "
+                         "least 4 (lower output_every, run longer, or widen measure)")
+    s = one.settings
     dt = float(s.dt) * int(s.output_every)
-    x = np.asarray(result.x_wheel, dtype=float)
+    x = np.asarray(one.x_wheel, dtype=float)
     linear = s.fidelity.startswith("linear/")
-    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), x, linear)
-    d = result.y_contact - y_qs
+    if result.n_wheels > 1:
+        offset = result.scene.active_vehicle.positions[i]
+        y_qs, qs_err = _vehicle_quasi_static_line(result.scene, int(s.n_elements), x - offset,
+                                                  i, linear)
+    else:
+        y_qs, qs_err = _quasi_static_line(one.scene, int(s.n_elements), x, linear)
+    d = one.y_contact - y_qs
     i_max = int(np.argmax(np.abs(d)))
     nf = _n_fft(n_fft, n)
     freqs, amps = amplitude_spectrum(d, dt, n_fft=nf)
     resolution = 1.0 / (n * dt)
     f_main = _peak(freqs, amps, resolution, 0.5 / dt)
-    N = result.normal_force
-    forces = result_statistics(result, defect_at=defect_at, p1_period=p1_period,
+    N = one.normal_force
+    forces = result_statistics(one, defect_at=defect_at, p1_period=p1_period,
                                p2_period=p2_period)
     return Analysis(
-        t=result.t, x_wheel=x, y_contact=result.y_contact, y_qs=y_qs, dynamic=d,
-        amplitude=float(abs(d[i_max])), amplitude_time=float(result.t[i_max]),
+        t=one.t, x_wheel=x, x_range=(float(x[0]), float(x[-1])), y_contact=one.y_contact,
+        y_qs=y_qs, dynamic=d,
+        amplitude=float(abs(d[i_max])), amplitude_time=float(one.t[i_max]),
         main_frequency=f_main, frequency_resolution=resolution, spectrum=(freqs, amps),
         n_fft=nf,
         y_qs_error=qs_err, normal_force=N, min_contact_force=float(N.min()),
-        max_contact_force=float(N.max()), lost_contact=result.lost_contact,
-        acc_contact=result.acc_contact, acc_A=result.acc_A, acc_B=result.acc_B,
-        acc_C=result.acc_C, acc_D=result.acc_D, acc_E=result.acc_E, forces=forces)
+        max_contact_force=float(N.max()), lost_contact=one.lost_contact,
+        acc_contact=one.acc_contact, acc_A=one.acc_A, acc_B=one.acc_B,
+        acc_C=one.acc_C, acc_D=one.acc_D, acc_E=one.acc_E, forces=forces)

@@ -111,6 +111,12 @@ def from_time(result: Result, t_from: float) -> Result:
     keep = np.asarray(result.t) >= t_from
     if keep.sum() < 1:
         raise ValueError(f"t_from = {t_from} s is after the run's end {result.t[-1]:.6g} s")
+    return samples(result, keep)
+
+
+def samples(result: Result, keep: np.ndarray) -> Result:
+    """``result`` restricted to the samples where the boolean mask ``keep`` (n_samples,) is
+    True (every recorded array, the bodies' too)."""
     arrays = {name: getattr(result, name)[keep] for name, *_ in OUTPUT_FIELDS
               if getattr(result, name) is not None}
     for name in ("body_z", "body_phi"):
