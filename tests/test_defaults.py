@@ -17,6 +17,7 @@ import pytest
 import trackwheel as tw
 from trackwheel import cli
 from trackwheel.run import defaults as D
+from trackwheel.run import stretch as S
 from trackwheel.run import frequency as fr
 from trackwheel.study.steady import steady_state
 
@@ -37,9 +38,9 @@ def test_the_paper_scene_keeps_its_defaults():
     d = tw.default_settings(s)
     assert d["n_elements"] == 80
     assert d["dt"] == 1.0 / (150 * D.wheel_frequency(s))
-    assert D.default_start(s) == 0.25 and D.default_end(s, 0.25) == 4.75
-    assert D.clear_stretch(s) is None
-    assert D.measured_stretch(s, tw.kmh(300), 0.25, 4.75) is None
+    assert S.default_start(s) == 0.25 and S.default_end(s, 0.25) == 4.75
+    assert S.clear_stretch(s) is None
+    assert S.measured_stretch(s, tw.kmh(300), 0.25, 4.75) is None
 
 
 def test_frequencies_and_wavelengths_of_the_rules():
@@ -186,12 +187,12 @@ def test_end_clearance_and_startup_length_of_the_ballasted_track():
     s = tw.Scene.ballasted_track()
     k_f = s.supports.static_stiffness * len(s.support_positions) / s.rail.length
     beta = (k_f / (4.0 * s.rail.bending_stiffness)) ** 0.25
-    assert D.end_clearance(s) == pytest.approx(math.log(1e3) / beta, rel=1e-12)
-    assert D.default_start(s) == pytest.approx(5.1) and D.default_end(s, 5.1) == pytest.approx(24.9)
-    a, b = D.startup_length(s, tw.kmh(300)), D.startup_length(s, tw.kmh(150))
+    assert S.end_clearance(s) == pytest.approx(math.log(1e3) / beta, rel=1e-12)
+    assert S.default_start(s) == pytest.approx(5.1) and S.default_end(s, 5.1) == pytest.approx(24.9)
+    a, b = S.startup_length(s, tw.kmh(300)), S.startup_length(s, tw.kmh(150))
     assert 3.0 < a < 6.0 and a == pytest.approx(2.0 * b, rel=1e-12)
     bare = dc.replace(s, supports=dc.replace(s.supports, positions=()))
-    assert D.end_clearance(bare) == math.inf and D.clear_stretch(bare) is None
+    assert S.end_clearance(bare) == math.inf and S.clear_stretch(bare) is None
 
 
 @pytest.mark.slow
@@ -227,9 +228,9 @@ def test_a_vehicle_wheel_is_measured_from_its_own_quasi_static_line():
     from trackwheel.statics import vehicle_static
 
     x = float(r.x_wheel[-1, 0])
-    from trackwheel.study.analysis import _linear_vehicle_line
+    from trackwheel.statics import linear_vehicle_line
 
-    direct = _linear_vehicle_line(s, r.settings.n_elements, np.array([x]))[0, 1]
+    direct = linear_vehicle_line(s, [x], n_elements=r.settings.n_elements)[0, 1]
     assert a.y_qs[-1] == pytest.approx(direct, abs=1e-12)
     r = tw.simulate(s, tw.kmh(200), x_start=5.1, duration=2e-3, progress=False)
     a = tw.analyse(r, wheel=1, measure="run")

@@ -23,10 +23,8 @@ from __future__ import annotations
 
 import math
 import dataclasses
-from functools import lru_cache
 
 import numpy as np
-from numpy.polynomial import chebyshev
 
 from ..base import validate as v
 from ..base.fields import dataclass_fields, generated_doc
@@ -37,12 +35,9 @@ from .force_statistics import (  # ForceStatistics: the annotation of Analysis.f
     ForceStatistics,  # noqa: F401
     result_statistics,
 )
-from .. import _core
-from ..run import kernel
-from ..run.defaults import measured_stretch
+from ..run.stretch import measured_stretch
 from ..run.results import Result
-from ..scene import Scene
-from ..run.statics import linear_quasi_static, quasi_static, vehicle_static
+from .static_line import QS_DEGREE, quasi_static_line, vehicle_quasi_static_line
 from .steady import from_time, samples, steady_state
 
 __all__ = [
@@ -54,19 +49,6 @@ __all__ = [
     "main_frequency",
 ]
 
-#: Degree of the polynomial that represents the quasi-static line inside each rail element.
-#: With the wheel at X, the static contact-point displacement is, to within the geometric
-#: nonlinearity, N(X)^T K^-1 N(X) P with cubic Hermite shape functions N: a polynomial of degree
-#: 6 in X inside an element, with kinks in its derivatives only at the nodes (the support springs
-#: enter K, not N). So y_qs is solved at the QS_DEGREE + 1 Chebyshev-Lobatto points of each
-#: element the run crosses (the end points shared with the neighbours: QS_DEGREE static solves
-#: per element) and interpolated by the element's Chebyshev series. Measured against direct
-#: static solves: < 2e-13 m for the paper's scene with 20 elements and < 1e-15 m with 80, i.e.
-#: below 1e-8 of the static deflection (7e-5 m) and 1e-7 of the smallest dynamic amplitude of
-#: Fig. 7 (1.2e-6 m at 50 km/h); a cubic on a 5 mm grid costs 7 (20 elements) or 1.5 (80) times
-#: as many solves for an error of 2e-11 m. Each analysis reports an estimate of its own error,
-#: |c_7| + |c_8| of the Chebyshev coefficients (``Analysis.y_qs_error``, ~1e-12 m here).
-QS_DEGREE = 8
 #: The FFT length is the smallest power of two >= ZERO_PADDING x the record length.
 ZERO_PADDING = 8
 
@@ -157,149 +139,6 @@ def main_frequency(signal, dt: float, *, n_fft: int | None = None, f_min: float 
     fmax = 0.5 / dt if f_max is None else v.number("f_max", f_max, low=fmin, unit="Hz")
     freqs, amps = amplitude_spectrum(x, dt, n_fft=n_fft)
     return _peak(freqs, amps, fmin, fmax)
-
-
-# --------------------------------------------------------------------------------------------
-# quasi-static line
-@lru_cache(maxsize=128)
-def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
-    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh: of the ANCF model or
-    (``linear``) of the linear track in all its coordinates.
-
-    Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
-    mesh, element range): the same range is always solved the same way (one warm-started
-    sweep), so the line is bit-identical whichever process or earlier analysis computed it.
-    """
-    n = QS_DEGREE
-    le = scene.rail.length / n_elements
-    t = -np.cos(np.pi * np.arange(n + 1) / n)  # Chebyshev-Lobatto points on [-1, 1]
-    n_el = e1 - e0
-    x = ((np.arange(e0, e1)[:, None] + 0.5 * (t[None, :-1] + 1.0)) * le).ravel()
-    x = np.minimum(np.append(x, e1 * le), scene.rail.length)
-    if linear:
-        y = linear_quasi_static(scene, x, n_elements=n_elements)
-    else:
-        y = quasi_static(scene, x, n_elements=n_elements).y_contact
-    values = y[np.arange(n_el)[:, None] * n + np.arange(n + 1)[None, :]]  # (n_el, n + 1)
-    coef = np.linalg.solve(chebyshev.chebvander(t, n), values.T)  # (n + 1, n_el)
-    coef.setflags(write=False)
-    return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
-
-
-def _in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
-    """X [m] as the rail coordinate of a fixed rail, or on a travelling window the same place
-    in its bay in the window's middle bay (the quasi-static line of the periodic track)."""
-    if scene.window is None:
-        return x
-    d = scene.supports.spacing
-    middle = round(scene.rail.length / d) // 2
-    return middle * d + np.mod(x, d)
-
-
-def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
-    """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
-    x = _in_window(scene, x)
-    le = scene.rail.length / n_elements
-    e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
-    e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
-    coef, err = _qs_series(scene, n_elements, e0, e1, linear)
-    k = np.clip(np.floor(x / le).astype(np.int64) - e0, 0, e1 - e0 - 1)
-    t = np.clip(2.0 * (x / le - (k + e0)) - 1.0, -1.0, 1.0)
-    return chebyshev.chebval(t, coef[:, k], tensor=False), err
-
-
-def _window_reference(scene: Scene, x_ref: np.ndarray) -> np.ndarray:
-    """The vehicle's reference positions [m] on a fixed rail, or on a travelling window the same
-    place in the bay with the vehicle in the window's middle (the periodic track's line)."""
-    if scene.window is None:
-        return x_ref
-    d = scene.supports.spacing
-    rear, front = scene.active_vehicle.span
-    n_bays = round(scene.rail.length / d)
-    first = max((n_bays - math.ceil((front - rear) / d - 1e-9)) // 2, 0)
-    return first * d + np.mod(x_ref + rear, d) - rear
-
-
-@lru_cache(maxsize=16)
-def _vehicle_breakpoints(scene: Scene, n_elements: int) -> np.ndarray:
-    """The reference positions [m] where some wheel of the vehicle crosses a node of the mesh
-    (and the ends of the range the vehicle can take): between two of them every wheel stays
-    inside one element, so each wheel's static displacement is smooth there."""
-    veh = scene.active_vehicle
-    rear, front = veh.span
-    lo, hi = -rear, scene.rail.length - front
-    le = scene.rail.length / n_elements
-    nodes = np.arange(n_elements + 1) * le
-    b = np.sort(np.concatenate([nodes - p for p in veh.positions] + [[lo, hi]]))
-    b = b[(b >= lo) & (b <= hi)]
-    keep = np.concatenate(([True], np.diff(b) > 1e-9 * le))
-    return b[keep]
-
-
-@lru_cache(maxsize=128)
-def _vehicle_qs_series(scene: Scene, n_elements: int, s0: int, s1: int, linear: bool):
-    """Chebyshev series of every wheel's quasi-static line on the segments s0 .. s1-1 between
-    :func:`_vehicle_breakpoints`: the static contact-point displacement of each wheel with the
-    whole vehicle resting on the track under the lever-rule loads (the ANCF statics of
-    :func:`trackwheel.statics.vehicle_static`, or for ``linear`` the linear track's, the
-    superposition of each wheel's own line and the static flexibility, the receptance at 0 Hz,
-    to its neighbours' loads). Returns (coefficients (QS_DEGREE + 1, s1 - s0, n_wheels) [m],
-    error estimate [m]); cached like :func:`_qs_series`."""
-    n = QS_DEGREE
-    b = _vehicle_breakpoints(scene, n_elements)
-    t = -np.cos(np.pi * np.arange(n + 1) / n)
-    a, w = b[s0:s1], b[s0 + 1:s1 + 1] - b[s0:s1]
-    x = (a[:, None] + 0.5 * (t[None, :-1] + 1.0) * w[:, None]).ravel()
-    x = np.append(x, b[s1])
-    veh = scene.active_vehicle
-    if linear:
-        y = _linear_vehicle_line(scene, n_elements, x)
-    else:
-        y = np.array([vehicle_static(scene, xi, n_elements=n_elements).y_contact for xi in x])
-    idx = np.arange(s1 - s0)[:, None] * n + np.arange(n + 1)[None, :]  # (n_seg, n + 1)
-    values = y[idx]  # (n_seg, n + 1, n_wheels)
-    inv = np.linalg.inv(chebyshev.chebvander(t, n))
-    coef = np.einsum("kj,sjw->ksw", inv, values)
-    coef.setflags(write=False)
-    err = float(np.max(np.abs(coef[-2]) + np.abs(coef[-1]))) if veh.n_wheels else 0.0
-    return coef, err
-
-
-def _linear_vehicle_line(scene: Scene, n_elements: int, x_ref: np.ndarray) -> np.ndarray:
-    """(n, n_wheels) [m]: each wheel's static displacement on the linear track with the vehicle's
-    reference at ``x_ref``: its own line (:func:`trackwheel.linear_quasi_static` under its
-    lever-rule load) minus sum_j P_j alpha_0(X_i, X_j) over the other wheels, alpha_0 the
-    track's static flexibility (the receptance at 0 Hz of the same linear track)."""
-    veh = scene.active_vehicle
-    loads = veh.static_loads(scene.gravity)
-    model = kernel.rail_model(scene, n_elements)
-    beam = kernel.beam_params(scene)
-    X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
-    y = np.empty_like(X)
-    for i in range(veh.n_wheels):
-        y[:, i] = _core.linear_static_line(model, beam, loads[i], X[:, i].tolist(), 0)
-    for k in range(X.shape[0]):
-        alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
-                                            [0.0])).real.reshape(veh.n_wheels, veh.n_wheels)
-        # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
-        for i in range(veh.n_wheels):
-            y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(veh.n_wheels) if j != i)
-    return y
-
-
-def _vehicle_quasi_static_line(scene: Scene, n_elements: int, x_ref: np.ndarray, wheel: int,
-                               linear: bool = False):
-    """Wheel ``wheel``'s quasi-static line with the whole vehicle resting at the reference
-    positions ``x_ref`` [m], and the estimate of its error [m]."""
-    x = _window_reference(scene, x_ref)
-    b = _vehicle_breakpoints(scene, n_elements)
-    last = b.size - 2
-    k = np.clip(np.searchsorted(b, x, side="right") - 1, 0, last)
-    s0, s1 = int(k.min()), int(k.max()) + 1
-    coef, err = _vehicle_qs_series(scene, n_elements, s0, s1, linear)
-    a, w = b[k], b[k + 1] - b[k]
-    t = np.clip(2.0 * (x - a) / w - 1.0, -1.0, 1.0)
-    return chebyshev.chebval(t, coef[:, k - s0, wheel], tensor=False), err
 
 
 def _measured(result: Result, wheel: int, measure, defect_at) -> tuple[float, float] | None:
@@ -492,10 +331,10 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     linear = s.fidelity.startswith("linear/")
     if result.n_wheels > 1:
         offset = result.scene.active_vehicle.positions[i]
-        y_qs, qs_err = _vehicle_quasi_static_line(result.scene, int(s.n_elements), x - offset,
-                                                  i, linear)
+        y_qs, qs_err = vehicle_quasi_static_line(result.scene, int(s.n_elements), x - offset,
+                                                 i, linear)
     else:
-        y_qs, qs_err = _quasi_static_line(one.scene, int(s.n_elements), x, linear)
+        y_qs, qs_err = quasi_static_line(one.scene, int(s.n_elements), x, linear)
     d = one.y_contact - y_qs
     i_max = int(np.argmax(np.abs(d)))
     nf = _n_fft(n_fft, n)
