@@ -545,8 +545,10 @@ def test_band_decay_rate_with_one_frequency_is_the_centre_value():
     scene = tw.Scene.ballasted_track(60.0)
     e = iso3095_band_edges()
     centres = np.sqrt(e[:-1] * e[1:])
+    # rtol: np.geomspace's middle point and sqrt(lo hi) differ by an ulp or two, which the sharp
+    # resonances of the 60 m rail on its default 1200 elements turn into ~4e-12 of the rate
     np.testing.assert_allclose(tw.frequency.band_decay_rates(scene, 1), tw.decay_rate(scene, centres),
-                               rtol=1e-12)
+                               rtol=1e-10)
 
 
 def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):

@@ -71,7 +71,7 @@ def test_static_limit_equals_static(validation):
     s = dc.replace(tw.Scene.kato2005(), rail_gravity=False)
     gaps = []
     for x in (2.25, 2.5, 1.3):
-        a0 = tw.receptance(s, x, [0.0])[0]
+        a0 = tw.receptance(s, x, [0.0], n_elements=s.rail.n_elements)[0]  # static's mesh
         assert a0.imag == 0.0
         assert -s.static_load * a0.real == pytest.approx(tw.static(s, x).y_contact, rel=1e-6)
         gaps.append(abs(-s.static_load * a0.real / tw.static(s, x).y_contact - 1.0))
@@ -271,9 +271,9 @@ def test_pinned_pinned_peak_of_the_midspan_receptance(beam, validation):
 @pytest.mark.parametrize("f_max", [500.0, 2000.0, 5000.0])
 def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
     """The frequency-domain mesh (what `receptance` and `decay-rate` use): whole elements per
-    support bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
-    at f_max, and the fewest such (one element per bay less would miss it), never fewer than
-    the scene's own."""
+    quarter bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
+    at f_max, and the fewest such (one element per quarter bay less would miss it), never fewer
+    than the scene's own."""
     from trackwheel.run.defaults import frequency_mesh
 
     scene = tw.Scene.ballasted_track()
@@ -282,9 +282,9 @@ def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
     w = 2.0 * np.pi * f_max
     wavelength = 2.0 * np.pi * (r.bending_stiffness / (r.mass_per_length * w * w)) ** 0.25
     n = frequency_mesh(scene, f_max)
-    assert n % n_bays == 0 and n >= r.n_elements
+    assert n % (4 * n_bays) == 0 and n >= r.n_elements  # whole quarter bays
     assert r.length / n <= wavelength / 10.0
-    assert n == r.n_elements or r.length / (n - n_bays) > wavelength / 10.0
+    assert n == r.n_elements or r.length / (n - 4 * n_bays) > wavelength / 10.0
 
 
 def test_frequency_mesh_capped_by_the_element_limit_warns():

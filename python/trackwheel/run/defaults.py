@@ -221,7 +221,10 @@ def derived_mesh(scene: Scene) -> int:
     contact spring, sits below it on real tracks, 500 Hz against 2147 Hz on the paper's and
     750 Hz against 1422 Hz on the ballasted preset), at least the scene's own
     ``rail.n_elements``: 80 for the paper's scene, 8 per bay on the ballasted preset, 12 with
-    its Timoshenko rail. See :func:`default_settings`."""
+    its Timoshenko rail; a rail without supports keeps its own. See
+    :func:`default_settings`."""
+    if not scene.support_positions:  # no bays to resolve: the scene's own mesh
+        return scene.rail.n_elements
     per_bay = max(ELEMENTS_PER_BAY, elements_per_bay(scene, pinned_pinned_frequency(scene)))
     return int(_capped(scene, per_bay, "that resolve the rail's bending"))
 
