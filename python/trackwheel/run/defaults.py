@@ -338,7 +338,7 @@ def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: i
     imaginary axis is |omega dt| <= 2 sqrt(2), so dt_max = 2 sqrt(2) / omega_max, with omega_max
     [rad/s] the highest eigenfrequency of the assembled system -- the ANCF rail on its supports
     with the wheel mass on its contact spring (docs: Model § Rail, § Wheel, § Contact), linearised at the static state
-    with the wheel at ``x_start`` (default :func:`default_start`) -- found by power iteration in
+    with the wheel at ``x_start`` (default: the middle of the first support bay) -- found by power iteration in
     the kernel. omega_max grows as 1/l_e^2 (the shortest bending wave of an element), so dt_max
     falls by 4x per mesh doubling. The speed does not enter: the linearised system does not
     depend on it (the convective terms of the moving contact are small), which
@@ -357,10 +357,10 @@ def stability_limit(scene: Scene, integrator: str = "explicit", *, n_elements: i
     v.choice("integrator", integrator, {"explicit", "generalized_alpha"})
     check_speed(speed)
     v.number("rho_inf", rho_inf, low=0.0, high=1.0)
-    from .stretch import start_position  # the stretch module builds on this one
-
     ne = derived_mesh(scene) if n_elements is None else mesh(scene, n_elements)
-    x0 = start_position(scene, x_start)
+    half_bay = min(0.5 * scene.supports.spacing, 0.5 * scene.rail.length)
+    x0 = half_bay if x_start is None else v.number("x_start", x_start, low=0.0,
+                                                   high=scene.rail.length, unit="m")
     if integrator == "generalized_alpha":
         return math.inf
     dt_max, _ = explicit_limit(*_start_state(scene, ne, x0), x0)
