@@ -162,9 +162,9 @@ def measured_stretch(scene: Scene, speed: float, x_start: float, x_end: float
     the vehicle's reference point (the one wheel's centre), for a run from ``x_start`` to
     ``x_end`` [m] at ``speed`` [m/s]: where every wheel is at least :func:`end_clearance` from
     both rail ends (on a travelling window: everywhere), from :func:`startup_length` after
-    the start on -- or, where less than a support bay of that is left, the last bay of the
-    run clear of the ends (the least transient). None (measure the whole run) where the
-    fixed rail is too short to leave a bay clear of its ends (the paper's scene: measured
+    the start on -- or, where that leaves less than a support bay (a short passage over a
+    defect, say), from the start, the transient included. None (measure the whole run) where
+    the fixed rail is too short to leave a bay clear of its ends (the paper's scene: measured
     whole, as the paper does), where less than a bay of the run is clear of them, or at speed
     0."""
     d = scene.supports.spacing
@@ -177,4 +177,5 @@ def measured_stretch(scene: Scene, speed: float, x_start: float, x_end: float
         lo, hi = max(lo, c - rear), min(hi, scene.rail.length - c - front)
     if hi - lo < d * (1.0 - 1e-9):
         return None
-    return max(lo, min(x_start + startup_length(scene, speed), hi - d)), hi
+    after = x_start + startup_length(scene, speed)
+    return (max(lo, after) if hi - after >= d * (1.0 - 1e-9) else lo), hi
