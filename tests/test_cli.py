@@ -581,7 +581,9 @@ def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
     (["receptance", "--beam", "bernoulli"], "invalid choice"),
     (["receptance", "--out", "/proc/r.csv"], "cannot write in this folder"),
     (["decay-rate"], "need a rail longer than 33.5 m"),
+    (["decay-rate"], "use --track ballasted"),
     (["decay-rate", "--track", "ballasted", "--length", "39.6"], "longer than 40.2 m"),
+    (["decay-rate", "--track", "ballasted", "--length", "30"], "give a --length of at least 40.2 m"),
     (["decay-rate", "--track", "ballasted", "--plot", "d.xyz"], "unknown file format"),
     (["eigen", "--beam", "timoshenko", "--shear-coefficient", "0"], "positive number"),
 ])

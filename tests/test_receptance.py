@@ -221,9 +221,27 @@ def test_bad_input(kw, match):
         tw.receptance(tw.Scene.kato2005(), **kw)
 
 
-def test_decay_rate_needs_room_for_the_standard_positions():
-    with pytest.raises(ValueError, match="EN 15461 positions"):
-        tw.decay_rate(tw.Scene.kato2005(), [500.0])
+@pytest.mark.parametrize("scene, least", [(tw.Scene.kato2005(), 33.25),
+                                          (tw.Scene.ballasted_track(), 39.9),
+                                          (tw.Scene.ballasted_track(12.0), 39.9)])
+def test_decay_rate_needs_room_for_the_standard_positions(scene, least):
+    """A rail too short for the 66 spacings of EN 15461 is told the length it needs (66 d
+    beyond the first mid-span, d / 2 from the end), never an empty range of x0."""
+    with pytest.raises(ValueError, match="EN 15461 positions") as info:
+        tw.decay_rate(scene, [500.0])
+    msg = str(info.value)
+    assert "Rail.length" in msg and f"at least {least:g} m" in msg and "x0 in" not in msg
+
+
+def test_decay_rate_x0_is_inside_the_rail():
+    """x0 = 0 is the rigid end (zero response, so no ratio: refused rather than NaN), and an x0
+    beyond L - 66 d gets its allowed range."""
+    s = tw.Scene.ballasted_track(60.0)
+    with pytest.raises(ValueError, match=r"x0 = 0.0 is outside the allowed range \(0.0, 60.0\]"):
+        tw.decay_rate(s, [500.0], x0=0.0)
+    with pytest.raises(ValueError, match=r"x0 = 30 m .* allowed range \(0, 20.4\] m"):
+        tw.decay_rate(s, [500.0], x0=30.0)
+    assert np.isfinite(tw.decay_rate(s, [500.0], x0=1e-3)).all()
 
 
 def test_plots():

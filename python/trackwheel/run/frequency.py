@@ -123,15 +123,23 @@ def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
     scene = _check_scene(scene)
     d, L = scene.supports.spacing, scene.rail.length
     span = EN15461_SPANS[-1] * d
+    given = x0 is not None
     if x0 is None:
         x0 = (max(math.floor((L - span) / 2.0 / d), 0) + 0.5) * d
-    x0 = v.number("x0", x0, low=0.0, high=L, unit="m")
-    if x0 + span > L:
+    if span > L or (not given and x0 + span > L):
+        # no (default) excitation point fits: say what the rail needs, not an empty range
         raise ValueError(
             f"the EN 15461 positions reach {EN15461_SPANS[-1]:g} support spacings "
-            f"({span:.4g} m) beyond x0 = {x0:.4g} m, past the rail end at {L:.4g} m; allowed: "
-            f"a rail longer than {span + d:.4g} m (plus room for its end reflections) and "
-            f"x0 in [0, {L - span:.4g}] m")
+            f"({span:.4g} m) beyond the excitation point at mid-span; the rail (Rail.length) "
+            f"is {L:.4g} m: allowed a rail of at least {span + 0.5 * d:.4g} m (plus room for "
+            "its end reflections)")
+    # x0 = 0 is the rigid end support: no response there to divide by
+    x0 = v.number("x0", x0, low=0.0, low_open=True, high=L, unit="m")
+    if x0 + span > L:
+        raise ValueError(
+            f"x0 = {x0:.4g} m puts the last EN 15461 position ({EN15461_SPANS[-1]:g} support "
+            f"spacings, {span:.4g} m, beyond it) past the rail end at {L:.4g} m; allowed "
+            f"range (0, {L - span:.4g}] m")
     return x0 + d * np.asarray(EN15461_SPANS)
 
 

@@ -48,9 +48,13 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error(str(exc))
     span = (frequency.EN15461_SPANS[-1] + 1.0) * scene.supports.spacing
     if scene.rail.length <= span:
+        advice = (f"give a --length of at least {span:g} m (a multiple of "
+                  f"{scene.supports.spacing:g} m; default {DECAY_LENGTH:g} m)"
+                  if args.track == "ballasted" else
+                  f"use --track ballasted (default length {DECAY_LENGTH:g} m)")
         parser.error(f"the EN 15461 positions need a rail longer than {span:g} m (67 support "
-                     f"spacings); {scene_name(scene, args)} is {scene.rail.length:g} m: use "
-                     f"--track ballasted (default {DECAY_LENGTH:g} m)")
+                     f"spacings); {scene_name(scene, args)} is {scene.rail.length:g} m: "
+                     f"{advice}")
     edges = frequency.iso3095_band_edges()
     n_el = frequency_elements(scene, edges[-1], args.n_elements, "decay-rate")
     dr = frequency.band_decay_rates(scene, args.per_band, n_el)
