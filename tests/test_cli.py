@@ -197,7 +197,7 @@ def test_negative_numbers_reach_validation(value, capsys):
     assert cli.main(["run", "--speed-kmh", "100", "--support-stiffness", value, *CHEAP]) == 2
     err = capsys.readouterr().err
     assert err.startswith("trackwheel run: error: --support-stiffness = -")
-    assert "is outside the allowed range (0.0, inf] N/m" in err and len(err.splitlines()) == 1
+    assert "is outside the allowed range (0, 1e+14] N/m" in err and len(err.splitlines()) == 1
 
 
 def test_negative_x_start_reaches_validation(capsys):
@@ -577,7 +577,7 @@ def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
      "is too long; allowed: at most"),
     (["receptance", "--shear-coefficient", "0.3"], "only used with --beam timoshenko"),
     (["receptance", "--beam", "timoshenko", "--shear-coefficient", "2"],
-     "--shear-coefficient = 2.0 is outside the allowed range (0.0, 1.0]"),
+     "--shear-coefficient = 2.0 is outside the allowed range (0, 1]"),
     (["receptance", "--beam", "bernoulli"], "invalid choice"),
     (["receptance", "--out", "/proc/r.csv"], "cannot write in this folder"),
     (["decay-rate"], "need a rail longer than 33.5 m"),

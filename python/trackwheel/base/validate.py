@@ -7,7 +7,7 @@ import numbers
 
 import numpy as np
 
-from .limits import MAX_ELEMENTS
+from .limits import MAX_ELEMENTS, RANGES
 
 
 def number(name: str, value, *, low=None, high=None, low_open=False, high_open=False,
@@ -30,6 +30,27 @@ def number(name: str, value, *, low=None, high=None, low_open=False, high_open=F
     if bad:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {rng}{_unit(unit)}")
     return v
+
+
+def field(name: str, value, *, unit: str | None = None, hint: str = "") -> float:
+    """``value`` checked against the plausible range of the parameter ``name``
+    (:data:`trackwheel.base.limits.RANGES`; ``unit`` overrides the range's, e.g. for a contact
+    stiffness whose unit depends on the law; ``hint`` ends the message of a value above the
+    range, e.g. the likely unit slip)."""
+    r = RANGES[name]
+    if unit is not None:
+        r = r._replace(unit=unit)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number{_unit(r.unit)}, "
+                        f"got {type(value).__name__}")
+    x = float(value)
+    if not math.isfinite(x):
+        raise ValueError(f"{name} = {value} is not finite; allowed range {r.text()}")
+    if x < r.low or x > r.high or (r.low_open and x == r.low) or (r.high_open and x == r.high):
+        shown = repr(x) if len(repr(x)) <= 12 else f"{x:.12g}"
+        tail = f" ({hint})" if hint and x > r.high else ""
+        raise ValueError(f"{name} = {shown} is outside the allowed range {r.text()}{tail}")
+    return x
 
 
 def positive(name: str, value, unit: str = "") -> float:

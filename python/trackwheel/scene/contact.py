@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..base import validate as v
+from ..base.limits import ranges_doc
 
 
 @dataclass(frozen=True)
@@ -30,8 +31,11 @@ class Contact:
         v.choice("Contact.law", self.law, {"linear", "hertz"})
         v.boolean("Contact.patch_filter", self.patch_filter)
         if self.stiffness is not None:
-            v.positive("Contact.stiffness", self.stiffness,
-                       "N/m" if self.law == "linear" else "N/m^1.5")
-        v.number("Contact.damping", self.damping, low=0.0, unit="N s/m")
-        v.number("Contact.friction", self.friction, low=0.0, unit="-")
+            v.field("Contact.stiffness", self.stiffness,
+                    unit="N/m" if self.law == "linear" else "N/m^1.5")
+        v.field("Contact.damping", self.damping)
+        v.field("Contact.friction", self.friction)
 
+
+
+Contact.__doc__ += ranges_doc("Contact")

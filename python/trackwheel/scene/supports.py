@@ -58,9 +58,9 @@ class Supports:
                              "together (layered supports) or both be None (single springs); "
                              f"got sleeper_mass = {self.sleeper_mass}, ballast_stiffness = "
                              f"{self.ballast_stiffness}")
-        v.positive("Supports.sleeper_mass", self.sleeper_mass, "kg")
-        v.positive("Supports.ballast_stiffness", self.ballast_stiffness, "N/m")
-        v.number("Supports.ballast_damping", self.ballast_damping, low=0.0, unit="N s/m")
+        v.field("Supports.sleeper_mass", self.sleeper_mass)
+        v.field("Supports.ballast_stiffness", self.ballast_stiffness)
+        v.field("Supports.ballast_damping", self.ballast_damping)
 
     @property
     def layered(self) -> bool:
@@ -98,3 +98,6 @@ class Supports:
                     f"allowed range (0, {length}) m")
         return pos
 
+
+
+Supports.__doc__ += ranges_doc("Supports")

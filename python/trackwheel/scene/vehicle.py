@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..base import validate as v
+from ..base.limits import RANGES, ranges_doc
 from .wheel import Wheel
 
 
@@ -45,12 +46,9 @@ class Bogie:
                              f"{self.wheels!r}")
         object.__setattr__(self, "wheels", tuple(
             v.integer("Bogie.wheels", w, low=0) for w in self.wheels))
-        v.number("Bogie.centre", self.centre, unit="m")
-        v.positive("Bogie.mass", self.mass, "kg")
-        v.positive("Bogie.pitch_inertia", self.pitch_inertia, "kg m^2")
-        v.positive("Bogie.primary_stiffness", self.primary_stiffness, "N/m")
-        v.number("Bogie.primary_damping", self.primary_damping, low=0.0, unit="N s/m")
-        v.number("Bogie.load", self.load, low=0.0, unit="N")
+        for name in ("centre", "mass", "pitch_inertia", "primary_stiffness", "primary_damping",
+                     "load"):
+            v.field(f"Bogie.{name}", getattr(self, name))
 
 
 @dataclass(frozen=True)
@@ -65,11 +63,9 @@ class CarBody:
     secondary_damping: float = 9.8e3  #: c_2 per bogie [N s/m]
 
     def __post_init__(self):
-        v.number("CarBody.centre", self.centre, unit="m")
-        v.positive("CarBody.mass", self.mass, "kg")
-        v.positive("CarBody.pitch_inertia", self.pitch_inertia, "kg m^2")
-        v.positive("CarBody.secondary_stiffness", self.secondary_stiffness, "N/m")
-        v.number("CarBody.secondary_damping", self.secondary_damping, low=0.0, unit="N s/m")
+        for name in ("centre", "mass", "pitch_inertia", "secondary_stiffness",
+                     "secondary_damping"):
+            v.field(f"CarBody.{name}", getattr(self, name))
 
 
 #: Huo & Dai (2019), "Formulation of a linearized model for vehicle-track interactions", Shock
@@ -108,7 +104,7 @@ class Vehicle:
                 raise TypeError(f"Vehicle.wheels must hold trackwheel.Wheel values, got "
                                 f"{type(w).__name__}")
         object.__setattr__(self, "wheels", tuple(self.wheels))
-        pos = tuple(v.number("Vehicle.positions", x, unit="m") for x in self.positions)
+        pos = tuple(v.field("Vehicle.positions", x) for x in self.positions)
         object.__setattr__(self, "positions", pos)
         if len(pos) != len(self.wheels):
             raise ValueError(f"Vehicle.positions has {len(pos)} entries for "
@@ -280,3 +276,8 @@ def rigid_track_frequencies(vehicle: Vehicle) -> dict[str, float]:
         out["car_bounce"] = math.sqrt(2 * k / c.mass) / (2 * math.pi)
         out["car_pitch"] = math.sqrt(k * sum(a * a for a in arms) / c.pitch_inertia) / (2 * math.pi)
     return out
+
+
+Vehicle.__doc__ += ranges_doc("Vehicle")
+Bogie.__doc__ += ranges_doc("Bogie")
+CarBody.__doc__ += ranges_doc("CarBody")
