@@ -618,3 +618,17 @@ def test_a_reader_leaving_the_pipe_ends_the_command_quietly():
         err = p.stderr.read().decode()
         assert p.wait(timeout=120) == 1
     assert "Traceback" not in err and "BrokenPipe" not in err, err
+
+
+def test_half_car_on_the_paper_track_says_it_lengthens_the_rail(capsys):
+    """run --vehicle half-car on the 5 m track ran on a 25 m rail without saying so: a note
+    gives the new length (20 m of wheels + the paper's 5 m); a rail long enough is kept."""
+    fast = ["--fidelity", "linear/hertz", "--dt", "1e-4", "--n-elements", "100", "--x-end", "1"]
+    assert cli.main(["run", "--speed-kmh", "100", "--vehicle", "half-car", *fast]) == 0
+    out = capsys.readouterr().out
+    assert ("note: --vehicle half-car: the rail is lengthened from 5 m to 25 m for the half "
+            "car's 20 m of wheels") in out
+    scene, notes = scenes.vehicle_scene(tw.Scene.ballasted_track(), "half-car")
+    assert notes == [] and scene.rail.length == 30.0
+    scene, notes = scenes.vehicle_scene(tw.Scene.ballasted_track(12.0), "half-car")
+    assert scene.rail.length == pytest.approx(25.2) and "to 25.2 m" in notes[0]

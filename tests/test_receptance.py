@@ -311,3 +311,16 @@ def test_frequency_mesh_capped_by_the_element_limit_warns():
     with pytest.warns(tw.MeshWarning, match="fewer than ten per bending wavelength"):
         n = frequency_mesh(scene, 5000.0)
     assert n == MAX_ELEMENTS  # 5000 bays, 4 elements each
+
+
+def test_frequencies_above_the_beam_models_range_are_refused_by_name():
+    """receptance(kato, 2.25, [1e155]) raised the kernel's 'singular at 1000...000 Hz' (a
+    155-digit number); the frequencies are bounded by MAX_FREQUENCY (100 kHz), named, and the
+    bound itself gives a finite receptance, below the mass line 1 / (m omega^2 L) of the
+    whole rail moving as one (the mesh cannot resolve 100 kHz, the magnitude still holds)."""
+    s = tw.Scene.kato2005()
+    with pytest.raises(ValueError, match=r"freqs = 1e\+155 Hz is outside the allowed range "
+                       r"\[0, 100000\] Hz"):
+        tw.receptance(s, 2.25, [1e155])
+    a = tw.receptance(s, 2.25, [1e5])
+    assert np.all(np.isfinite(a)) and 0.0 < abs(a[0])

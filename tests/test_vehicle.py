@@ -480,3 +480,12 @@ def test_vehicle_static_holds_the_lever_rule_loads_and_matches_the_run_start():
     np.testing.assert_allclose(r.body_phi[0], st.bodies[:, 1], rtol=0, atol=1e-12)
     with pytest.raises(ValueError, match="x_ref"):
         vehicle_static(scene, 10.0)
+
+
+def test_bogie_wheelbase_is_named():
+    """Vehicle.bogie(wheelbase=1e-300) blamed Vehicle.positions (the wheels overlap); the
+    preset's own argument is named, with its range: at least the wheels' diameter."""
+    with pytest.raises(ValueError, match=r"wheelbase = 1e-300 is outside the allowed range "
+                       r"\[0.86, 1000.0\] m"):
+        tw.Vehicle.bogie(wheelbase=1e-300)
+    assert tw.Vehicle.bogie(wheelbase=0.86).positions == (0.0, 0.86)

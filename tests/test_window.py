@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses as dc
 import math
+import re
 
 import numpy as np
 import pytest
@@ -409,3 +410,17 @@ def test_the_smallest_window_runs(fidelity):
     impulse = np.trapezoid(r.normal_force - s.static_load, r.t)
     momentum = s.wheel.mass * (r.ydot_wheel[-1] - r.ydot_wheel[0])
     assert abs(impulse - momentum) < 1e-6 * s.static_load * r.t[-1]
+
+
+def test_a_run_too_long_for_the_step_limit_names_its_distance():
+    """distance = 1e15 m on a window: 5.9e17 steps of the derived dt, above MAX_STEPS. The
+    message named dt (not given) and '2e+13 s'; it names the distance and the longest one
+    allowed, MAX_STEPS dt v."""
+    from trackwheel.base.limits import MAX_STEPS
+
+    s = tw.Scene.ballasted_track(window=tw.Window())
+    dt = tw.default_settings(s)["dt"]
+    most = re.escape(f"{MAX_STEPS * dt * 50.0:.6g}")
+    with pytest.raises(ValueError, match=rf"^distance = 1e\+15 m takes .* allowed: distance up "
+                       rf"to {most} m$"):
+        tw.simulate(s, 50.0, distance=1e15, fidelity="linear/hertz", progress=False)

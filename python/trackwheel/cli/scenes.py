@@ -50,20 +50,30 @@ def scene_name(scene: Scene, args: argparse.Namespace) -> str:
 
 #: --vehicle choices of ``trackwheel run``
 VEHICLES = ("single", "bogie", "half-car")
-#: rail length for --vehicle half-car [m]: the half car's 20 m of wheels plus the paper's 5 m
-HALF_CAR_RAIL = 25.0
+#: rail beyond the wheels' span for --vehicle half-car [m]: the paper's 5 m rail, so that the
+#: half car's 20 m of wheels get a 25 m rail
+HALF_CAR_MARGIN = 5.0
 
 
-def vehicle_scene(scene: Scene, vehicle: str) -> Scene:
-    """``scene`` carrying the --vehicle choice (the rail lengthened for a half car, the
-    paper's element length kept)."""
+def vehicle_scene(scene: Scene, vehicle: str) -> tuple[Scene, list[str]]:
+    """``scene`` carrying the --vehicle choice, and notes to print. A half car whose wheels
+    span more than the rail less HALF_CAR_MARGIN gets a longer rail of whole support bays,
+    the element length kept, and a note saying so."""
     if vehicle == "single":
-        return scene
+        return scene, []
     if vehicle == "bogie":
-        return dataclasses.replace(scene, vehicle=Vehicle.bogie())
-    ne = round(scene.rail.n_elements * HALF_CAR_RAIL / scene.rail.length)
-    rail = dataclasses.replace(scene.rail, length=HALF_CAR_RAIL, n_elements=ne)
-    return dataclasses.replace(scene, rail=rail, vehicle=Vehicle.half_car())
+        return dataclasses.replace(scene, vehicle=Vehicle.bogie()), []
+    veh = Vehicle.half_car()
+    rear, front = veh.span
+    d, old = scene.supports.spacing, scene.rail.length
+    if old >= front - rear + HALF_CAR_MARGIN:
+        return dataclasses.replace(scene, vehicle=veh), []
+    length = math.ceil((front - rear + HALF_CAR_MARGIN) / d - 1e-9) * d
+    ne = round(scene.rail.n_elements * length / old)
+    rail = dataclasses.replace(scene.rail, length=length, n_elements=ne)
+    note = (f"--vehicle half-car: the rail is lengthened from {old:g} m to {length:g} m for "
+            f"the half car's {front - rear:g} m of wheels")
+    return dataclasses.replace(scene, rail=rail, vehicle=veh), [note]
 
 
 

@@ -29,6 +29,7 @@ import numpy as np
 
 from .. import _core
 from ..base import validate as v
+from ..base.limits import MAX_FREQUENCY
 from ..scene import Scene
 from . import kernel
 from .defaults import mesh
@@ -66,16 +67,17 @@ def _freqs(freqs) -> np.ndarray:
     f = np.atleast_1d(np.asarray(freqs, dtype=float))
     if f.ndim != 1 or f.size == 0:
         raise ValueError("freqs must be a non-empty 1-D sequence of frequencies [Hz]")
-    bad = ~np.isfinite(f) | (f < 0)
+    bad = ~np.isfinite(f) | (f < 0) | (f > MAX_FREQUENCY)
     if bad.any():
-        raise ValueError(f"freqs = {f[bad][0]} Hz is outside the allowed range [0, inf) Hz")
+        raise ValueError(f"freqs = {f[bad][0]:.6g} Hz is outside the allowed range "
+                         f"[0, {MAX_FREQUENCY:g}] Hz (the rail's beam models hold to a few kHz)")
     return f
 
 
 def receptance(scene: Scene, x: float, freqs, x_response=None, *,
                n_elements: int | None = None) -> np.ndarray:
     """Receptance of the track [m/N]: rail displacement at ``x_response`` [m] per unit vertical
-    force at ``x`` [m], at each of ``freqs`` [Hz] (>= 0).
+    force at ``x`` [m], at each of ``freqs`` [Hz] in [0, ``MAX_FREQUENCY``] (100 kHz).
 
     ``x_response=None`` gives the point receptance at ``x``, shape ``(n_freq,)``; a number the
     transfer receptance, ``(n_freq,)``; a sequence ``(n_freq, n_response)``. The track is the

@@ -115,15 +115,30 @@ def _time_step(scene: Scene, dt, integrator: str, linear: bool, model, init, x0:
     return dt
 
 
-def _steps(dt: float, t_end: float, dt_default: bool) -> int:
+def _steps(dt: float, t_end: float, dt_default: bool, speed: float, length: dict) -> int:
+    """Steps of ``dt`` [s] over ``t_end`` [s]; ``length`` names the input that set the run's
+    length ({"distance": m}, {"duration": s} or {"x_end": m}), which a too long run names when
+    ``dt`` is the derived default."""
     n_steps = round(t_end / dt)
     if n_steps < 1:
         raise ValueError(f"dt = {dt} s ({'default' if dt_default else 'given'}) is longer than "
                          f"the simulated time {t_end:.6g} s; allowed range (0, {t_end:.6g}] s")
     if n_steps > MAX_STEPS:
-        raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s, above "
-                         f"the limit of {MAX_STEPS:.0e} steps; allowed range "
-                         f"[{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s")
+        (name, value), = length.items()
+        unit = "s" if name == "duration" else "m"
+        # the run's length in the input's own terms at the step dt: time, or distance
+        most = MAX_STEPS * dt * (1.0 if name == "duration" else speed)
+        if name == "x_end":
+            most += value - speed * t_end  # x_end - (run distance) is x_start
+        if dt_default:
+            raise ValueError(f"{name} = {value:.6g} {unit} takes {n_steps:.3g} steps of the "
+                             f"derived dt = {dt:.3g} s ({t_end:.6g} s at {speed:g} m/s), above "
+                             f"the limit of {MAX_STEPS:.0e} steps; allowed: {name} up to "
+                             f"{most:.6g} {unit}")
+        raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s "
+                         f"({name} = {value:.6g} {unit}), above the limit of {MAX_STEPS:.0e} "
+                         f"steps; allowed range [{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s (or "
+                         f"{name} up to {most:.6g} {unit})")
     return n_steps
 
 
@@ -191,7 +206,9 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     model = kernel.rail_model(scene, ne, profile_end, s0)
     init = None if linear else initial_state(scene, model, speed, x0 - s0, start, drop_height)
     h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
-    n_steps = _steps(h, t_end, dt is None)
+    length = ({"duration": duration} if duration is not None else
+              {"distance": distance} if distance is not None else {"x_end": x0 + speed * t_end})
+    n_steps = _steps(h, t_end, dt is None, speed, length)
     output_every = _output_every(output_every, n_steps, energy)
     settings = RunSettings(
         integrator=integrator, dt=h, n_elements=ne, speed=speed, x_start=x0,

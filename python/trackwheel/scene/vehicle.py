@@ -173,11 +173,16 @@ class Vehicle:
     def bogie(cls, wheelbase: float = 2.5, wheel: Wheel | None = None,
               load: float | None = None) -> "Vehicle":
         """Half a bogie of the Huo & Dai (2019) high-speed car (``HUO_DAI_2019``) on two wheels
-        ``wheelbase`` [m] apart (rear wheel at x = 0), carrying ``load`` [N] on its pivot
-        (default: its share of the half car body's weight, M_c g / 4 with g = 9.8 m/s^2)."""
+        ``wheelbase`` [m] apart (rear wheel at x = 0; at least the wheels' diameter, at most
+        1000 m), carrying ``load`` [N] on its pivot (default: its share of the half car body's
+        weight, M_c g / 4 with g = 9.8 m/s^2)."""
         p = HUO_DAI_2019
-        wb = v.positive("wheelbase", wheelbase, "m")
         w = _high_speed_wheel() if wheel is None else wheel
+        if not isinstance(w, Wheel):
+            raise TypeError(f"wheel must be a trackwheel.Wheel or None, got {type(w).__name__}")
+        # the two wheels must not overlap; beyond 1000 m they leave Vehicle.positions' range
+        wb = v.number("wheelbase", wheelbase, low=2.0 * w.radius, high=RANGES[
+            "Vehicle.positions"].high, unit="m")
         share = 0.25 * p["car_mass"] * 9.8 if load is None else v.number(
             "load", load, low=0.0, unit="N")
         return cls(wheels=(w, w), positions=(0.0, wb),

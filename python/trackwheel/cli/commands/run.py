@@ -58,7 +58,8 @@ def add(sub) -> None:
     p.add_argument("--vehicle", choices=VEHICLES, default="single",
                    help="single: the paper's wheel under its constant load; bogie: "
                         "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
-                        "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
+                        "the --track rail, lengthened to 20 m of wheels + 5 m if shorter (the "
+                        "paper's 5 m rail: 25 m; a note says so; docs: Model § The vehicle)")
     excitation_options(p)
     p.add_argument("--brake-torque", type=finite_float, metavar="T_B",
                    help="friction brake on the wheel's rotation [N m], >= 0: beyond adhesion "
@@ -169,8 +170,12 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.window is not None and args.distance is None:
         parser.error("--window needs --distance (the window is for long runs)")
     try:
-        scene = vehicle_scene(track_scene(args, args.support_stiffness), args.vehicle)
+        with warnings.catch_warnings(record=True) as caught:  # e.g. a stiffness in MN/m
+            warnings.simplefilter("always")
+            track = track_scene(args, args.support_stiffness)
+        scene, vehicle_notes = vehicle_scene(track, args.vehicle)
         scene, notes = excited_scene(scene, args)
+        notes = vehicle_notes + notes
         if args.brake_torque is not None:
             scene = dataclasses.replace(scene, wheel=dataclasses.replace(
                 scene.wheel, brake_torque=args.brake_torque))
