@@ -73,7 +73,7 @@ def test_run_reports_divergence_with_exit_1(capsys):
                      "--n-elements", "20", "--x-end", "0.75"])
     assert code == 1
     err = capsys.readouterr().err.splitlines()
-    assert err[0].startswith("trackwheel run: warning: dt = 0.0001 s is above the predicted "
+    assert err[0].startswith("trackwheel run: warning: --dt = 0.0001 s is above the predicted "
                              "stability limit")
     assert "diverged" in err[1] and len(err) == 2
 
@@ -120,15 +120,23 @@ def test_sweep_command_fidelity_auto(tmp_path, capsys):
      "--fidelity auto"),
     (["run", "--speed-kmh", "100", "--fidelity", "auto"], "fidelity"),  # sweep only
     (["run"], "--speed-kmh"),
-    (["run", "--speed-kmh", "0"], "positive speed"),
+    (["run", "--speed-kmh", "0"], "must be above 0"),
+    (["run", "--speed-kmh", "100", "--dt", "-1e-5"], "--dt = -1e-05 is outside"),
+    # no abbreviations: --speed is not --speed-kmh, nor --support --support-stiffness
+    (["run", "--speed", "300"], "the following arguments are required: --speed-kmh"),
+    (["run", "--speed-kmh", "100", "--support", "1e8"], "unrecognized arguments: --support"),
+    (["sweep", "--speeds", "100", "--store", "{tmp}"], "required: --speeds-kmh"),
     (["run", "--speed-kmh", "100", "--dt", "1"], "dt"),                # longer than the run
     (["run", "--speed-kmh", "100", "--x-end", "9"], "--x-end"),        # beyond the rail
     (["run", "--speed-kmh", "100", "--fidelity", "bogus"], "fidelity"),
     (["run", "--speed-kmh", "100", "--integrator", "euler"], "integrator"),
     (["sweep", "--speeds-kmh", "100"], "--store"),
     (["sweep", "--speeds-kmh", "2000", "--store", "{tmp}"],
-     "speed 2000 km/h is outside the allowed range 0–1080 km/h"),
-    (["sweep", "--speeds-kmh", "100", "100", "--store", "{tmp}"], "duplicate"),
+     "--speeds-kmh 2000: the speed must be above 0 and at most 1080 km/h"),
+    (["sweep", "--speeds-kmh", "100", "100", "--store", "{tmp}"],
+     "--speeds-kmh: 100 km/h is given twice"),
+    (["sweep", "--speeds-kmh", "100", "--support-stiffness", "1e8", "1e8", "--store", "{tmp}"],
+     "--support-stiffness: 1e+08 N/m is given twice"),
     (["reproduce", "--out", "{tmp}", "--only", "fig9"], "fig9"),
 ])
 def test_bad_run_sweep_arguments_exit_2(argv, word, tmp_path, capsys):
@@ -184,11 +192,13 @@ def test_module_entry_point_exit_code():
 
 
 # ---- issue 16: what a new user met ----------------------------------------------------------
-def test_speed_error_in_km_h(capsys):
-    assert cli.main(["run", "--speed-kmh", "5000"]) == 2
+@pytest.mark.parametrize("speed", ["5000", "0"])
+def test_speed_error_in_km_h(speed, capsys):
+    """The speed's range in km/h, its lower end open (0 is not a speed a wheel passes at)."""
+    assert cli.main(["run", "--speed-kmh", speed]) == 2
     err = capsys.readouterr().err
-    assert err == ("trackwheel run: error: --speed-kmh: speed 5000 km/h is outside the allowed "
-                   "range 0–1080 km/h (a passage needs a positive speed)\n")
+    assert err == (f"trackwheel run: error: --speed-kmh {speed}: the speed must be above 0 and "
+                   "at most 1080 km/h\n")
 
 
 @pytest.mark.parametrize("value", ["-1e6", "-1E+6", "-2.5e7", "-.5e3", "-1000000"])
@@ -285,12 +295,15 @@ def test_version_is_written_once():
 
 
 def test_a_failed_static_solve_at_the_start_is_one_line(capsys, monkeypatch):
-    """A wheel load of 2e7 N pushes the rail through 1 MN/m supports at the start (the kernel's
-    static solve fails): exit code 1 and one line, not a traceback."""
-    scene = tw.Scene.kato2005()
-    heavy = dataclasses.replace(scene, wheel=dataclasses.replace(scene.wheel, load=2e7),
-                                supports=dataclasses.replace(scene.supports, stiffness=1e6))
-    monkeypatch.setattr(scenes, "paper_scene", lambda stiffness=None: heavy)
+    """The kernel's static solve failing at the start (forced here: the loads that made it
+    fail, 2e7 N on 1 MN/m supports, sag the track metres and Scene refuses them) is exit code 1
+    and one line, not a traceback."""
+    plan = importlib.import_module("trackwheel.run.plan")
+
+    def fail(*args, **kwargs):
+        raise RuntimeError("static solve: the wheel lost contact with the rail")
+
+    monkeypatch.setattr(plan, "initial_state", fail)
     assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
     message = "the simulation could not start: static solve: the wheel lost contact with the rail"
     assert capsys.readouterr().err == f"trackwheel run: {message}\n"
@@ -388,7 +401,14 @@ def test_run_prints_the_force_statistics(capsys):
     (["--irregularity", "fra:5", "--wavelengths", "0", "50"], ["positive"]),
     (["--seed", "3"], ["--seed", "random --irregularity"]),
     (["--irregularity", "fra:5", "--seed", "-1"], ["--seed -1", "allowed range"]),
-    (["--joint", "-0.002,0.5,2"], ["--joint", "depth = -0.002", "allowed range"]),
+    (["--joint", "-0.002,0.5,2"], ["--joint", "DEPTH = -0.002", "allowed range"]),
+    (["--joint", "1,600,1950"], ["--joint", "DEPTH = 1.0", "(0, 0.1] m", "1 mm is 1e-3"]),
+    (["--joint", "0.001,6,0"], ["--joint", "LENGTH 6 m is longer than the rail (5 m)"]),
+    (["--joint", "0.01,0.05,1"], ["--joint", "slope of 0.628", "allowed at most 0.1"]),
+    (["--irregularity", "sine:0.5,1"], ["AMPLITUDE = 1.0", "[0, 0.1] m", "1 mm is 1e-3"]),
+    (["--irregularity", "fra:5", "--wavelengths", "50", "1.5"],
+     ["--wavelengths (50, 1.5) m must be (lambda_min, lambda_max)"]),
+    (["--wheel-flat", "20"], ["--wheel-flat = 20.0", "20 mm is 0.02"]),
     (["--joint", "0.002,0.5"], ["DEPTH,LENGTH,AT"]),
     (["--joint", "0.002,0.5,4.8"], ["--joint", "leaves the rail", "[0, 4.5] m"]),
     (["--wheel-flat", "-0.05"], ["--wheel-flat", "> 0 m"]),
@@ -440,6 +460,22 @@ def test_sweep_over_seeds(tmp_path, capsys):
     line = [ln for ln in printed.splitlines() if ln.strip().startswith("300 km/h")][0]
     assert (f"max N {p[('max_contact_force_N', 'p5')] / 1e3:.4g} / "
             f"{p[('max_contact_force_N', 'p50')] / 1e3:.4g}") in line and "(3 seeds)" in line
+    # the header names the realisations swept, not the scene's seed 0
+    assert "excitation: FRA class 5 (seeds 0-2, 2-50 m)" in printed
+
+
+def test_a_sweep_whose_every_case_fails_is_one_line_and_exit_1(tmp_path, capsys):
+    """Every case diverges (explicit RK4 at ten times its stability limit): the table of errors,
+    then one line naming the count and the first error, exit code 1; no traceback."""
+    argv = ["sweep", "--speeds-kmh", "100", "150", "--store", str(tmp_path / "s"),
+            "--integrator", "explicit", "--dt", "1e-4", "--x-end", "0.5", "--n-elements", "20",
+            "--workers", "1", "--no-progress"]
+    assert cli.main(argv) == 1
+    captured = capsys.readouterr()
+    err = [ln for ln in captured.err.splitlines() if "warning" not in ln]
+    assert len(err) == 1 and err[0].startswith("trackwheel sweep: every case of the sweep failed "
+                                               "(2); the first (v = 27.78 m/s")
+    assert captured.out.count("DivergenceError") == 2
 
 
 # --------------------------------------------------------------------------------------------

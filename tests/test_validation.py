@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses as dc
 import math
+import re
 import sys
 
 import pytest
@@ -217,3 +218,46 @@ def test_supports_explicit_positions_accept_a_scalar_and_the_empty_tuple():
     assert tw.Supports(positions=2.5).positions == (2.5,)
     assert tw.Supports(positions=[]).positions == ()
     assert tw.Scene(supports=tw.Supports(positions=())).support_positions == ()
+
+
+# --------------------------------------------------------------------------------------------
+# likely slips of units: warned about (PlausibilityWarning, a UserWarning) or refused
+def test_a_speed_above_the_record_is_a_likely_km_h_slip():
+    """simulate(scene, 300): 300 m/s is 1080 km/h, inside the allowed range (MAX_SPEED) but
+    faster than any train has run (574.8 km/h): the warning names the likely slip. At the
+    record itself and below, no warning."""
+    with pytest.warns(tw.PlausibilityWarning, match=r"speed = 300 m/s is 1080 km/h.*did you "
+                      r"mean tw\.kmh\(300\) = 83\.33 m/s\?"):
+        tw.simulate(KATO, 300.0, x_end=0.3, n_elements=20, dt=1e-5, progress=False)
+    assert issubclass(tw.PlausibilityWarning, UserWarning)
+    tw.simulate(KATO, tw.kmh(574.8), x_end=0.3, n_elements=20, dt=1e-5, progress=False)
+
+
+@pytest.mark.parametrize("value, slip", [(140.0, "(140 MN/m is 1.4e+08 N/m: did you mean that?)"),
+                                         (1e-3, "stiffnesses are in N/m")])
+def test_a_support_softer_than_any_track_is_a_likely_mn_m_slip(value, slip):
+    """Below 1e4 N/m, a thousand times softer than any pad or ballast: a warning, with the
+    reading in MN/m (or kN/m) where that one is a track's."""
+    with pytest.warns(tw.PlausibilityWarning, match=rf"Supports\.stiffness = {value:g} N/m .*"
+                      + re.escape(slip)):
+        tw.Supports(stiffness=value)
+    with pytest.warns(tw.PlausibilityWarning, match="Supports.ballast_stiffness = 140 N/m"):
+        tw.Supports(sleeper_mass=150.0, ballast_stiffness=140.0)
+
+
+def test_a_rail_profile_in_millimetres_is_refused():
+    """Irregularity.sine(wavelength=0.5, amplitude=1): a 1 m corrugation, refused with the
+    metre named; 1 mm on 0.5 m is taken."""
+    with pytest.raises(ValueError, match=r"Irregularity\.sine\.amplitude = 1\.0 .*\[0, 0\.1\] m "
+                       r"\(rail profiles are in m: 1 mm is 1e-3\)"):
+        tw.Irregularity.sine(wavelength=0.5, amplitude=1)
+    assert tw.Irregularity.sine(wavelength=0.5, amplitude=1e-3)(0.125) == pytest.approx(1e-3)
+
+
+def test_cli_support_stiffness_in_n_m_is_a_one_line_warning(capsys):
+    """--support-stiffness 140 (N/m, meant MN/m): the run goes ahead (the value is allowed)
+    with one warning line naming the option and the slip."""
+    assert cli.main(["run", "--speed-kmh", "100", "--support-stiffness", "140", "--x-end", "0.5",
+                     "--n-elements", "20", "--dt", "1e-5"]) == 0
+    err = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
+    assert len(err) == 1 and "--support-stiffness = 140 N/m" in err[0] and "140 MN/m" in err[0]

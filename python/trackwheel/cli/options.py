@@ -24,10 +24,12 @@ _NEGATIVE_NUMBER = re.compile(rf"^-{_NUMBER}(,\s*-?{_NUMBER})*$")
 
 
 class Parser(argparse.ArgumentParser):
-    """argparse with one-line errors ("trackwheel run: error: ...", exit code 2) and negative
-    numbers in exponent notation read as values."""
+    """argparse with one-line errors ("trackwheel run: error: ...", exit code 2), negative
+    numbers in exponent notation read as values, and no abbreviated options (``--speed 300``
+    is an error, not ``--speed-kmh 300``)."""
 
     def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = _NEGATIVE_NUMBER
 

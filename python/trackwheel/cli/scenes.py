@@ -106,6 +106,17 @@ def paper_scene(stiffness: float | None = None) -> Scene:
     return scene
 
 
+def seed_text(seeds) -> str:
+    """``seeds`` [0, 1, 2, 5] as "seeds 0-2, 5" (one realisation each)."""
+    seeds = sorted(seeds)
+    runs, start = [], seeds[0]
+    for a, b in zip(seeds, seeds[1:] + [None]):
+        if b != a + 1:
+            runs.append(f"{start}" if start == a else f"{start}-{a}")
+            start = b
+    return ("seed " if len(seeds) == 1 else "seeds ") + ", ".join(runs)
+
+
 class OptionError(ValueError):
     """A bad excitation value, worded for the command line."""
 
@@ -139,7 +150,7 @@ def profile(args: argparse.Namespace) -> Irregularity | None:
         except OptionError:
             raise
         except (ValueError, argparse.ArgumentTypeError) as exc:
-            msg = str(exc).replace("wavelengths = ", "--wavelengths ")
+            msg = option_error(exc).replace("wavelengths = ", "--wavelengths ")
             raise OptionError(f"{text}: {msg}") from None
     irr = sum(parts) if parts else None
     n_random = 0 if irr is None else irr.n_random
@@ -158,7 +169,7 @@ def profile(args: argparse.Namespace) -> Irregularity | None:
         try:
             joint = Irregularity.dipped_joint(depth, length, at)
         except ValueError as exc:
-            raise OptionError(f"--joint: {exc}") from None
+            raise OptionError(f"--joint: {option_error(exc)}") from None
         irr = joint if irr is None else irr + joint
     return irr
 
@@ -170,6 +181,9 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
     irr = profile(args)
     if irr is not None:
         length = scene.rail.length
+        if args.joint is not None and args.joint[1] > length:
+            raise OptionError(f"--joint: the joint's LENGTH {args.joint[1]:g} m is longer than "
+                              f"the rail ({length:g} m)")
         if args.joint is not None and not 0.0 <= args.joint[2] <= length - args.joint[1]:
             raise OptionError(f"--joint: the joint from X = {args.joint[2]:g} m over "
                                f"{args.joint[1]:g} m leaves the rail; allowed AT range "
@@ -184,7 +198,7 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
             scene = dataclasses.replace(scene, wheel=dataclasses.replace(
                 scene.wheel, defects=(*scene.wheel.defects, flat)))
         except ValueError as exc:
-            raise OptionError(f"--wheel-flat: {exc}") from None
+            raise OptionError(option_error(exc)) from None
     if args.patch_filter or args.joint is not None:
         scene = dataclasses.replace(scene, contact=dataclasses.replace(scene.contact,
                                                                        patch_filter=True))
@@ -194,13 +208,15 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
     return scene, notes
 
 
-def describe(scene: Scene) -> str:
-    """One line naming the excitation of ``scene``."""
+def describe(scene: Scene, seeds=None) -> str:
+    """One line naming the excitation of ``scene``; with ``seeds`` (a sweep's --seeds) the
+    random parts are named by those realisations, not by the scene's own seed."""
     words = []
+    drawn = None if not seeds else seed_text(seeds)
     for p in () if scene.irregularity is None else scene.irregularity.parts:
         if p.kind == "random":
-            words.append(f"{p.spectrum.name} (seed {p.seed}, {p.wavelengths[0]:g}-"
-                         f"{p.wavelengths[1]:g} m)")
+            words.append(f"{p.spectrum.name} ({drawn or f'seed {p.seed}'}, "
+                         f"{p.wavelengths[0]:g}-{p.wavelengths[1]:g} m)")
         elif p.kind == "sine":
             words.append(f"sine {p.wavelength:g} m x {p.amplitude:g} m")
         elif p.kind == "dipped_joint":

@@ -78,7 +78,8 @@ class Irregularity:
             wavelengths = valid
         lam = v.positions("wavelengths", wavelengths, 0.0, math.inf)
         if lam.size != 2 or not 0.0 < lam[0] < lam[1]:
-            raise ValueError(f"wavelengths = {tuple(lam)} must be (lambda_min, lambda_max) "
+            shown = ", ".join(f"{x:g}" for x in lam)
+            raise ValueError(f"wavelengths = ({shown}) m must be (lambda_min, lambda_max) "
                              "with 0 < lambda_min < lambda_max [m]")
         tol = 1e-9 * valid[1]
         if lam[0] < valid[0] * (1 - 1e-9) or lam[1] > valid[1] + tol:

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from ..base import validate as v
 from ..base.limits import MAX_OUTPUT_BYTES, MAX_STEPS
+from ..base.units import check_speed_units
 from ..scene import Scene
 from . import kernel
 from .defaults import (
@@ -167,6 +168,7 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     speed = check_speed(speed)
+    check_speed_units(speed, stacklevel=4)  # here, resolve, simulate, the caller
     v.choice("integrator", integrator, set(INTEGRATORS))
     v.choice("start", start, {"static", "sudden"})
     ne = (derived_mesh(scene) if dt is None else scene.rail.n_elements) if n_elements is None \

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...base.errors import DivergenceError
+from ...base.errors import DivergenceError, PlausibilityWarning
 from ...base.limits import MAX_SPEED
 from ...base.units import kmh
 from ...run.eigen import eigen
@@ -185,6 +185,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
         parser.error(option_error(exc))
+    print_warnings(caught, "run")
     print_notes(notes, "run")
     if args.distance is not None:
         return _window_run(scene, args, parser)
@@ -221,6 +222,8 @@ def _simulate(scene: Scene, speed_kmh: float, kw: dict, parser):
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
+            # checked in km/h by speeds_kmh (the library's warning speaks of m/s)
+            warnings.filterwarnings("ignore", message="speed = ", category=PlausibilityWarning)
             r = simulate(scene, kmh(speed_kmh), **kw)
     except (ValueError, TypeError) as exc:
         parser.error(option_error(exc))
