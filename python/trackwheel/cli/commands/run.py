@@ -117,6 +117,25 @@ def _print_forces(scene: Scene, a) -> None:
               f"{f.defect_time * 1e3:.3f} ms)")
 
 
+def _print_sliding(scene: Scene, r, a) -> None:
+    """Whether the wheel slid and locked, beside the brake's torque and the adhesion limit
+    mu P rho0 (printed for a braked run, or whenever the wheel slid)."""
+    brake = scene.wheel.brake_torque
+    if a.slide_duration == 0.0 and brake == 0.0:
+        return
+    limit = scene.contact.friction * scene.static_load * scene.wheel.radius
+    versus = (f"brake torque {brake:g} N m {'>' if brake > limit else '<='} adhesion limit "
+              f"mu P rho0 = {limit:.0f} N m" if brake > 0.0 else "no brake")
+    if a.slide_duration == 0.0:
+        print(f"  sliding        : no ({versus})")
+        return
+    slid, locked = r.sliding_intervals(), r.locked_intervals()
+    lock = (f"; locked (theta' = 0) from t = {locked[0][0] * 1e3:.3f} ms, "
+            f"{a.locked_duration * 1e3:.3f} ms in all" if locked else "; never locked")
+    print(f"  sliding        : yes, from t = {slid[0][0] * 1e3:.3f} ms, "
+          f"{a.slide_duration * 1e3:.3f} ms in all{lock} ({versus})")
+
+
 def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005()") -> None:
     st = r.settings
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
@@ -139,6 +158,7 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
               f"t = {free[0][0] * 1e3:.3f} ms, {a.loss_duration * 1e3:.3f} ms in all")
     else:
         print("  lost contact   : no")
+    _print_sliding(scene, r, a)
     _print_forces(scene, a)
     print(f"  wall time      : {r.wall_time:.3f} s ({r.steps} steps)")
 
