@@ -234,14 +234,17 @@ def test_decay_rate_needs_room_for_the_standard_positions(scene, least):
 
 
 def test_decay_rate_x0_is_inside_the_rail():
-    """x0 = 0 is the rigid end (zero response, so no ratio: refused rather than NaN), and an x0
-    beyond L - 66 d gets its allowed range."""
+    """x0 = 0 is the rigid end (zero response, so no ratio: NaN rates before) and the rail
+    hardly moves just beside it (1e-185 m: NaN too): x0 is at least a quarter bay from the end;
+    an x0 beyond L - 66 d gets its allowed range."""
     s = tw.Scene.ballasted_track(60.0)
-    with pytest.raises(ValueError, match=r"x0 = 0.0 is outside the allowed range \(0.0, 60.0\]"):
-        tw.decay_rate(s, [500.0], x0=0.0)
-    with pytest.raises(ValueError, match=r"x0 = 30 m .* allowed range \(0, 20.4\] m"):
+    for x0 in (0.0, 1e-185):
+        with pytest.raises(ValueError, match=r"x0 = .* is outside the allowed range "
+                           r"\[0.15, 60.0\]"):
+            tw.decay_rate(s, [0.0, 500.0], x0=x0)
+    with pytest.raises(ValueError, match=r"x0 = 30 m .* allowed range \[0.15, 20.4\] m"):
         tw.decay_rate(s, [500.0], x0=30.0)
-    assert np.isfinite(tw.decay_rate(s, [500.0], x0=1e-3)).all()
+    assert np.isfinite(tw.decay_rate(s, [0.0, 500.0], x0=0.15)).all()
 
 
 def test_plots():

@@ -113,6 +113,10 @@ RANGES: dict[str, Range] = {
     "Supports.stiffness": _positive(1e14, "N/m", "pads and ballast 1e7-1e9; rigid limits "
                                     "1e12-1e13"),
     "Supports.damping": Range(0.0, 1e10, "N s/m", "pads 1e4-1e5"),
+    "Supports.stiffness.layered": _positive(1e10, "N/m", "a rail pad on a sleeper: pads "
+                                            "5e7-1e9; a stiffer pad over soft ballast leaves "
+                                            "the static solve ill-conditioned: use single "
+                                            "springs for a rigid pad"),
     "Supports.sleeper_mass": _positive(1e5, "kg", "half a sleeper 100-200 kg; a slab a few t"),
     "Supports.ballast_stiffness": _positive(1e14, "N/m", "ballast 3e7-3e8 per half sleeper"),
     "Supports.ballast_damping": Range(0.0, 1e10, "N s/m", "ballast 3e4-1e5"),
@@ -148,6 +152,7 @@ RANGES: dict[str, Range] = {
     "Irregularity.dipped_joint.depth": _positive(0.1, "m", "joints and welds 1-3 mm"),
     "Irregularity.dipped_joint.length": Range(1e-3, 1e3, "m", "0.2-1 m; and pi d / l <= "
                                               "MAX_PROFILE_SLOPE"),
+    "Irregularity.samples.x": Range(-1e7, 1e7, "m", "10 000 km of track either way"),
     "Irregularity.samples.r": Range(-0.1, 0.1, "m", "as a sine's amplitude"),
     "WheelFlat.length": Range(1e-4, 10.0, "m", "flats 10-100 mm; and shorter than the wheel's "
                               "diameter"),

@@ -202,6 +202,8 @@ class SampledProfile:
     def __post_init__(self):
         xa = v.positions("Irregularity.samples.x", self.x, -math.inf, math.inf)
         ra = v.positions("Irregularity.samples.r", self.r, -math.inf, math.inf)
+        for value in (xa.min(), xa.max()):
+            v.field("Irregularity.samples.x", float(value))
         for value in (ra.min(), ra.max()):
             v.field("Irregularity.samples.r", float(value), hint=_IN_METRES)
         if xa.size != ra.size:

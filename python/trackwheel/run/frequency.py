@@ -120,8 +120,9 @@ def receptance_points(scene: Scene) -> dict[str, float]:
 
 def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
     """The EN 15461 response positions x_0 + n_k d [m] (``EN15461_SPANS``, d the support
-    spacing). ``x0`` [m], the excitation point, defaults to the mid-span that centres the
-    66-spacing line on the rail. Raises ValueError if the line does not fit on the rail."""
+    spacing). ``x0`` [m], the excitation point, at least d / 4 from the rigid end at 0,
+    defaults to the mid-span that centres the 66-spacing line on the rail. Raises ValueError if
+    the line does not fit on the rail."""
     scene = _check_scene(scene)
     d, L = scene.supports.spacing, scene.rail.length
     span = EN15461_SPANS[-1] * d
@@ -135,13 +136,14 @@ def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
             f"({span:.4g} m) beyond the excitation point at mid-span; the rail (Rail.length) "
             f"is {L:.4g} m: allowed a rail of at least {span + 0.5 * d:.4g} m (plus room for "
             "its end reflections)")
-    # x0 = 0 is the rigid end support: no response there to divide by
-    x0 = v.number("x0", x0, low=0.0, low_open=True, high=L, unit="m")
+    # at least a quarter bay from the rigid end support at 0, where the rail does not move (no
+    # response there to divide by)
+    x0 = v.number("x0", x0, low=0.25 * d, high=L, unit="m")
     if x0 + span > L:
         raise ValueError(
             f"x0 = {x0:.4g} m puts the last EN 15461 position ({EN15461_SPANS[-1]:g} support "
             f"spacings, {span:.4g} m, beyond it) past the rail end at {L:.4g} m; allowed "
-            f"range (0, {L - span:.4g}] m")
+            f"range [{0.25 * d:.4g}, {L - span:.4g}] m")
     return x0 + d * np.asarray(EN15461_SPANS)
 
 

@@ -63,6 +63,8 @@ class Supports:
                              "together (layered supports) or both be None (single springs); "
                              f"got sleeper_mass = {self.sleeper_mass}, ballast_stiffness = "
                              f"{self.ballast_stiffness}")
+        v.field("Supports.stiffness", self.stiffness, key="Supports.stiffness.layered",
+                hint="the pad of layered supports")
         v.field("Supports.sleeper_mass", self.sleeper_mass)
         v.field("Supports.ballast_stiffness", self.ballast_stiffness)
         v.field("Supports.ballast_damping", self.ballast_damping)
