@@ -668,3 +668,19 @@ def test_half_car_on_the_paper_track_says_it_lengthens_the_rail(capsys):
     assert notes == [] and scene.rail.length == 30.0
     scene, notes = scenes.vehicle_scene(tw.Scene.ballasted_track(12.0), "half-car")
     assert scene.rail.length == pytest.approx(25.2) and "to 25.2 m" in notes[0]
+
+
+@pytest.mark.parametrize("command", ["eigen", "decay-rate", "receptance"])
+def test_help_mentions_only_options_the_command_has(command, capsys):
+    """eigen, decay-rate and receptance have no --fidelity; their help does not send the
+    reader to it (the --beam help did)."""
+    assert cli.main([command, "--help"]) == 0
+    assert "--fidelity" not in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("command", ["run", "sweep", "eigen"])
+def test_descriptions_name_the_track_option_not_only_the_paper_scene(command, capsys):
+    """The descriptions said 'Scene.kato2005()' even with --track ballasted."""
+    assert cli.main([command, "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "the --track scene (default Scene.kato2005())" in text

@@ -145,7 +145,10 @@ def excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None:
 TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
 
 
-def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None:
+def track_option(p: argparse.ArgumentParser, length_default: str = "30",
+                 fidelity: bool = True) -> None:
+    """--track, --length, --beam and --shear-coefficient; ``fidelity``: the command has
+    --fidelity (its --beam help says every level takes the beam theory)."""
     g = p.add_argument_group("track (docs: Model § Layered supports and section "
                              "\"Shear-deformable rail (Timoshenko)\")")
     g.add_argument("--track", choices=tuple(TRACKS), default="kato2005",
@@ -157,8 +160,8 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None
                         f"{length_default})")
     g.add_argument("--beam", choices=("euler", "timoshenko"), default="euler",
                    help="rail beam theory (default euler: Euler-Bernoulli, the paper's); "
-                        "timoshenko adds shear deformation and rotary inertia, at every "
-                        "--fidelity level")
+                        "timoshenko adds shear deformation and rotary inertia"
+                        + (", at every --fidelity level" if fidelity else ""))
     g.add_argument("--shear-coefficient", type=positive_float, metavar="K",
                    help="shear coefficient kappa of the rail section, 0 < K <= 1 (default 0.4; "
                         "with --beam timoshenko)")

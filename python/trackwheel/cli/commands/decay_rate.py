@@ -31,7 +31,7 @@ def add(sub) -> None:
     p.add_argument("--per-band", type=positive_int, default=8, metavar="N",
                    help="frequencies per band, log-spaced inside it (default 8)")
     mesh_option(p)
-    track_option(p, length_default=f"{DECAY_LENGTH:g} here")
+    track_option(p, length_default=f"{DECAY_LENGTH:g} here", fidelity=False)
     p.add_argument("--out", type=Path, metavar="CSV",
                    help="write band_hz, decay_rate_db_per_m, iso3095_limit_db_per_m to this file")
     p.add_argument("--plot", type=Path, metavar="PNG",

@@ -14,13 +14,14 @@ def add(sub) -> None:
     p = sub.add_parser(
         "eigen", help="print the natural frequencies with the wheel at one position",
         description="Lowest vertical natural frequencies [Hz] of the wheel/rail/support system "
-                    "of Scene.kato2005() with the wheel at --position, and the rail's lowest "
+                    "of the --track scene (default Scene.kato2005()) with the wheel at "
+                    "--position, and the rail's lowest "
                     "axial frequencies.")
     p.add_argument("--position", type=finite_float, default=X_REPORT, metavar="X",
                    help=f"wheel position X [m], 0 <= X <= L (default {X_REPORT})")
     p.add_argument("--n-modes", type=positive_int, default=6, metavar="N",
                    help="number of vertical modes (default 6)")
-    track_option(p)
+    track_option(p, fidelity=False)
     p.set_defaults(run=run, parser=p)
 
 

@@ -36,7 +36,7 @@ def add(sub) -> None:
     p.add_argument("--n", type=positive_int, default=400, metavar="N",
                    help="frequencies, log-spaced (linear from 0 Hz; default 400)")
     mesh_option(p)
-    track_option(p)
+    track_option(p, fidelity=False)
     p.add_argument("--out", type=Path, metavar="CSV",
                    help="write f_hz, re_m_per_n, im_m_per_n, abs_m_per_n, phase_deg to this file")
     p.add_argument("--plot", type=Path, metavar="PNG",

@@ -45,7 +45,8 @@ from ..scenes import (
 def add(sub) -> None:
     p = sub.add_parser(
         "run", help="simulate one passage and print the headline outputs",
-        description="Simulate the wheel passing over the rail of Scene.kato2005() at one speed "
+        description="Simulate the wheel passing over the rail of the --track scene (default "
+                    "Scene.kato2005()) at one speed "
                     "and print the amplitude max|d| of the contact-point vibration "
                     "(d = y_B - y_qs, docs: Model § Outputs), its main frequency and resolution, the "
                     "contact-force range, whether the wheel lost contact, and the wall time.")

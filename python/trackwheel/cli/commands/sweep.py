@@ -28,7 +28,8 @@ from ..scenes import OptionError, describe, excited_scene, track_scene
 def add(sub) -> None:
     p = sub.add_parser(
         "sweep", help="run a speed x support-stiffness sweep into a store",
-        description="Run every (speed, support stiffness) case of Scene.kato2005() in parallel "
+        description="Run every (speed, support stiffness) case of the --track scene (default "
+                    "Scene.kato2005()) in parallel "
                     "(trackwheel.sweep), with --seeds one case per realisation of the random "
                     "--irregularity, keep each finished case in --store (a re-run skips them) "
                     "and print the table (with --seeds also the 5/50/95 % percentiles over "
