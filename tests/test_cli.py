@@ -714,3 +714,48 @@ def test_eigen_on_the_ballasted_track_starts_mid_rail_and_explains_its_cluster(c
     assert cli.main(["eigen"]) == 0
     out = capsys.readouterr().out
     assert "wheel at X = 2.5 m" in out and "note:" not in out
+
+
+@pytest.mark.parametrize("argv, group", [
+    (["run", "--track", "ballasted", "--distance", "100000", "--speed-kmh", "100"], False),
+    (["sweep", "--speeds-kmh", "100", "150", "200", "250", "--workers", "2", "--no-progress"],
+     True),
+])
+def test_ctrl_c_is_one_line_and_exit_130(argv, group, tmp_path):
+    """Ctrl-C during a long run, or a sweep on two workers (the terminal signals the whole
+    process group: the workers too), printed a 20-line traceback; it is one line,
+    'trackwheel <command>: interrupted (Ctrl-C)', and exit code 130 (128 + SIGINT), the
+    sweep's workers gone."""
+    import os
+    import signal
+    import time
+
+    import psutil
+
+    if argv[0] == "sweep":
+        argv = [*argv, "--store", str(tmp_path / "s")]
+    env = dict(os.environ, PYTHONPATH=str(tw.__path__[0].rsplit(os.sep, 1)[0]))
+    # a process started by a non-interactive shell may inherit SIGINT ignored: restore it
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "trackwheel.cli", *argv], env=env, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, start_new_session=group,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        time.sleep(5.0)  # imported, and running
+        assert proc.poll() is None, proc.communicate()
+        children = psutil.Process(proc.pid).children(recursive=True)
+        if group:
+            os.killpg(proc.pid, signal.SIGINT)
+        else:
+            proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30.0)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    text = err.decode()
+    assert proc.returncode == 130 and "Traceback" not in text, text[-2000:]
+    assert text.replace("\r", "\n").splitlines()[-1] == (
+        f"trackwheel {argv[0]}: interrupted (Ctrl-C)")
+    _, alive = psutil.wait_procs(children, timeout=10.0)  # workers and forkserver
+    assert not alive
