@@ -759,3 +759,24 @@ def test_ctrl_c_is_one_line_and_exit_130(argv, group, tmp_path):
         f"trackwheel {argv[0]}: interrupted (Ctrl-C)")
     _, alive = psutil.wait_procs(children, timeout=10.0)  # workers and forkserver
     assert not alive
+
+
+def test_the_wall_time_printed_is_the_whole_commands():
+    """'wall time' was the simulation's alone (4.3 s printed of 10.2 s taken). It is the whole
+    command's, from the process's start (Python's start-up and imports included) to the
+    print: at most the time the process took as measured from outside, and within its exit
+    and spawn (a fraction of a second) of it; the simulation's share is beside it."""
+    import os
+    import re
+    import time
+
+    env = dict(os.environ, PYTHONPATH=str(tw.__path__[0].rsplit(os.sep, 1)[0]))
+    t0 = time.perf_counter()
+    out = subprocess.run([sys.executable, "-m", "trackwheel.cli", "run", "--speed-kmh", "100",
+                          *CHEAP], env=env, capture_output=True, text=True, check=True).stdout
+    outside = time.perf_counter() - t0
+    m = re.search(r"wall time +: ([\d.]+) s for the whole command \(the simulation ([\d.]+) s, "
+                  r"(\d+) steps\)", out)
+    assert m, out
+    whole, sim = float(m.group(1)), float(m.group(2))
+    assert sim < whole <= outside + 0.02 and whole > outside - 1.0, (whole, sim, outside)

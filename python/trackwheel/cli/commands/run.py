@@ -21,7 +21,7 @@ from ...scene import Scene, Window
 from ...study.analysis import analyse
 from ...study.force_statistics import defect_position
 from ..checks import option_error, output_options, speeds_kmh
-from ..formatting import print_notes, print_warnings
+from ..formatting import print_notes, print_warnings, wall_time_text
 from ..options import (
     excitation_options,
     finite_float,
@@ -49,7 +49,8 @@ def add(sub) -> None:
                     "Scene.kato2005()) at one speed "
                     "and print the amplitude max|d| of the contact-point vibration "
                     "(d = y_B - y_qs, docs: Model § Outputs), its main frequency and resolution, the "
-                    "contact-force range, whether the wheel lost contact, and the wall time.")
+                    "contact-force range, whether the wheel lost contact (and slid), and the "
+                    "wall time of the whole command (the simulation's share beside it).")
     p.add_argument("--speed-kmh", type=finite_float, required=True, metavar="V",
                    help=f"forward speed [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=finite_float, metavar="K",
@@ -101,7 +102,6 @@ def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
               f"N = {a.min_contact_force / 1e3:.2f} .. {a.max_contact_force / 1e3:.2f} kN "
               f"(static {loads[i] / 1e3:.2f} kN), dynamic factor {a.dynamic_factor:.4f}, "
               f"lost contact: {'yes' if a.lost_contact else 'no'}")
-    print(f"  wall time: {r.wall_time:.3f} s ({r.steps} steps)")
 
 
 def _print_forces(scene: Scene, a) -> None:
@@ -161,7 +161,11 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
         print("  lost contact   : no")
     _print_sliding(scene, r, a)
     _print_forces(scene, a)
-    print(f"  wall time      : {r.wall_time:.3f} s ({r.steps} steps)")
+
+
+def _wall(args: argparse.Namespace, r) -> str:
+    """The whole command's wall time, the simulation's beside it."""
+    return wall_time_text(getattr(args, "started", None), r.wall_time, r.steps)
 
 
 def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
@@ -178,6 +182,8 @@ def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
         except (OSError, ValueError) as exc:
             print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
             return 1
+        print(f"  plot: {args.plot}")
+    print(f"  wall time: {_wall(args, r)}")
     return 0
 
 
@@ -234,6 +240,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
             return 1
         print(f"  plot           : {args.plot}")
+    print(f"  wall time      : {_wall(args, r)}")
     return 0
 
 
@@ -285,7 +292,8 @@ def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
           f"{w.bays_behind} + {w.bays_ahead} bays ({scene.rail.length:g} m{ends}), "
           f"{kw['fidelity']}")
     print(f"run            : {x[-1] - x[0]:.1f} m at {args.speed_kmh:g} km/h, {r.steps} steps "
-          f"in {r.wall_time:.1f} s ({1e6 * r.wall_time / max(r.steps, 1):.1f} us/step)")
+          f"simulated in {r.wall_time:.1f} s ({1e6 * r.wall_time / max(r.steps, 1):.1f} "
+          "us/step)")
     print(f"contact force  : {N.min() / 1e3:.2f} .. {N.max() / 1e3:.2f} kN, mean "
           f"{N.mean() / 1e3:.2f} kN, std {N.std() / 1e3:.2f} kN; lost contact: "
           f"{'yes' if (N <= 0.0).any() else 'no'}")
@@ -295,4 +303,5 @@ def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
         if m.sum() > 1:
             print(f"{'':17s}{x0:>8.1f}  {N[m].min() / 1e3:>9.2f}  {N[m].max() / 1e3:>9.2f}  "
                   f"{N[m].std() / 1e3:>9.2f}")
+    print(f"wall time      : {_wall(args, r)}")
     return 0
