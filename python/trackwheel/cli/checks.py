@@ -73,6 +73,8 @@ def option_error(exc: Exception) -> str:
     """A library message with its parameter names spelled as the command's options."""
     text = str(exc)
     text = text.replace("Supports.stiffness", "--support-stiffness")
+    text = text.replace("Supports.damping", "--support-damping")
+    text = text.replace("Contact.damping", "--contact-damping")
     text = text.replace("Rail.shear_coefficient", "--shear-coefficient")
     text = text.replace("Wheel.brake_torque", "--brake-torque")
     # the fields of --joint DEPTH,LENGTH,AT and --irregularity sine:WAVELENGTH,AMPLITUDE

@@ -168,6 +168,21 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30",
 
 
 
+def damping_options(p: argparse.ArgumentParser, contact: bool = True) -> None:
+    """--support-damping (and, with ``contact``, --contact-damping): viscous damping of the
+    supports (the rail pads of --track ballasted) and of the wheel/rail contact [N s/m]."""
+    g = p.add_argument_group("damping (default: the --track preset's; the paper's track is "
+                             "undamped)")
+    g.add_argument("--support-damping", type=finite_float, metavar="C",
+                   help="viscous damping of each support [N s/m], >= 0 (default 0 on "
+                        "kato2005; with --track ballasted the rail pad's, default 18e3); "
+                        "rail pads have about 1e4-5e4")
+    if contact:
+        g.add_argument("--contact-damping", type=finite_float, metavar="C",
+                       help="viscous damping of the wheel/rail contact [N s/m], >= 0 "
+                            "(default 0)")
+
+
 def simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
     """Options passed to trackwheel.simulate (left out: simulate's defaults); ``auto`` offers
     ``--fidelity auto`` (sweep only: the cheapest level adequate on the sweep's hardest case)."""

@@ -32,9 +32,16 @@ def track_scene(args: argparse.Namespace, stiffness: float | None = None,
         rail = dataclasses.replace(scene.rail, beam=args.beam)
         if args.shear_coefficient is not None:
             rail = dataclasses.replace(rail, shear_coefficient=args.shear_coefficient)
+        scene = dataclasses.replace(scene, rail=rail)
+        if getattr(args, "support_damping", None) is not None:
+            scene = dataclasses.replace(scene, supports=dataclasses.replace(
+                scene.supports, damping=args.support_damping))
+        if getattr(args, "contact_damping", None) is not None:
+            scene = dataclasses.replace(scene, contact=dataclasses.replace(
+                scene.contact, damping=args.contact_damping))
     except ValueError as exc:
         raise OptionError(option_error(exc)) from None
-    return dataclasses.replace(scene, rail=rail)
+    return scene
 
 
 def scene_name(scene: Scene, args: argparse.Namespace) -> str:
@@ -205,6 +212,16 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
         if not args.patch_filter:
             notes.append("--joint turns the contact filter on (Contact.patch_filter = True: "
                          "the dip's cusp curves more sharply than the wheel)")
+    impact = [o for o, given in (("--wheel-flat", args.wheel_flat is not None),
+                                 ("--joint", args.joint is not None)) if given]
+    if impact and scene.supports.damping == 0.0 and scene.contact.damping == 0.0 and (
+            not scene.supports.layered or scene.supports.ballast_damping == 0.0):
+        notes.append(f"{' and '.join(impact)} on an undamped track (the paper's: supports and "
+                     "contact without damping): nothing dissipates the energy of each impact, "
+                     "so the wheel bounces off the rail and later impacts build up on the "
+                     "ringing track, to forces well above the first impact's; give "
+                     "--support-damping (rail pads: about 1e4-5e4 N s/m) for a damped track "
+                     "(docs: guide, Excitation)")
     return scene, notes
 
 

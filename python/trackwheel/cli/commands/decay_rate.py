@@ -11,7 +11,7 @@ import numpy as np
 from ...run import frequency
 from ..checks import output_options
 from ..formatting import frequency_elements, save_figure, write_csv
-from ..options import mesh_option, positive_int, track_option
+from ..options import damping_options, mesh_option, positive_int, track_option
 from ..scenes import OptionError, scene_name, track_scene
 
 #: rail length [m] of ``decay-rate --track ballasted``: the EN 15461 line (66 bays, 39.6 m)
@@ -31,6 +31,7 @@ def add(sub) -> None:
     p.add_argument("--per-band", type=positive_int, default=8, metavar="N",
                    help="frequencies per band, log-spaced inside it (default 8)")
     mesh_option(p)
+    damping_options(p, contact=False)
     track_option(p, length_default=f"{DECAY_LENGTH:g} here", fidelity=False)
     p.add_argument("--out", type=Path, metavar="CSV",
                    help="write band_hz, decay_rate_db_per_m, iso3095_limit_db_per_m to this file")

@@ -23,6 +23,7 @@ from ...study.force_statistics import defect_position
 from ..checks import option_error, output_options, speeds_kmh
 from ..formatting import print_notes, print_warnings, wall_time_text
 from ..options import (
+    damping_options,
     excitation_options,
     finite_float,
     positive_float,
@@ -62,6 +63,7 @@ def add(sub) -> None:
                         "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
                         "the --track rail, lengthened to 20 m of wheels + 5 m if shorter (the "
                         "paper's 5 m rail: 25 m; a note says so; docs: Model § The vehicle)")
+    damping_options(p)
     excitation_options(p)
     p.add_argument("--brake-torque", type=finite_float, metavar="T_B",
                    help="friction brake on the wheel's rotation [N m], >= 0: beyond adhesion "

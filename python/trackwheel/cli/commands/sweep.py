@@ -15,6 +15,7 @@ from ...study.sweep import summarise_seeds, sweep
 from ..checks import option_error, output_file, speeds_kmh, writable_folder
 from ..formatting import print_notes, print_warnings
 from ..options import (
+    damping_options,
     excitation_options,
     finite_float,
     positive_int,
@@ -47,6 +48,7 @@ def add(sub) -> None:
     p.add_argument("--workers", type=positive_int, metavar="N",
                    help="processes (default: one per core)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    damping_options(p)
     excitation_options(p, seeds=True)
     simulate_options(p, auto=True)
     p.set_defaults(run=run, parser=p)
