@@ -10,6 +10,7 @@ import math
 import re
 import sys
 
+import numpy as np
 import pytest
 
 import trackwheel as tw
@@ -261,3 +262,21 @@ def test_cli_support_stiffness_in_n_m_is_a_one_line_warning(capsys):
                      "--n-elements", "20", "--dt", "1e-5"]) == 0
     err = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
     assert len(err) == 1 and "--support-stiffness = 140 N/m" in err[0] and "140 MN/m" in err[0]
+
+
+def test_a_fidelity_levels_contact_law_names_itself_when_its_rewrite_is_out_of_range():
+    """ancf/hertz on a stiff linear contact under a 1 N load: the same stiffness at the static
+    load is a Hertz constant of 5.5e14 N/m^1.5; within the Hertz range (1e17) it runs, and
+    beyond it the message says which rewrite (the fidelity level's law) and what to do, not a
+    bare Contact.stiffness the user never gave."""
+    light = dc.replace(KATO, wheel=dc.replace(KATO.wheel, load=1.0, mass=1e-3),
+                       contact=tw.Contact(stiffness=1e10))
+    r = tw.simulate(light, 10.0, fidelity="ancf/hertz", x_end=0.3, n_elements=20, dt=1e-5,
+                    progress=False)
+    assert np.all(np.isfinite(r.normal_force))
+    stiff = dc.replace(light, contact=tw.Contact(stiffness=1e14))
+    with pytest.raises(ValueError, match=r"the fidelity level's hertz contact law from Contact\("
+                       r"law='linear', stiffness=1e\+14\) at the static load .*Contact\.stiffness"
+                       r" = .* \(0, 1e\+17\] N/m\^1\.5"):
+        tw.simulate(stiff, 10.0, fidelity="ancf/hertz", x_end=0.3, n_elements=20, dt=1e-5,
+                    progress=False)

@@ -128,8 +128,11 @@ RANGES: dict[str, Range] = {
     "Wheel.poisson_ratio": Range(0.0, 0.5, "-", "isotropic solids", high_open=True),
     "Wheel.torque": Range(-1e6, 1e6, "N m", "traction ~1e4 N m per wheel"),
     "Wheel.brake_torque": Range(0.0, 1e6, "N m", "brakes ~1e4 N m per wheel"),
-    "Contact.stiffness": _positive(1e14, "N/m (linear) or N/m^1.5 (hertz)",
-                                   "Hertz: ~1e9 N/m, C_H ~1e11 N/m^1.5"),
+    "Contact.stiffness": _positive(1e14, "N/m", "linear law; its Hertz linearisation is ~1e9 "
+                                   "N/m"),
+    "Contact.stiffness.hertz": _positive(1e17, "N/m^1.5", "Hertz law, C_H = 4/3 E* sqrt(rho0): "
+                                         "~1e11 for steel wheels; 1e17 holds every E and "
+                                         "radius of the ranges"),
     "Contact.damping": Range(0.0, 1e10, "N s/m", "as the supports'"),
     "Contact.friction": Range(0.0, 10.0, "-", "dry steel on steel ~0.3-0.6"),
     "Scene.gravity": Range(0.0, 100.0, "m/s^2", "ten g"),

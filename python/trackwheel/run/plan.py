@@ -72,7 +72,13 @@ def _with_law(scene: Scene, law: str) -> Scene:
     if law == "hertz" and scene.contact.stiffness is not None:
         # a given linear k becomes the Hertz constant with the same stiffness at the static load
         k = (scene.contact.stiffness / (1.5 * scene.static_load ** (1 / 3))) ** 1.5
-    return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+    try:
+        return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+    except ValueError as exc:  # e.g. a stiff linear contact under a tiny load: a huge C_H
+        raise ValueError(f"the fidelity level's {law} contact law from Contact(law="
+                         f"{scene.contact.law!r}, stiffness={scene.contact.stiffness:g}) at the "
+                         f"static load P = {scene.static_load:.4g} N: {exc}; give the scene a "
+                         f"{law} Contact, or a fidelity level of its own law") from None
 
 
 def _scene_for(scene: Scene, fidelity: str) -> Scene:

@@ -32,7 +32,7 @@ class Contact:
         v.boolean("Contact.patch_filter", self.patch_filter)
         if self.stiffness is not None:
             v.field("Contact.stiffness", self.stiffness,
-                    unit="N/m" if self.law == "linear" else "N/m^1.5")
+                    key="Contact.stiffness" if self.law == "linear" else "Contact.stiffness.hertz")
         v.field("Contact.damping", self.damping)
         v.field("Contact.friction", self.friction)
 
