@@ -149,8 +149,10 @@ RANGES: dict[str, Range] = {
     "CarBody.pitch_inertia": _positive(1e9, "kg m^2", "half a car ~8e5 kg m^2"),
     "CarBody.secondary_stiffness": _positive(1e12, "N/m", "secondary springs ~6e5"),
     "CarBody.secondary_damping": Range(0.0, 1e10, "N s/m", "~1e4"),
-    "Irregularity.sine.wavelength": Range(1e-3, 1e4, "m", "corrugation 25 mm to long waves of "
-                                          "~100 m; and 2 pi a / lambda <= MAX_PROFILE_SLOPE"),
+    "Irregularity.sine.wavelength": Range(1e-4, 1e4, "m", "corrugation 25 mm to long waves of "
+                                          "~100 m; 0.1 mm, a hundredth of a contact patch, for "
+                                          "harmonic limits; and 2 pi a / lambda <= "
+                                          "MAX_PROFILE_SLOPE"),
     "Irregularity.sine.amplitude": Range(0.0, 0.1, "m", "corrugation ~1e-5, long waves ~1e-2"),
     "Irregularity.dipped_joint.depth": _positive(0.1, "m", "joints and welds 1-3 mm"),
     "Irregularity.dipped_joint.length": Range(1e-3, 1e3, "m", "0.2-1 m; and pi d / l <= "
