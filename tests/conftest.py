@@ -148,6 +148,17 @@ def pytest_addoption(parser):
                           "docs/validation.json instead of comparing them with it")
 
 
+def pytest_collection_modifyitems(config, items):
+    """Tests marked ``slow`` (the long property runs) run only when the marker expression
+    names them (``pytest -m slow``); the default suite skips them."""
+    if "slow" in (config.getoption("markexpr") or ""):
+        return
+    skip = pytest.mark.skip(reason="a long run: select it with -m slow")
+    for item in items:
+        if "slow" in item.keywords:
+            item.add_marker(skip)
+
+
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_makereport(item, call):
     """Keep each phase's report on the item, so that a fixture's teardown knows whether the

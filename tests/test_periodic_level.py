@@ -157,10 +157,13 @@ def test_sweep_rows_are_the_periodic_outputs():
 
 
 def test_sweep_records_refused_cases_and_refuses_time_domain_settings():
-    # a dipped joint is no sum of sines: every case is an error row with the reason
+    # a dipped joint is no sum of sines: every case is an error row with the reason, and a
+    # sweep whose every case failed raises with its table
     joint = ballasted(irregularity=tw.Irregularity.dipped_joint(1e-3, 0.5, 5.0))
-    df = tw.sweep(joint, [V], [80e6, 180e6], fidelity="periodic/linear", progress=False)
-    assert df.error.str.contains("sums of sines").all()
+    with pytest.raises(tw.SweepFailedError, match="sums of sines") as failed:
+        tw.sweep(joint, [V], [80e6, 180e6], fidelity="periodic/linear", progress=False)
+    df = failed.value.table
+    assert len(df) == 2 and df.error.str.contains("sums of sines").all()
     assert df.amplitude_m.isna().all()
     with pytest.raises(ValueError, match="dt"):
         tw.sweep(ballasted(), [V], fidelity="periodic/linear", dt=1e-5, progress=False)

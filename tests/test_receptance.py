@@ -223,9 +223,30 @@ def test_bad_input(kw, match):
         tw.receptance(tw.Scene.kato2005(), **kw)
 
 
-def test_decay_rate_needs_room_for_the_standard_positions():
-    with pytest.raises(ValueError, match="EN 15461 positions"):
-        tw.decay_rate(tw.Scene.kato2005(), [500.0])
+@pytest.mark.parametrize("scene, least", [(tw.Scene.kato2005(), 33.25),
+                                          (tw.Scene.ballasted_track(), 39.9),
+                                          (tw.Scene.ballasted_track(12.0), 39.9)])
+def test_decay_rate_needs_room_for_the_standard_positions(scene, least):
+    """A rail too short for the 66 spacings of EN 15461 is told the length it needs (66 d
+    beyond the first mid-span, d / 2 from the end), never an empty range of x0."""
+    with pytest.raises(ValueError, match="EN 15461 positions") as info:
+        tw.decay_rate(scene, [500.0])
+    msg = str(info.value)
+    assert "Rail.length" in msg and f"at least {least:g} m" in msg and "x0 in" not in msg
+
+
+def test_decay_rate_x0_is_inside_the_rail():
+    """x0 = 0 is the rigid end (zero response, so no ratio: NaN rates before) and the rail
+    hardly moves just beside it (1e-185 m: NaN too): x0 is at least a quarter bay from the end;
+    an x0 beyond L - 66 d gets its allowed range."""
+    s = tw.Scene.ballasted_track(60.0)
+    for x0 in (0.0, 1e-185):
+        with pytest.raises(ValueError, match=r"x0 = .* is outside the allowed range "
+                           r"\[0.15, 60.0\]"):
+            tw.decay_rate(s, [0.0, 500.0], x0=x0)
+    with pytest.raises(ValueError, match=r"x0 = 30 m .* allowed range \[0.15, 20.4\] m"):
+        tw.decay_rate(s, [500.0], x0=30.0)
+    assert np.isfinite(tw.decay_rate(s, [0.0, 500.0], x0=0.15)).all()
 
 
 def test_plots():
@@ -295,3 +316,16 @@ def test_frequency_mesh_capped_by_the_element_limit_warns():
     with pytest.warns(tw.MeshWarning, match="per bay that resolve the bending wavelength"):
         n = frequency_mesh(scene, 5000.0)
     assert n == MAX_ELEMENTS  # 5000 bays, 4 elements each
+
+
+def test_frequencies_above_the_beam_models_range_are_refused_by_name():
+    """receptance(kato, 2.25, [1e155]) raised the kernel's 'singular at 1000...000 Hz' (a
+    155-digit number); the frequencies are bounded by MAX_FREQUENCY (100 kHz), named, and the
+    bound itself gives a finite receptance, below the mass line 1 / (m omega^2 L) of the
+    whole rail moving as one (the mesh cannot resolve 100 kHz, the magnitude still holds)."""
+    s = tw.Scene.kato2005()
+    with pytest.raises(ValueError, match=r"freqs = 1e\+155 Hz is outside the allowed range "
+                       r"\[0, 100000\] Hz"):
+        tw.receptance(s, 2.25, [1e155])
+    a = tw.receptance(s, 2.25, [1e5])
+    assert np.all(np.isfinite(a)) and 0.0 < abs(a[0])

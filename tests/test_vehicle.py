@@ -560,3 +560,12 @@ def test_quarter_car_validation():
         dc.replace(half, car=dc.replace(half.car, pitch_inertia=None))
     with pytest.raises(ValueError, match="bogie_mass|Bogie.mass"):
         Vehicle.quarter_car(bogie_mass=-1.0)
+
+
+def test_bogie_wheelbase_is_named():
+    """Vehicle.bogie(wheelbase=1e-300) blamed Vehicle.positions (the wheels overlap); the
+    preset's own argument is named, with its range: at least the wheels' diameter."""
+    with pytest.raises(ValueError, match=r"wheelbase = 1e-300 is outside the allowed range "
+                       r"\[0.86, 1000.0\] m"):
+        tw.Vehicle.bogie(wheelbase=1e-300)
+    assert tw.Vehicle.bogie(wheelbase=0.86).positions == (0.0, 0.86)

@@ -14,7 +14,12 @@ import importlib as _importlib
 import sys as _sys
 
 from ._version import __version__
-from .base.errors import DivergenceError
+from .base.errors import (
+    DivergenceError,
+    FailedCasesWarning,
+    PlausibilityWarning,
+    SweepFailedError,
+)
 from .base.units import kmh
 from .excitation import Irregularity, Polygon, WheelFlat
 from .excitation import spectra as spectra  # the module (trackwheel.spectra.fra, ...)
@@ -88,6 +93,9 @@ __all__ = [
     "Convergence",
     "ConvergenceWarning",
     "DivergenceError",
+    "FailedCasesWarning",
+    "PlausibilityWarning",
+    "SweepFailedError",
     "EigenResult",
     "MeshWarning",
     "QuasiStatic",

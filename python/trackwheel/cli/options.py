@@ -24,10 +24,12 @@ _NEGATIVE_NUMBER = re.compile(rf"^-{_NUMBER}(,\s*-?{_NUMBER})*$")
 
 
 class Parser(argparse.ArgumentParser):
-    """argparse with one-line errors ("trackwheel run: error: ...", exit code 2) and negative
-    numbers in exponent notation read as values."""
+    """argparse with one-line errors ("trackwheel run: error: ...", exit code 2), negative
+    numbers in exponent notation read as values, and no abbreviated options (``--speed 300``
+    is an error, not ``--speed-kmh 300``)."""
 
     def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = _NEGATIVE_NUMBER
 
@@ -143,7 +145,10 @@ def excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None:
 TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
 
 
-def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None:
+def track_option(p: argparse.ArgumentParser, length_default: str = "30",
+                 fidelity: bool = True) -> None:
+    """--track, --length, --beam and --shear-coefficient; ``fidelity``: the command has
+    --fidelity (its --beam help says every level takes the beam theory)."""
     g = p.add_argument_group("track (docs: Model § Layered supports and section "
                              "\"Shear-deformable rail (Timoshenko)\")")
     g.add_argument("--track", choices=tuple(TRACKS), default="kato2005",
@@ -155,8 +160,8 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None
                         f"{length_default})")
     g.add_argument("--beam", choices=("euler", "timoshenko"), default="euler",
                    help="rail beam theory (default euler: Euler-Bernoulli, the paper's); "
-                        "timoshenko adds shear deformation and rotary inertia, at every "
-                        "--fidelity level")
+                        "timoshenko adds shear deformation and rotary inertia"
+                        + (", at every --fidelity level" if fidelity else ""))
     g.add_argument("--shear-coefficient", type=positive_float, metavar="K",
                    help="shear coefficient kappa of the rail section, 0 < K <= 1 (default 0.4; "
                         "with --beam timoshenko)")
@@ -164,6 +169,21 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None
                    help="shear modulus G of the rail [Pa] (default E / (2 (1 + nu)); with "
                         "--beam timoshenko)")
 
+
+
+def damping_options(p: argparse.ArgumentParser, contact: bool = True) -> None:
+    """--support-damping (and, with ``contact``, --contact-damping): viscous damping of the
+    supports (the rail pads of --track ballasted) and of the wheel/rail contact [N s/m]."""
+    g = p.add_argument_group("damping (default: the --track preset's; the paper's track is "
+                             "undamped)")
+    g.add_argument("--support-damping", type=finite_float, metavar="C",
+                   help="viscous damping of each support [N s/m], >= 0 (default 0 on "
+                        "kato2005; with --track ballasted the rail pad's, default 18e3); "
+                        "rail pads have about 1e4-5e4")
+    if contact:
+        g.add_argument("--contact-damping", type=finite_float, metavar="C",
+                       help="viscous damping of the wheel/rail contact [N s/m], >= 0 "
+                            "(default 0)")
 
 
 def simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:

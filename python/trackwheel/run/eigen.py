@@ -69,11 +69,15 @@ class EigenResult:
         n_pos, n_modes = self.frequencies.shape
         lo, hi = self.frequencies.min(axis=0), self.frequencies.max(axis=0)
         shown = min(n_modes, 4)
-        bands = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in zip(lo[:shown], hi[:shown]))
+        bands = ", ".join(f"{a:.1f}" if n_pos == 1 else f"{a:.1f}-{b:.1f}"
+                          for a, b in zip(lo[:shown], hi[:shown]))
         more = f" (+{n_modes - shown} more)" if n_modes > shown else ""
         axial = ", ".join(f"{f:.1f}" for f in self.axial_frequencies[:3])
-        return (f"<trackwheel.EigenResult: {n_modes} vertical modes at {n_pos} wheel positions "
-                f"X = {self.positions.min():.4g}..{self.positions.max():.4g} m, "
+        where = (f"X = {self.positions[0]:.4g} m" if n_pos == 1 else
+                 f"{n_pos} wheel positions X = {self.positions.min():.4g}.."
+                 f"{self.positions.max():.4g} m")
+        return (f"<trackwheel.EigenResult: {n_modes} vertical mode{'s' * (n_modes != 1)} at "
+                f"{'one wheel position ' * (n_pos == 1)}{where}, "
                 f"{self.n_elements} elements>\n"
                 f"  vertical [Hz]: {bands}{more}\n"
                 f"  axial [Hz]: {axial or '-'}")

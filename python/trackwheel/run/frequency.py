@@ -29,6 +29,7 @@ import numpy as np
 
 from .. import _core
 from ..base import validate as v
+from ..base.limits import MAX_FREQUENCY
 from ..scene import Scene
 from . import kernel
 from .defaults import frequency_mesh, mesh
@@ -66,16 +67,17 @@ def _freqs(freqs) -> np.ndarray:
     f = np.atleast_1d(np.asarray(freqs, dtype=float))
     if f.ndim != 1 or f.size == 0:
         raise ValueError("freqs must be a non-empty 1-D sequence of frequencies [Hz]")
-    bad = ~np.isfinite(f) | (f < 0)
+    bad = ~np.isfinite(f) | (f < 0) | (f > MAX_FREQUENCY)
     if bad.any():
-        raise ValueError(f"freqs = {f[bad][0]} Hz is outside the allowed range [0, inf) Hz")
+        raise ValueError(f"freqs = {f[bad][0]:.6g} Hz is outside the allowed range "
+                         f"[0, {MAX_FREQUENCY:g}] Hz (the rail's beam models hold to a few kHz)")
     return f
 
 
 def receptance(scene: Scene, x, freqs, x_response=None, *,
                n_elements: int | None = None) -> np.ndarray:
     """Receptance of the track [m/N]: rail displacement at ``x_response`` [m] per unit vertical
-    force at ``x`` [m], at each of ``freqs`` [Hz] (>= 0).
+    force at ``x`` [m], at each of ``freqs`` [Hz] in [0, ``MAX_FREQUENCY``] (100 kHz).
 
     ``x`` (the excitation) and ``x_response`` are each a number or a 1-D sequence of positions
     in [0, L]; ``x_response=None`` is the point receptance at each ``x``. The result's axes
@@ -142,20 +144,30 @@ def receptance_points(scene: Scene) -> dict[str, float]:
 
 def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
     """The EN 15461 response positions x_0 + n_k d [m] (``EN15461_SPANS``, d the support
-    spacing). ``x0`` [m], the excitation point, defaults to the mid-span that centres the
-    66-spacing line on the rail. Raises ValueError if the line does not fit on the rail."""
+    spacing). ``x0`` [m], the excitation point, at least d / 4 from the rigid end at 0,
+    defaults to the mid-span that centres the 66-spacing line on the rail. Raises ValueError if
+    the line does not fit on the rail."""
     scene = _check_scene(scene)
     d, L = scene.supports.spacing, scene.rail.length
     span = EN15461_SPANS[-1] * d
+    given = x0 is not None
     if x0 is None:
         x0 = (max(math.floor((L - span) / 2.0 / d), 0) + 0.5) * d
-    x0 = v.number("x0", x0, low=0.0, high=L, unit="m")
-    if x0 + span > L:
+    if span > L or (not given and x0 + span > L):
+        # no (default) excitation point fits: say what the rail needs, not an empty range
         raise ValueError(
             f"the EN 15461 positions reach {EN15461_SPANS[-1]:g} support spacings "
-            f"({span:.4g} m) beyond x0 = {x0:.4g} m, past the rail end at {L:.4g} m; allowed: "
-            f"a rail longer than {span + d:.4g} m (plus room for its end reflections) and "
-            f"x0 in [0, {L - span:.4g}] m")
+            f"({span:.4g} m) beyond the excitation point at mid-span; the rail (Rail.length) "
+            f"is {L:.4g} m: allowed a rail of at least {span + 0.5 * d:.4g} m (plus room for "
+            "its end reflections)")
+    # at least a quarter bay from the rigid end support at 0, where the rail does not move (no
+    # response there to divide by)
+    x0 = v.number("x0", x0, low=0.25 * d, high=L, unit="m")
+    if x0 + span > L:
+        raise ValueError(
+            f"x0 = {x0:.4g} m puts the last EN 15461 position ({EN15461_SPANS[-1]:g} support "
+            f"spacings, {span:.4g} m, beyond it) past the rail end at {L:.4g} m; allowed "
+            f"range [{0.25 * d:.4g}, {L - span:.4g}] m")
     return x0 + d * np.asarray(EN15461_SPANS)
 
 

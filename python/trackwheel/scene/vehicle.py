@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..base import validate as v
+from ..base.limits import RANGES, ranges_doc
 from .wheel import Wheel
 
 
@@ -47,18 +48,15 @@ class Bogie:
                              f"{self.wheels!r}")
         object.__setattr__(self, "wheels", tuple(
             v.integer("Bogie.wheels", w, low=0) for w in self.wheels))
-        v.number("Bogie.centre", self.centre, unit="m")
-        v.positive("Bogie.mass", self.mass, "kg")
+        for name in ("centre", "mass", "primary_stiffness", "primary_damping", "load"):
+            v.field(f"Bogie.{name}", getattr(self, name))
         if self.pitch_inertia is None:
             if len(self.wheels) != 1:
                 raise ValueError("Bogie.pitch_inertia = None is only for a frame on one "
                                  "wheel (under its centre, nothing pitches it); a frame on "
                                  "two wheels needs its pitch inertia > 0 kg m^2")
         else:
-            v.positive("Bogie.pitch_inertia", self.pitch_inertia, "kg m^2")
-        v.positive("Bogie.primary_stiffness", self.primary_stiffness, "N/m")
-        v.number("Bogie.primary_damping", self.primary_damping, low=0.0, unit="N s/m")
-        v.number("Bogie.load", self.load, low=0.0, unit="N")
+            v.field("Bogie.pitch_inertia", self.pitch_inertia)
 
 
 @dataclass(frozen=True)
@@ -77,12 +75,10 @@ class CarBody:
     secondary_damping: float = 9.8e3  #: c_2 per bogie [N s/m]
 
     def __post_init__(self):
-        v.number("CarBody.centre", self.centre, unit="m")
-        v.positive("CarBody.mass", self.mass, "kg")
+        for name in ("centre", "mass", "secondary_stiffness", "secondary_damping"):
+            v.field(f"CarBody.{name}", getattr(self, name))
         if self.pitch_inertia is not None:
-            v.positive("CarBody.pitch_inertia", self.pitch_inertia, "kg m^2")
-        v.positive("CarBody.secondary_stiffness", self.secondary_stiffness, "N/m")
-        v.number("CarBody.secondary_damping", self.secondary_damping, low=0.0, unit="N s/m")
+            v.field("CarBody.pitch_inertia", self.pitch_inertia)
 
 
 #: Huo & Dai (2019), "Formulation of a linearized model for vehicle-track interactions", Shock
@@ -121,7 +117,7 @@ class Vehicle:
                 raise TypeError(f"Vehicle.wheels must hold trackwheel.Wheel values, got "
                                 f"{type(w).__name__}")
         object.__setattr__(self, "wheels", tuple(self.wheels))
-        pos = tuple(v.number("Vehicle.positions", x, unit="m") for x in self.positions)
+        pos = tuple(v.field("Vehicle.positions", x) for x in self.positions)
         object.__setattr__(self, "positions", pos)
         if len(pos) != len(self.wheels):
             raise ValueError(f"Vehicle.positions has {len(pos)} entries for "
@@ -202,11 +198,16 @@ class Vehicle:
     def bogie(cls, wheelbase: float = 2.5, wheel: Wheel | None = None,
               load: float | None = None) -> "Vehicle":
         """Half a bogie of the Huo & Dai (2019) high-speed car (``HUO_DAI_2019``) on two wheels
-        ``wheelbase`` [m] apart (rear wheel at x = 0), carrying ``load`` [N] on its pivot
-        (default: its share of the half car body's weight, M_c g / 4 with g = 9.8 m/s^2)."""
+        ``wheelbase`` [m] apart (rear wheel at x = 0; at least the wheels' diameter, at most
+        1000 m), carrying ``load`` [N] on its pivot (default: its share of the half car body's
+        weight, M_c g / 4 with g = 9.8 m/s^2)."""
         p = HUO_DAI_2019
-        wb = v.positive("wheelbase", wheelbase, "m")
         w = _high_speed_wheel() if wheel is None else wheel
+        if not isinstance(w, Wheel):
+            raise TypeError(f"wheel must be a trackwheel.Wheel or None, got {type(w).__name__}")
+        # the two wheels must not overlap; beyond 1000 m they leave Vehicle.positions' range
+        wb = v.number("wheelbase", wheelbase, low=2.0 * w.radius, high=RANGES[
+            "Vehicle.positions"].high, unit="m")
         share = 0.25 * p["car_mass"] * 9.8 if load is None else v.number(
             "load", load, low=0.0, unit="N")
         return cls(wheels=(w, w), positions=(0.0, wb),
@@ -354,3 +355,8 @@ def rigid_track_frequencies(vehicle: Vehicle) -> dict[str, float]:
             out["car_pitch"] = math.sqrt(k * sum(a * a for a in arms)
                                          / c.pitch_inertia) / (2 * math.pi)
     return out
+
+
+Vehicle.__doc__ += ranges_doc("Vehicle")
+Bogie.__doc__ += ranges_doc("Bogie")
+CarBody.__doc__ += ranges_doc("CarBody")

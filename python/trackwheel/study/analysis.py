@@ -180,7 +180,9 @@ class _AnalysisMethods:
                 f"  contact force {self.min_contact_force:.6g}..{self.max_contact_force:.6g} N, "
                 f"lost contact: {'yes' if self.lost_contact else 'no'}\n"
                 f"  dynamic factor {self.dynamic_factor:.4g}, contact loss "
-                f"{self.loss_duration * 1e3:.3g} ms" + self._peaks_text())
+                f"{self.loss_duration * 1e3:.3g} ms" + self._peaks_text()
+                + (f"\n  slid {self.slide_duration * 1e3:.4g} ms (|lambda| = mu N), locked "
+                   f"{self.locked_duration * 1e3:.4g} ms" if self.slide_duration > 0 else ""))
 
     def _peaks_text(self) -> str:
         f = self.forces
@@ -353,4 +355,6 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
         y_qs_error=qs_err, normal_force=N, min_contact_force=float(N.min()),
         max_contact_force=float(N.max()), lost_contact=one.lost_contact,
         acc_contact=one.acc_contact, acc_A=one.acc_A, acc_B=one.acc_B,
-        acc_C=one.acc_C, acc_D=one.acc_D, acc_E=one.acc_E, forces=forces)
+        acc_C=one.acc_C, acc_D=one.acc_D, acc_E=one.acc_E,
+        slide_duration=float(np.sum(one.sliding)) * dt,
+        locked_duration=float(np.sum(one.locked)) * dt, forces=forces)

@@ -77,6 +77,10 @@ ANALYSIS_FIELDS: tuple[Quantity, ...] = (
     _array("acc_C", "m/s^2", "rho cos(phi) v^2 phi_s^2"),
     _array("acc_D", "m/s^2", "rho cos(phi) phi_t^2"),
     _array("acc_E", "m/s^2", "2 rho cos(phi) phi_t v phi_s"),
+    Quantity("slide_duration", "s", "total time the wheel slid, |lambda| = mu N (a brake or "
+             "torque beyond adhesion, a violent impact; 0 if it rolled throughout)"),
+    Quantity("locked_duration", "s", "total time the wheel was locked, theta' = 0 in contact (a "
+             "brake beyond adhesion; it slides meanwhile)"),
     Quantity("forces", "", "the contact-force statistics of N "
              "(trackwheel.force_statistics.force_statistics)", "ForceStatistics"),
 )

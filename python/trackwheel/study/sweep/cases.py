@@ -10,10 +10,11 @@ import dataclasses
 import inspect
 import math
 import time
+import warnings
 
 import numpy as np
 
-from ...base.errors import DivergenceError
+from ...base.errors import DivergenceError, PlausibilityWarning
 from ...run.simulate import PERIODIC_LEVEL, simulate
 from ...scene import Scene
 from ..analysis import analyse
@@ -29,8 +30,10 @@ SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).pa
 def case_scene(scene: Scene, stiffness: float, seed: int | None = None) -> Scene:
     """``scene`` with the support stiffness ``stiffness`` [N/m] and, with a ``seed``, its
     irregularity's random parts drawn afresh (:meth:`trackwheel.Irregularity.reseeded`)."""
-    scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
-                                                                    stiffness=stiffness))
+    with warnings.catch_warnings():  # the sweep warns once about implausible stiffnesses
+        warnings.simplefilter("ignore", PlausibilityWarning)
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
     if seed is None:
         return scene
     return dataclasses.replace(scene, irregularity=scene.irregularity.reseeded(seed))
@@ -78,7 +81,9 @@ def run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
         return periodic.run_case(scene, speed, kwargs)
     t0 = time.perf_counter()
     try:
-        r = simulate(scene, speed, progress=False, **kwargs)
+        with warnings.catch_warnings():  # the sweep warns once about implausible speeds
+            warnings.simplefilter("ignore", PlausibilityWarning)
+            r = simulate(scene, speed, progress=False, **kwargs)
         wheels = wheel_outputs(r, scene)
     except (DivergenceError, ValueError, RuntimeError) as exc:
         # RuntimeError: the kernel's static solve at the start failed (e.g. a load that pushes
