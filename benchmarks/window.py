@@ -51,25 +51,25 @@ CASE = r"""
 import dataclasses as dc, json, resource, sys, time
 import numpy as np
 import trackwheel as tw
-from trackwheel import _kernel, spectra
+from trackwheel import spectra
+from trackwheel.run.simulate import execute, plan_run  # documented internal hooks
 kw = json.loads(sys.argv[1])
-made = []  # the kernel profile the run reads, for its counters
-build = _kernel.profile
-_kernel.profile = lambda *a, **k: made.append(build(*a, **k)) or made[-1]
 scene = tw.Scene.ballasted_track(window=tw.Window(20, 20))  # default 8-bay end zones
 if kw.pop("fra5"):
     scene = dc.replace(scene, irregularity=tw.Irregularity.random(spectra.fra(5), seed=0))
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0 = time.perf_counter()
-r = tw.simulate(scene, tw.kmh(300), x_start=0.3, progress=False, **kw)
+plan = plan_run(scene, tw.kmh(300), x_start=0.3, **kw)
+r = execute(plan, progress=False)
+table = plan.model.profile  # the kernel profile the run read, for its counters
 wall = time.perf_counter() - t0
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 out = sum(v.nbytes for v in vars(r).values() if isinstance(v, np.ndarray))
 print(json.dumps(dict(steps=r.steps, samples=len(r.t), newton=r.newton_iterations / r.steps, us_per_step=1e6 * r.wall_time / r.steps,
                       call_s=wall, baseline_mib=base / 1024, peak_mib=peak / 1024,
                       output_mib=out / 2**20, f_max_kn=float(r.normal_force.max()) / 1e3,
-                      profile_mib=32 * made[-1].n_intervals / 2**20,
-                      profile_peak_mib=32 * made[-1].peak_loaded_intervals / 2**20)))
+                      profile_mib=32 * table.n_intervals / 2**20,
+                      profile_peak_mib=32 * table.peak_loaded_intervals / 2**20)))
 """
 
 CASES = [

@@ -39,7 +39,8 @@ import numpy as np
 from _common import write_csv
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel  # documented internal: the kernel's parameter structs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CACHE = os.path.join(HERE, ".cache")
@@ -129,7 +130,7 @@ def step_cost():
     h = 1e-5
     cq, cv = bet * (1 - af) / (1 - am) * h * h, gam * (1 - af) / (1 - am) * h
     for ne in MESHES:
-        model = _kernel.rail_model(SCENE, ne)
+        model = kernel.rail_model(SCENE, ne)
         runs = [tw.simulate(SCENE, tw.kmh(300), dt=h, n_elements=ne, progress=False)
                 for _ in range(5)]
         step = min(r.wall_time for r in runs) / runs[0].steps

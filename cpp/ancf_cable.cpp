@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+
+#include "limits.hpp"
 
 namespace trackwheel {
 
@@ -66,8 +69,16 @@ const GaussTable& gauss_table() {
 }
 }  // namespace
 
+void check_gauss(int n) {
+  if (n < limits::kMinGauss || n > limits::kMaxGauss)
+    throw std::invalid_argument("n_gauss must be in [" + std::to_string(limits::kMinGauss) + ", " +
+                                std::to_string(limits::kMaxGauss) + "]");
+}
+
 void gauss_points(int n, double* xi, double* w) {
-  if (n < 1 || n > 10) throw std::invalid_argument("n_gauss must be in [1, 10]");
+  if (n < 1 || n > limits::kMaxGauss)
+    throw std::invalid_argument("n_gauss must be in [1, " + std::to_string(limits::kMaxGauss) +
+                                "] (the quadrature table)");
   const GaussTable& t = gauss_table();
   for (int i = 0; i < n; ++i) {
     xi[i] = t.xi[n][i];
@@ -76,6 +87,7 @@ void gauss_points(int n, double* xi, double* w) {
 }
 
 CableQuadrature make_quadrature(const CableSection& c) {
+  check_gauss(c.n_gauss);
   CableQuadrature q;
   q.n = c.n_gauss;
   double xi[10];

@@ -30,8 +30,11 @@ HermiteValues hermite(double xi, double l);
 // 2x8 shape-function matrix S(xi) and its s-derivatives.
 Mat28 shape_matrix(const double n[4]);
 
-// Gauss-Legendre points and weights on [0, 1] (1 to 10 points).
+// Gauss-Legendre points and weights on [0, 1] (1 to limits::kMaxGauss points).
 void gauss_points(int n, double* xi, double* w);
+// Throws std::invalid_argument unless n is an element's Gauss-point count,
+// limits::kMinGauss .. limits::kMaxGauss.
+void check_gauss(int n);
 
 struct CableSection {
   double length;  // element length l [m]

@@ -24,6 +24,7 @@
 #include "linear_track.hpp"
 #include "model.hpp"
 #include "output.hpp"
+#include "periodic.hpp"
 #include "rail.hpp"
 #include "rolling.hpp"
 #include "statics.hpp"
@@ -158,9 +159,9 @@ ProgressFn python_progress(py::object progress) {
 // The RailModel validates its own section; a ShearSection built directly is checked here (the
 // element divides by kGA and l).
 void check_shear_section(const ShearSection& c) {
-  if (!(c.length > 0 && c.kGA > 0 && std::isfinite(c.kGA) && c.n_gauss >= 1 && c.n_gauss <= 10))
-    throw std::invalid_argument(
-        "ShearSection: length must be > 0 m, kGA finite > 0 N, n_gauss in [1, 10]");
+  if (!(c.length > 0 && c.kGA > 0 && std::isfinite(c.kGA)))
+    throw std::invalid_argument("ShearSection: length must be > 0 m, kGA finite > 0 N");
+  check_gauss(c.n_gauss);
 }
 
 using PpolyArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -415,7 +416,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("stiffness", &ContactParams::stiffness)
       .def_readwrite("damping", &ContactParams::damping)
       .def_readwrite("radius", &ContactParams::radius)
-      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]");
+      .def_readwrite("friction", &ContactParams::friction, "mu, slip judgement [-]")
+      .def_readwrite("element_compliance", &ContactParams::element_compliance,
+                     "the rail element's fixed-end compliance under the load in series with the "
+                     "law (docs: Model § Contact)");
 
   py::class_<RailModel>(m, "RailModel")
       .def(py::init<const RailParams&, const SupportParams&>())
@@ -479,6 +483,16 @@ PYBIND11_MODULE(_core, m) {
         d["K"] = cf.K;
         d["C"] = cf.C;
         d["grad_rho"] = cf.grad_rho;
+        Vec10 sq;
+        Mat10 sqq;
+        contact_parameter_derivatives(pt, sq, &sqq);
+        d["ds_dq"] = sq;
+        d["d2s_dq2"] = sqq;
+        d["compression"] = cf.compression;
+        d["deflection"] = cf.deflection;
+        d["rolling_radius"] = pt.rho + cf.deflection;
+        d["compliance"] = pt.compliance.G;
+        d["energy"] = cf.energy;
         return d;
       },
       "Contact point and force for q = [X_A, Y_A, e_el]");
@@ -547,9 +561,10 @@ PYBIND11_MODULE(_core, m) {
   });
   m.def("linear_static_line", &linear_static_line, py::arg("rail"), py::arg("beam"),
         py::arg("load"), py::arg("x"), py::arg("n_modes") = 0,
-        py::call_guard<py::gil_scoped_release>(),
+        py::arg("element_compliance") = false, py::call_guard<py::gil_scoped_release>(),
         "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
-        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.");
+        "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; "
+        "element_compliance: the element's own deflection under the load G(X_i) P included.");
   m.def(
       "vertical_modes",
       [](const RailModel& rail, double M, double k, const std::vector<double>& x, int n_modes) {
@@ -586,6 +601,36 @@ PYBIND11_MODULE(_core, m) {
       "(the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the "
       "sleepers' z_j on layered supports)");
 
+  // ---------------------------------------------------------------- the vehicle's own matrices
+  m.def(
+      "vehicle_matrices",
+      [](const VehicleParams& vehicle, int n_wheels) {
+        check_vehicle(vehicle, n_wheels);
+        const VehicleMatrices vm = vehicle_matrices(vehicle, n_wheels);
+        py::dict d;
+        d["K"] = vm.K;
+        d["C"] = vm.C;
+        d["mass"] = vm.mass;
+        d["G"] = vm.G;
+        return d;
+      },
+      py::arg("vehicle"), py::arg("n_wheels"),
+      "The vehicle's constant matrices over u = [Y_A per wheel, (z, phi) per body] "
+      "(vehicle.hpp): {'K' [N/m], 'C' [N s/m]: sum k g g^T, sum c g g^T over the suspensions; "
+      "'mass': the bodies' masses [kg] and pitch inertias [kg m^2], the wheels' entries 0; 'G': "
+      "the bodies' weights and loads [N]}");
+  m.def(
+      "static_bodies",
+      [](const VehicleParams& vehicle, const Eigen::VectorXd& y_wheels) {
+        const int nw = static_cast<int>(y_wheels.size());
+        check_vehicle(vehicle, nw);
+        if (vehicle.empty()) return Eigen::VectorXd(Eigen::VectorXd::Zero(0));
+        return static_bodies(vehicle_matrices(vehicle, nw), y_wheels);
+      },
+      py::arg("vehicle"), py::arg("y_wheels"),
+      "[z_0, phi_0, z_1, phi_1, ...] [m, rad] of the bodies in static equilibrium above wheel "
+      "centres held at heights y_wheels [m]: the bodies' rows of K_v u = -G (vehicle.hpp)");
+
   // ---------------------------------------------------------------- linear beam, frequency domain
   py::class_<BeamParams>(m, "BeamParams")
       .def(py::init<>())
@@ -608,6 +653,25 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("xi"), py::arg("l"), py::arg("phi"),
       "IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]");
+  m.def(
+      "fixed_end_compliance",
+      [](double EI, double shear_compliance, double l, double a) {
+        const ElementCompliance g = fixed_end_compliance(EI, shear_compliance, l, a);
+        return py::make_tuple(g.G, g.Ga, g.Gaa);
+      },
+      py::arg("EI"), py::arg("shear_compliance"), py::arg("l"), py::arg("a"),
+      "The element's clamped-clamped compliance under a point load at a in [0, l]: (G [m/N], "
+      "dG/da, d2G/da2); shear_compliance = 1/kGA [1/N], 0 for Euler-Bernoulli");
+  m.def(
+      "series_contact",
+      [](ContactLaw law, double stiffness, double G, double delta) {
+        const SeriesForce f = series_normal_force(law, stiffness, G, delta);
+        return py::make_tuple(f.N, f.slope, f.compression,
+                              series_potential(law, stiffness, G, delta));
+      },
+      py::arg("law"), py::arg("stiffness"), py::arg("G"), py::arg("delta"),
+      "The contact law in series with a compliance G [m/N] at the approach delta [m]: (N [N], "
+      "dN/d(delta) [N/m], the law's compression [m], the stored energy [J])");
   m.def(
       "receptance",
       [](const RailModel& rail, const BeamParams& beam, double x, const std::vector<double>& xr,
@@ -633,6 +697,50 @@ PYBIND11_MODULE(_core, m) {
       py::arg("positions"), py::arg("n_modes"),
       "Linear-track modes: (frequencies (n_pos, n_modes) [Hz], shapes per position (ny + 1, "
       "n_modes) over the y coordinates then the wheel)");
+
+  // ---------------------------------------------------------------- periodic track
+  py::class_<PeriodicTrackParams>(m, "PeriodicTrackParams")
+      .def(py::init<>())
+      .def_readwrite("bay", &PeriodicTrackParams::bay, "d, support spacing [m]")
+      .def_readwrite("EI", &PeriodicTrackParams::EI, "bending stiffness [N m^2]")
+      .def_readwrite("mass", &PeriodicTrackParams::mass, "rho A [kg/m]")
+      .def_readwrite("shear", &PeriodicTrackParams::shear, "kappa G A [N]; 0: Euler-Bernoulli")
+      .def_readwrite("rotary", &PeriodicTrackParams::rotary, "rho I [kg m]")
+      .def_readwrite("pad_stiffness", &PeriodicTrackParams::pad_stiffness, "k_s or k_p [N/m]")
+      .def_readwrite("pad_damping", &PeriodicTrackParams::pad_damping, "c_s or c_p [N s/m]")
+      .def_readwrite("sleeper_mass", &PeriodicTrackParams::sleeper_mass, "m_s [kg]; 0: single")
+      .def_readwrite("ballast_stiffness", &PeriodicTrackParams::ballast_stiffness, "k_b [N/m]")
+      .def_readwrite("ballast_damping", &PeriodicTrackParams::ballast_damping, "c_b [N s/m]");
+  m.def(
+      "periodic_receptance_matrix",
+      [](const PeriodicTrackParams& track, double speed, double omega, int n,
+         const std::vector<double>& offsets, double rtol, bool with_stats) -> py::object {
+        std::vector<Eigen::MatrixXcd> a;
+        PeriodicStats st;
+        {
+          py::gil_scoped_release nogil;
+          a = periodic_receptance_matrix(track, speed, omega, n, offsets, rtol, &st);
+        }
+        const py::ssize_t M = 2 * n + 1, no = static_cast<py::ssize_t>(a.size());
+        py::array_t<std::complex<double>> out({no, M, M});
+        auto r = out.mutable_unchecked<3>();
+        for (py::ssize_t j = 0; j < no; ++j)
+          for (py::ssize_t p = 0; p < M; ++p)
+            for (py::ssize_t q = 0; q < M; ++q) r(j, p, q) = a[j](p, q);
+        if (!with_stats) return out;
+        py::dict d;
+        d["points"] = st.points;
+        d["poles"] = st.poles;
+        d["rounds"] = st.rounds;
+        d["den_evaluations"] = st.den_evaluations;
+        return py::make_tuple(out, d);
+      },
+      py::arg("track"), py::arg("speed"), py::arg("omega"), py::arg("n"), py::arg("offsets"),
+      py::arg("rtol"), py::arg("stats") = false,
+      "Moving-load receptance matrices (n_offsets, 2n+1, 2n+1) [m/N] of the periodic track; "
+      "with stats=True also the work counts {points, poles, rounds, den_evaluations}");
+  m.def("periodic_lattice_sum", &periodic_lattice_sum, py::arg("track"), py::arg("k"), py::arg("w"),
+        "The lattice sum S(k, w) [m/N] of the periodic track");
 
   // ---------------------------------------------------------------- dynamics
   py::enum_<Integrator>(m, "Integrator")
@@ -694,7 +802,7 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const DivergenceError& e) {
-      py::object cls = py::module_::import("trackwheel._errors").attr("DivergenceError");
+      py::object cls = py::module_::import("trackwheel").attr("DivergenceError");
       py::object exc = cls(e.what(), e.time, e.step, e.cause);
       PyErr_SetObject(cls.ptr(), exc.ptr());
     }
@@ -705,6 +813,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("MAX_DENSE_EIGEN_DOF") = limits::kMaxDenseEigenDof;
   m.attr("GAUSS_RANGE") = py::make_tuple(limits::kMinGauss, limits::kMaxGauss);
   m.attr("MAX_SPEED") = limits::kMaxSpeed;
+  m.attr("MAX_SUPPORTS") = limits::kMaxSupports;
 
   m.def(
       "simulate",

@@ -61,13 +61,15 @@ void FullStepper::record_sample(double t) {
     rec.push(Field::theta, ws.theta);
     rec.push(Field::thetadot, ws.thetadot);
     rec.push(Field::contact_s, pt.s + sys_.origin());  // X of the contact point
-    rec.push(Field::y_contact, pt.r.y());
+    // the rail under the load: the element's own deflection (element compliance) included
+    rec.push(Field::y_contact, pt.r.y() - we.cf.deflection * pt.n.y());
     rec.push(Field::normal_force, we.cf.N);
     rec.push(Field::tangential_force, lambda);
     rec.push(Field::slip, we.rk.g);
     rec.push(Field::slip_state, static_cast<int>(ws.state));
-    rec.push(Field::penetration, we.cf.delta);
-    rec.push(Field::v_error, v != 0.0 ? (v - pt.rho * ws.thetadot) / v * 100.0 : 0.0);
+    rec.push(Field::penetration, we.cf.compression);
+    // the rolling radius (rho + G N_e with the element compliance: rk.b(10) = -rho_r)
+    rec.push(Field::v_error, v != 0.0 ? (v + we.rk.b(10) * ws.thetadot) / v * 100.0 : 0.0);
     // obliquity phi = atan2(y_s, x_s), its slope along s and its rate at fixed s
     Eigen::Vector2d Se_dd = Eigen::Vector2d::Zero(), Ssedot = Eigen::Vector2d::Zero();
     for (int a = 0; a < 4; ++a) {

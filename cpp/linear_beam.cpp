@@ -154,10 +154,26 @@ double timoshenko_energy(double EI, double kGA, double l, const Eigen::Vector4d&
   return U;
 }
 
+ElementCompliance fixed_end_compliance(double EI, double shear_compliance, double l, double a) {
+  a = std::min(std::max(a, 0.0), l);
+  const double cs = shear_compliance, l3 = l * l * l;
+  const double mu = 1.0 / (1.0 + 12.0 * EI * cs / (l * l));  // 1 / (1 + phi)
+  const double p = a * (l - a), pa = l - 2.0 * a;            // p and dp/da (d2p/da2 = -2)
+  // G(p) = c3 p^3 + c2 p^2 + c1 p
+  const double c3 = mu / (3.0 * EI * l3), c2 = cs * mu / l3, c1 = cs / l;
+  const double Gp = (3.0 * c3 * p + 2.0 * c2) * p + c1, Gpp = 6.0 * c3 * p + 2.0 * c2;
+  ElementCompliance g;
+  g.G = ((c3 * p + c2) * p + c1) * p;
+  g.Ga = Gp * pa;
+  g.Gaa = Gpp * pa * pa - 2.0 * Gp;
+  return g;
+}
+
 BeamPoint beam_point(const RailModel& rail, const BeamParams& beam, double X) {
   const MeshPoint mp = rail.locate(X);
   BeamPoint bp;
   bp.element = mp.element;
+  bp.xi = mp.xi;
   if (!beam.timoshenko()) {
     std::copy(mp.h.n, mp.h.n + 4, bp.n);
     std::copy(mp.h.ns, mp.h.ns + 4, bp.ns);

@@ -45,9 +45,30 @@ Eigen::Matrix4d timoshenko_mass(double rhoA, double rhoI, double EI, double kGA,
 // Element strain energy U(q) = 1/2 int (EI psi'^2 + kGA (w' - psi)^2) dx [J] (4-point Gauss).
 double timoshenko_energy(double EI, double kGA, double l, const Eigen::Vector4d& q);
 
+// The element's own compliance under a point load between its nodes (docs: Model § Contact,
+// "The rail under the load between nodes"). The element's w functions are exact homogeneous
+// static solutions (IIE; the Hermite cubics for Euler-Bernoulli), so under the work-equivalent
+// nodal loads S(a)^T P of a point load P at a in [0, l] the nodal values are exact, and the
+// exact deflection under the load is the interpolation plus the element's clamped-clamped
+// (fixed-end) Green's function at the load point, G(a) P: condensing the exact stiffness of
+// the two parts of lengths a and b = l - a at the load point gives, with p = a b and
+// phi = 12 EI c_s / l^2 (c_s = 1 / kGA the shear compliance, 0 for Euler-Bernoulli),
+//   G(a) = p^3 / (3 EI l^3 (1 + phi)) + c_s p^2 / (l^3 (1 + phi)) + c_s p / l     [m/N],
+// l^3/(192 EI) + l/(4 kGA) at mid-element, 0 at the nodes; c_s = 0 leaves the Euler-Bernoulli
+// a^3 b^3 / (3 EI l^3).
+struct ElementCompliance {
+  double G = 0.0;    // G(a) [m/N]
+  double Ga = 0.0;   // dG/da [1/N]
+  double Gaa = 0.0;  // d2G/da2 [1/(N m)]
+};
+// EI [N m^2], shear_compliance c_s = 1/kGA [1/N] (0: Euler-Bernoulli), element length l [m],
+// load position a in [0, l] [m] (clamped to it).
+ElementCompliance fixed_end_compliance(double EI, double shear_compliance, double l, double a);
+
 // Where X lies on the linear beam: element and the w shape functions (and x-derivatives).
 struct BeamPoint {
   int element = 0;
+  double xi = 0.0;             // local coordinate in [0, 1]
   double n[4], ns[4], nss[4];  // [-, m, 1/m, -, ...]: w(X) = sum n[a] q_a of the element
 };
 BeamPoint beam_point(const RailModel& rail, const BeamParams& beam, double X);

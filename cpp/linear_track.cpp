@@ -38,6 +38,9 @@ struct LinearWheel {
   Eigen::MatrixXd W;  // A^-1 of the four y basis vectors of the element (cached)
   Eigen::VectorXd Z;  // A^-1 s(X)
   int cache_el = -1;
+  // the element's fixed-end compliance under the load at X_A (zero unless
+  // ContactParams::element_compliance; contact.hpp)
+  ElementCompliance g;
   double Y = 0.0, Yd = 0.0, Ydd = 0.0, aY = 0.0, N = 0.0;
 };
 
@@ -73,6 +76,9 @@ class LinearStepper : public Stepper {
   ContactLaw law() const {
     return opt_.wheel_model == WheelModel::Sprung ? ContactLaw::Linear : ContactLaw::Hertz;
   }
+  // The element's fixed-end compliance at the rail coordinate s (zero without
+  // ContactParams::element_compliance): the law acts in series with it (contact.hpp).
+  ElementCompliance compliance_at(double s) const;
   // The running surfaces' excitation of wheel w at t: e = r(X_A) + Delta rho(psi), the
   // profile under the wheel centre plus the out-of-roundness at psi = theta = v t / rho0 (the
   // linear path rolls without slip) [m], and its rate [m/s].
@@ -166,13 +172,27 @@ double LinearStepper::excitation(int w, double t, double& rate) const {
   return r.r + d.r;
 }
 
+ElementCompliance LinearStepper::compliance_at(double s) const {
+  if (!model_.contact.element_compliance) return ElementCompliance();
+  const double cs = opt_.beam.timoshenko() ? 1.0 / opt_.beam.shear_stiffness : 0.0;
+  const double l = model_.rail.element_length();
+  return fixed_end_compliance(model_.rail.params().EI, cs, l, tr_.point(s).xi * l);
+}
+
 double LinearStepper::contact_force(int w, double t, double& dN) const {
   const LinearWheel& lw = wh_[w];
   const WheelParams& p = model_.wheels[w];
   double rate;
   const double e = excitation(w, t, rate);
   const double delta = p.radius + e - lw.Y + lw.s.dot(q_);
-  const double Ne = elastic_normal_force(law(), model_.contact.stiffness, delta, dN);
+  double Ne;
+  if (model_.contact.element_compliance) {
+    const SeriesForce sf = series_normal_force(law(), model_.contact.stiffness, lw.g.G, delta);
+    Ne = sf.N;
+    dN = sf.slope;
+  } else {
+    Ne = elastic_normal_force(law(), model_.contact.stiffness, delta, dN);
+  }
   const double c = model_.contact.damping;
   if (c == 0.0) return Ne;
   const double delta_dot = rate - lw.Yd + lw.s.dot(qd_) + set_.speed * lw.ss.dot(q_);
@@ -202,6 +222,7 @@ void LinearStepper::initial_state() {
   q_ = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
     tr_.coupling(Xl(w, 0.0), wh_[w].s, wh_[w].ss, wh_[w].sss);
+    wh_[w].g = compliance_at(Xl(w, 0.0));
     if (!opt_.sudden) q_ -= static_load(w) * wh_[w].s;
   }
   z_ = Eigen::VectorXd::Zero(ns);
@@ -216,7 +237,14 @@ void LinearStepper::initial_state() {
     LinearWheel& lw = wh_[w];
     const WheelParams& p = model_.wheels[w];
     const double P = static_load(w), k = model_.contact.stiffness;
-    const double compression = rigid() || opt_.sudden ? 0.0 : static_compression(law(), k, P);
+    // the approach under P: the law's compression, the element's own deflection G P in series
+    // (rigid contact: G P alone)
+    double compression = 0.0;
+    if (!opt_.sudden)
+      compression = rigid() ? (opt_.wheel_model == WheelModel::MovingMass ? lw.g.G * P : 0.0)
+                    : model_.contact.element_compliance
+                        ? series_static_approach(law(), k, lw.g.G, P)
+                        : static_compression(law(), k, P);
     double rate;
     const double e = opt_.wheel_model == WheelModel::MovingForce ? 0.0 : excitation(w, 0.0, rate);
     lw.Y = lw.s.dot(q_) + p.radius + e + opt_.drop_height - compression;
@@ -263,6 +291,7 @@ void LinearStepper::couple(double t1) {
     LinearWheel& lw = wh_[w];
     const double X1 = Xl(w, t1);
     tr_.coupling(X1, lw.s, lw.ss, lw.sss);
+    lw.g = compliance_at(X1);
     const BeamPoint bp = tr_.point(X1);
     if (bp.element != lw.cache_el) {
       for (int k = 0; k < 4; ++k) {
@@ -296,11 +325,14 @@ void LinearStepper::border(int w, double t, double cq, double cv, Eigen::Matrix2
     case WheelModel::MovingMass: {
       double rate;
       const double e = excitation(w, t, rate);
+      // Y_A = y(X_A) + rho0 + e - G N: the rail under the load, the element's own deflection
+      // included (G = 0 without element compliance)
       r2(0) = -(p.mass * lw.Ydd - lw.N + P);
-      r2(1) = -(lw.Y - lw.s.dot(q_) - p.radius - e) / cq;
+      r2(1) = -(lw.Y - lw.s.dot(q_) - p.radius - e + lw.g.G * lw.N) / cq;
       D(0, 0) = p.mass;
       D(0, 1) = -1.0;
       D(1, 0) = 1.0;
+      D(1, 1) = lw.g.G / cq;
       lw.cs = -1.0;
       lw.css = 0.0;
       break;
@@ -606,7 +638,19 @@ void LinearStepper::record_sample(double t) {
     const LinearWheel& lw = wh_[w];
     const double r0 = model_.wheels[w].radius, Xw = X(w, t);
     tr_.coupling(Xw - origin_, s, ss, sss);
-    const double yc = s.dot(q_), ys = ss.dot(q_), yss = sss.dot(q_), yst = ss.dot(qd_);
+    const ElementCompliance g = compliance_at(Xw - origin_);
+    const double ys = ss.dot(q_), yss = sss.dot(q_), yst = ss.dot(qd_);
+    double rate;
+    // approach, and the law's compression and force in series with the element's compliance
+    delta[w] = rigid() ? 0.0 : r0 + excitation(w, t, rate) - lw.Y + s.dot(q_);
+    double compression = delta[w], Ne = lw.N;
+    if (!rigid() && model_.contact.element_compliance) {
+      const SeriesForce sf = series_normal_force(law(), model_.contact.stiffness, g.G, delta[w]);
+      compression = sf.compression;
+      Ne = sf.N;
+    }
+    // the rail under the load: the element's own deflection G N_e included
+    const double yc = s.dot(q_) - g.G * Ne;
     rec.push(Field::x_wheel, Xw);
     rec.push(Field::y_wheel, lw.Y);
     rec.push(Field::ydot_wheel, lw.Yd);
@@ -618,15 +662,13 @@ void LinearStepper::record_sample(double t) {
     rec.push(Field::tangential_force, 0.0);
     rec.push(Field::slip, 0.0);
     rec.push(Field::v_error, 0.0);
-    const double phi = std::atan(ys), g = 1.0 + ys * ys;
-    const double phi_s = yss / g, phi_t = yst / g;
-    double rate;
-    delta[w] = rigid() ? 0.0 : r0 + excitation(w, t, rate) - lw.Y + yc;
+    const double phi = std::atan(ys), gg = 1.0 + ys * ys;
+    const double phi_s = yss / gg, phi_t = yst / gg;
     rec.push(Field::phi, phi);
     record_acc_terms(rec, (r0 - delta[w]) * std::cos(phi), v / r0, v, phi_s, phi_t);
     rec.push(Field::acc_contact, s.dot(qdd_) + 2.0 * v * ss.dot(qd_) + v * v * yss);
     rec.push(Field::reaction, 0.0);
-    rec.push(Field::penetration, delta[w]);
+    rec.push(Field::penetration, compression);
     rec.push(Field::slip_state, lw.N > 0.0 ? 1 : 0);
   }
   for (int b = 0; b < nb_; ++b) rec.push_body(zb_(2 * b), zb_(2 * b + 1));
@@ -640,7 +682,13 @@ void LinearStepper::record_sample(double t) {
     const WheelParams& p = model_.wheels[w];
     E += 0.5 * p.mass * wh_[w].Yd * wh_[w].Yd;
     E += p.total_load() * wh_[w].Y;
-    if (!rigid()) E += contact_potential(law(), model_.contact.stiffness, delta[w]);
+    if (!rigid())
+      E += model_.contact.element_compliance
+               ? series_potential(law(), model_.contact.stiffness,
+                                  compliance_at(X(w, t) - origin_).G, delta[w])
+               : contact_potential(law(), model_.contact.stiffness, delta[w]);
+    else if (opt_.wheel_model == WheelModel::MovingMass && model_.contact.element_compliance)
+      E += 0.5 * compliance_at(X(w, t) - origin_).G * wh_[w].N * wh_[w].N;  // the element's
   }
   if (nb_ > 0) {
     Eigen::VectorXd u(nw_ + 2 * nb_), ud(nw_ + 2 * nb_);
@@ -687,7 +735,8 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
 }
 
 Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam, double load,
-                                   const std::vector<double>& x, int n_modes) {
+                                   const std::vector<double>& x, int n_modes,
+                                   bool element_compliance) {
   const LinearTrack tr(rail, n_modes, beam);
   Sleepers sl(rail);
   if (!sl.empty() && tr.modal)
@@ -708,6 +757,12 @@ Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam
     Eigen::VectorXd u = s;  // K^-1 s: the track under a unit upward load at X_i
     K.solve_in_place(u);
     y(static_cast<Eigen::Index>(i)) = s.dot(q_rail) - load * s.dot(u);
+    if (element_compliance) {  // the element's own deflection under the load
+      const double l = rail.element_length(), xi = tr.point(x[i]).xi;
+      const double cs = beam.timoshenko() ? 1.0 / beam.shear_stiffness : 0.0;
+      y(static_cast<Eigen::Index>(i)) -=
+          load * fixed_end_compliance(rail.params().EI, cs, l, xi * l).G;
+    }
   }
   return y;
 }

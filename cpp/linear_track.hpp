@@ -47,7 +47,10 @@ SimOutput simulate_linear(const Model& model, const SimSettings& settings,
 // load P [N] resting at X_i, for each X_i, from the track's own statics K q = Q_g - P s(X)
 // (so a linear run starts on it, whatever its contact law: at rest N = P), sleepers condensed at
 // rest. n_modes as in LinearOptions. One band factorisation, then one band solve per position.
+// element_compliance: the element's own deflection under the load, G(X) P, included (as the
+// linear path's y_contact with ContactParams::element_compliance; contact.hpp).
 Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam, double load,
-                                   const std::vector<double>& x, int n_modes);
+                                   const std::vector<double>& x, int n_modes,
+                                   bool element_compliance = false);
 
 }  // namespace trackwheel

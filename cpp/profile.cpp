@@ -22,12 +22,13 @@ void check_coefficients(const std::vector<double>& coefs) {
     if (!std::isfinite(c)) throw std::invalid_argument("profile coefficients must be finite");
 }
 
-// r, r', r'' of the cubic c (c3, c2, c1, c0) at u = X - X_i
+// r, r', r'', r''' of the cubic c (c3, c2, c1, c0) at u = X - X_i
 ProfileValue cubic(const double* c, double u) {
   ProfileValue v;
   v.r = ((c[0] * u + c[1]) * u + c[2]) * u + c[3];
   v.rx = (3.0 * c[0] * u + 2.0 * c[1]) * u + c[2];
   v.rxx = 6.0 * c[0] * u + 2.0 * c[1];
+  v.rxxx = 6.0 * c[0];
   return v;
 }
 
@@ -170,7 +171,7 @@ ProfileValue Profile::operator()(double x) const {
   if (i > m - 1) i = m - 1;
   const double u = before ? 0.0 : beyond ? dx_ : x - (x0_ + i * dx_);
   ProfileValue v = s_ ? stream_value(i, u, x) : cubic(c_->data() + 4 * i, u);
-  if (before || beyond) v.rx = v.rxx = 0.0;  // flat continuation
+  if (before || beyond) v.rx = v.rxx = v.rxxx = 0.0;  // flat continuation
   return v;
 }
 

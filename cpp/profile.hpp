@@ -29,9 +29,10 @@
 namespace trackwheel {
 
 struct ProfileValue {
-  double r = 0.0;    // height [m]
-  double rx = 0.0;   // dr/dX [-]
-  double rxx = 0.0;  // d2r/dX2 [1/m]
+  double r = 0.0;     // height [m]
+  double rx = 0.0;    // dr/dX [-]
+  double rxx = 0.0;   // d2r/dX2 [1/m]
+  double rxxx = 0.0;  // d3r/dX3 [1/m^2] (piecewise constant)
 };
 
 class Profile {

@@ -53,6 +53,9 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   require(std::isfinite(p_.absorbing_damping) && p_.absorbing_damping >= 0,
           "absorbing_damping must be >= 0 N s/m^2");
   const size_t ns = sup_.position.size();
+  require(
+      ns <= static_cast<size_t>(limits::kMaxSupports),
+      "at most " + std::to_string(limits::kMaxSupports) + " supports, got " + std::to_string(ns));
   require(sup_.stiffness.size() == ns && sup_.damping.size() == ns,
           "support position, stiffness and damping must have the same length");
   for (size_t j = 0; j < ns; ++j) {

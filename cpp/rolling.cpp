@@ -21,6 +21,11 @@ Vec10 contact_parameter_gradient(const ContactPoint& pt) {
 
 RollingKinematics rolling_kinematics(const ContactPoint& pt, const Vec10& grad_rho,
                                      const Vec10& qdot, double thetadot, bool want_jacobian) {
+  return rolling_kinematics(pt, pt.rho, grad_rho, qdot, thetadot, want_jacobian);
+}
+
+RollingKinematics rolling_kinematics(const ContactPoint& pt, double rho, const Vec10& grad_rho,
+                                     const Vec10& qdot, double thetadot, bool want_jacobian) {
   RollingKinematics k;
   const Eigen::Vector2d& t = pt.t;
   // T(s*) edot and T_s(s*) edot
@@ -36,12 +41,12 @@ RollingKinematics rolling_kinematics(const ContactPoint& pt, const Vec10& grad_r
     Sse.y() += R.rxx * pt.rs.x() * xdot + R.rx * xsdot;
   }
   const Eigen::Vector2d u = qdot.head<2>() - Se;
-  k.g = t.dot(u) - pt.rho * thetadot;
+  k.g = t.dot(u) - rho * thetadot;
   k.b.head<2>() = t;
   for (int a = 0; a < 4; ++a) k.b.segment<2>(2 + 2 * a) = -pt.mp.h.n[a] * t;
   if (pt.lifted)
     for (int a = 0; a < 4; ++a) k.b(2 + 2 * a) -= R.rx * pt.mp.h.n[a] * t.y();
-  k.b(10) = -pt.rho;
+  k.b(10) = -rho;
   k.ds_dq = contact_parameter_gradient(pt);
   k.s_dot = k.ds_dq.dot(qdot);
   if (!want_jacobian) return k;

@@ -31,8 +31,15 @@ struct RollingKinematics {
   double s_dot = 0.0;  // ds*/dt [m/s]
 };
 
-// qdot = [V_A(2), edot_el(8)], thetadot [rad/s]; grad_rho = d rho/dq.
+// qdot = [V_A(2), edot_el(8)], thetadot [rad/s]; grad_rho = d rho/dq. The rolling radius is
+// rho = |R_A - p(s*)|.
 RollingKinematics rolling_kinematics(const ContactPoint& pt, const Vec10& grad_rho,
                                      const Vec10& qdot, double thetadot, bool want_jacobian);
+// The same with the rolling radius rho_r [m] and its gradient d rho_r/dq given: with the
+// element compliance (contact.hpp) the distance from the wheel centre to the rail under the
+// load, rho + G N_e = rho0 - delta_c, not to the interpolated rail.
+RollingKinematics rolling_kinematics(const ContactPoint& pt, double rolling_radius,
+                                     const Vec10& grad_rolling_radius, const Vec10& qdot,
+                                     double thetadot, bool want_jacobian);
 
 }  // namespace trackwheel

@@ -122,8 +122,8 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
         const ContactPoint pt =
             find_contact_point(rail, e, Eigen::Vector2d(xs[w], ys[w]), s_guess[w]);
         res[w].contact_s = pt.s;
-        res[w].y_contact = pt.r.y();
         const ContactForce cf = contact_force(cw, pt, Vec10::Zero(), false);
+        res[w].y_contact = pt.r.y() - cf.deflection * pt.n.y();
         res[w].normal_force = cf.N;
         res[w].horizontal_reaction = -cf.F(0);
       }

@@ -59,7 +59,16 @@ void System::contact_terms(const SimState& st, bool jac, Eval& ev) const {
     ContactParams c = model_.contact_of(w);
     c.radius += we.drho.r;
     we.cf = contact_force(c, we.pt, qdot, jac, we.drho.rx * st.wheels[w].thetadot);
-    we.rk = rolling_kinematics(we.pt, we.cf.grad_rho, qdot, st.wheels[w].thetadot, jac);
+    if (we.cf.compliant) {
+      // the wheel rolls on the rail under the load: rho_r = rho + G N_e = rho0 - delta_c
+      we.rk = rolling_kinematics(we.pt, we.pt.rho + we.cf.deflection,
+                                 we.cf.grad_rho + we.cf.ddeflection_dq, qdot, st.wheels[w].thetadot,
+                                 jac);
+      we.drolling_dtheta = we.pt.compliance.G * we.cf.dN_ddelta * we.drho.rx;
+    } else {
+      we.rk = rolling_kinematics(we.pt, we.cf.grad_rho, qdot, st.wheels[w].thetadot, jac);
+      we.drolling_dtheta = 0.0;
+    }
   }
 }
 
@@ -155,6 +164,9 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     qdot(1) = st.wheels[w].ydot;
     qdot.tail<8>() = st.edot.segment<8>(d0);
     r2(o + kLambda) = -we.rk.dg_dq.dot(qdot) - set_.baumgarte * we.rk.g;
+    // dg/dtheta theta' = -theta'^2 d rho_r/d theta (compliance and out-of-roundness)
+    const double thd = st.wheels[w].thetadot;
+    if (we.drolling_dtheta != 0.0) r2(o + kLambda) += thd * thd * we.drolling_dtheta;
   }
   lock_theta_rows(st, &r2);
   if (nb_ > 0) {
@@ -286,12 +298,17 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
   int g[11];
   for (int a = 0; a <= 10; ++a) g[a] = glob(a);
   add_out_of_round_block(we, g, o, cq, cv);
+  // the torque -rho_r lambda and g's -rho_r theta' through rho_r(theta) (compliance and
+  // out-of-roundness)
+  const double drt = we.drolling_dtheta;
+  if (drt != 0.0) add_entry(o + kTheta, o + kTheta, lambda * drt * cq);
   if (sticking(set_.rolling, ws, we)) {
     // row: (cq dg/dq + cv b) / cv
     for (int c = 1; c <= 10; ++c) {
       const double v = (c <= 9 ? cq * we.rk.dg_dq(c) : 0.0) / cv + we.rk.b(c);
       add_entry(o + kLambda, glob(c), v);
     }
+    if (drt != 0.0) add_entry(o + kLambda, o + kTheta, -cq * ws.thetadot * drt / cv);
     return;
   }
   Db_(o - nf_ + kLambda, o - nf_ + kLambda) = 1.0;
@@ -300,7 +317,13 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
     // dN/dtheta = dNe dDelta rho/dpsi, dN/dthetadot = c dDelta rho/dpsi
     const double sm = ws.sigma * model_.contact.friction;
     const double dn = we.cf.dN_ddelta * cq + model_.contact.damping * cv;
-    for (int c = 1; c <= 9; ++c) add_entry(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
+    if (we.cf.compliant) {  // dN_e/dq = -k_t u (contact.hpp), not along grad_rho
+      const double cc = model_.contact.damping * cv;
+      for (int c = 1; c <= 9; ++c)
+        add_entry(o + kLambda, glob(c), sm * (cc * we.cf.grad_rho(c) - cq * we.cf.dNe_dq(c)));
+    } else {
+      for (int c = 1; c <= 9; ++c) add_entry(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
+    }
     add_entry(o + kLambda, o + kTheta, -sm * we.drho.rx * dn);
   }
 }
@@ -316,8 +339,11 @@ void System::add_out_of_round_block(const WheelEval& we, const int* g, int o, do
   const double dNe = we.cf.dN_ddelta, c = model_.contact.damping;
   const double dn = dNe * cq + c * cv;
   for (int a = 1; a <= 9; ++a) {
-    add_entry(g[a], o + kTheta, -we.cf.grad_rho(a) * d1 * dn);
-    add_entry(o + kTheta, g[a], -we.cf.grad_rho(a) * d1 * dn);
+    // d1 dN/dq'' (the element compliance's N_e depends on q along u, contact.hpp)
+    const double v = we.cf.compliant ? d1 * (cq * we.cf.dNe_dq(a) - c * cv * we.cf.grad_rho(a))
+                                     : -we.cf.grad_rho(a) * d1 * dn;
+    add_entry(g[a], o + kTheta, v);
+    add_entry(o + kTheta, g[a], v);
   }
   add_entry(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
 }
@@ -411,8 +437,9 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev) {
     E += sl.energy(st.e, identity, st.z, st.zdot);
   }
   for (int w = 0; w < model.n_wheels(); ++w)
-    E += contact_potential(model.contact.law, model.contact.stiffness,
-                           std::max(ev.w[w].cf.delta, 0.0));
+    E += ev.w[w].cf.compliant ? ev.w[w].cf.energy
+                              : contact_potential(model.contact.law, model.contact.stiffness,
+                                                  std::max(ev.w[w].cf.delta, 0.0));
   E -= rail.gravity_force().dot(st.e - rail.reference());
   for (int w = 0; w < model.n_wheels(); ++w) {
     E += model.wheels[w].total_load() * st.wheels[w].y;

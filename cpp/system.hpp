@@ -37,6 +37,9 @@ struct WheelEval {
   ContactPoint pt;
   ContactForce cf;
   RollingKinematics rk;
+  // d rho_r/d theta of the rolling radius rho_r = rho + G N_e (element compliance with an
+  // out-of-round wheel: N_e depends on theta through the radius; else 0) [m/rad]
+  double drolling_dtheta = 0.0;
 };
 
 // Everything evaluated at one (t, state).

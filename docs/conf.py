@@ -11,12 +11,14 @@ render their equations without a network.
 import importlib.util
 import re
 import shutil
+import sys
 from pathlib import Path
 
 import trackwheel
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
+sys.path.insert(0, str(DOCS / "_ext"))  # the project's own extensions (docs/_ext)
 
 project = "trackwheel"
 author = "the trackwheel developers"
@@ -27,6 +29,9 @@ version = release
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.napoleon",
+    "tw_text",  # napoleon without its attribute-type split; --options kept as code
+    "tw_validation",  # the Validation page's table from docs/validation.json
+    "tw_gallery",  # the landing page's notebook gallery, figures from the stored outputs
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "myst_nb",
@@ -44,7 +49,8 @@ for _nb in sorted(_NB_SRC.glob("*.ipynb")):
     if not _target.exists() or _target.read_bytes() != _nb.read_bytes():
         shutil.copy2(_nb, _target)
 
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**.ipynb_checkpoints"]
+exclude_patterns = ["_build", "_generated", "_scripts", "Thumbs.db", ".DS_Store",
+                    "**.ipynb_checkpoints"]
 
 # notebooks are shown as stored, never executed by the docs build
 nb_execution_mode = "off"
@@ -81,12 +87,16 @@ html_theme_options = {
     "header_links_before_dropdown": 5,
     "show_toc_level": 2,
     "navbar_end": ["navbar-icon-links"],
-    "secondary_sidebar_items": ["page-toc"],
+    # no "On this page" column beside the wide Validation table
+    "secondary_sidebar_items": {"**": ["page-toc"], "validation": []},
 }
 html_show_sourcelink = False
-# no empty "Section Navigation" column on the top-level pages (they have no sub-pages); the
-# notebooks keep it, to move between them
-html_sidebars = {"*": []}
+html_static_path = ["_static"]
+html_css_files = ["trackwheel.css"]
+# no empty "Section Navigation" column on the top-level pages (they have no sub-pages), and none
+# on the user guide's pages either, whose code lines need the width (the guide's index lists its
+# pages, and each page links the next); the notebooks keep it, to move between them
+html_sidebars = {"*": [], "guide/*": []}
 
 
 def _copy_mathjax(app, exception):

@@ -98,11 +98,11 @@ CON = "cpp/contact.cpp"
 ROLL = "cpp/rolling.cpp"
 RAIL = "cpp/rail.cpp"
 EIG = "cpp/eigen_analysis.cpp"
-ANA = "python/trackwheel/analysis.py"
+ANA = "python/trackwheel/study/analysis.py"
 SHEAR = "cpp/ancf_shear.cpp"
-SCENE = "python/trackwheel/scene.py"
+SCENE = "python/trackwheel/scene/window.py"
 VEH = "cpp/vehicle.cpp"
-VEHPY = "python/trackwheel/vehicle.py"
+VEHPY = "python/trackwheel/scene/vehicle.py"
 
 #: The mutations. Keep the old texts short and specific: they must be unique in their file. The
 #: kernel's shared pieces (contact law, generalized-alpha coefficients, time loop) are mutated
@@ -150,7 +150,9 @@ MUTANTS: list[Mutant] = [
       "Hertz law N ~ delta^(4/3) instead of delta^(3/2) (force only, both paths)"),
     M("contact-damping-sign", CON, "Ne + cp.damping * delta_dot", "Ne - cp.damping * delta_dot",
       "contact damper pushes the wrong way"),
-    M("contact-damping-jacobian", CON, "out.C = cp.damping *", "out.C = 0.5 * cp.damping *",
+    M("contact-damping-jacobian", CON,
+      "dNe * out.grad_rho * out.grad_rho.transpose();\n    out.C = cp.damping *",
+      "dNe * out.grad_rho * out.grad_rho.transpose();\n    out.C = 0.5 * cp.damping *",
       "contact damping matrix half the damping"),
     M("contact-hessian", CON, "+ (pt.rho / fs) * w * w.transpose()", "",
       "distance Hessian without the contact-point motion term"),
@@ -160,8 +162,8 @@ MUTANTS: list[Mutant] = [
       "-= 0.0 * pt.profile.rxx",
       "distance Hessian without the profile's curvature term r''(x) S_x S_x^T"),
     # --- rolling constraint and slip
-    M("rolling-radius", ROLL, "k.g = t.dot(u) - pt.rho * thetadot;",
-      "k.g = t.dot(u) - (pt.rho + 1e-4) * thetadot;",
+    M("rolling-radius", ROLL, "k.g = t.dot(u) - rho * thetadot;",
+      "k.g = t.dot(u) - (rho + 1e-4) * thetadot;",
       "rolling radius 0.1 mm too large in the constraint (undeformed instead of deformed)"),
     M("slide-force-sign", SLIP, "return ws.sigma * friction * ev.cf.N;",
       "return -ws.sigma * friction * ev.cf.N;",
@@ -236,8 +238,8 @@ MUTANTS: list[Mutant] = [
       "absorbing end zones without their axial dampers"),
     M("window-default-zones", SCENE, "absorbing_length: float = 4.8",
       "absorbing_length: float = 0.0", "the travelling window without its default end zones"),
-    M("shear-director-stretch", SHEAR, "const double ft = wl * c.kGA * stretch;",
-      "const double ft = 0.0 * wl * c.kGA * stretch;",
+    M("shear-director-stretch", SHEAR, "const double fm = wl * c.EA * em;",
+      "const double fm = 0.0 * wl * c.EA * em;",
       "shear-deformable element's time-loop force without the director's stretch term (the "
       "director's length free again: near-free axial modes at fine meshes)"),
     # --- the vehicle: suspensions and weight distribution

@@ -14,7 +14,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-PAGES = ["index", "getting-started", "model", "fidelity", "api", "cli", "benchmarks", "development",
+PAGES = ["index", "getting-started", "guide/index", "guide/track", "guide/fidelity",
+         "guide/excitation", "guide/vehicle", "guide/long-runs", "guide/frequency-domain",
+         "model", "validation", "api", "cli", "benchmarks", "development",
          "notebooks/01_eigen", "notebooks/04_speed"]
 
 

@@ -107,7 +107,7 @@ PARTS = {
 
 @pytest.mark.parametrize("part", list(PARTS))
 @pytest.mark.parametrize("i_state", range(len(STATES)))
-def test_elastic_force_is_gradient_of_energy(section, fd, rel, part, i_state):
+def test_elastic_force_is_gradient_of_energy(section, fd, rel, part, i_state, validation):
     fun, exact = PARTS[part]
     c = section(exact=exact)
     e = STATES[i_state]
@@ -115,11 +115,19 @@ def test_elastic_force_is_gradient_of_energy(section, fd, rel, part, i_state):
     Q_fd, tol = fd_with_tolerance(lambda x: fun(c, x)[2], e, H_FD_ENERGY, Q)
     assert tol < TOL_CEILING_ENERGY
     assert rel(Q_fd, Q) < tol
+    if part == "total_exact" and i_state == 3:
+        validation.record(
+            "element.cable_force_is_energy_gradient", level="element", kind="finite differences",
+            quantity="ANCF cable element, exact curvature: elastic force Q of a bent, stretched "
+                     "and rotated element",
+            reference="central differences of the strain energy U (Q = dU/de)",
+            measured=rel(Q_fd, Q), tolerance=tol, metric="relative")
 
 
 @pytest.mark.parametrize("part", list(PARTS))
 @pytest.mark.parametrize("i_state", range(len(STATES)))
-def test_elastic_jacobian_matches_central_differences(section, fd, rel, part, i_state):
+def test_elastic_jacobian_matches_central_differences(section, fd, rel, part, i_state,
+                                                      validation):
     fun, exact = PARTS[part]
     c = section(exact=exact)
     e = STATES[i_state]
@@ -127,6 +135,13 @@ def test_elastic_jacobian_matches_central_differences(section, fd, rel, part, i_
     K_fd, tol = fd_with_tolerance(lambda x: fun(c, x)[0], e, H_FD, K)
     assert tol < TOL_CEILING
     assert rel(K_fd, K) < tol
+    if part == "total_exact" and i_state == 3:
+        validation.record(
+            "element.cable_tangent", level="element", kind="finite differences",
+            quantity="ANCF cable element, exact curvature: tangent stiffness K of a bent, "
+                     "stretched and rotated element",
+            reference="central differences of the elastic force (K = dQ/de)",
+            measured=rel(K_fd, K), tolerance=tol, metric="relative")
     # K is the Hessian of the strain energy: symmetric to round-off
     assert np.linalg.norm(K - K.T) < 1e-12 * np.linalg.norm(K)
 
@@ -195,7 +210,7 @@ def hermite_consistent_mass(m, le):
 
 @pytest.mark.parametrize("exact", [True, False])
 @pytest.mark.parametrize("le", [0.25, 0.1, 1.3])
-def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, le):
+def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, le, validation):
     c = section(length=le, exact=exact)
     Q, K, _ = _core.cable_elastic(c, reference_element(le))
     scale = np.abs(K).max()
@@ -207,15 +222,31 @@ def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, le)
     # stretching in x: the cubic Hermite bar
     np.testing.assert_allclose(K[np.ix_(X_DOFS, X_DOFS)], hermite_bar_stiffness(EA, le),
                                rtol=0, atol=1e-12 * scale)
+    if exact and le == 0.25:
+        gap = max(np.abs(K[np.ix_(Y_DOFS, Y_DOFS)] - hermite_beam_stiffness(EI, le)).max(),
+                  np.abs(K[np.ix_(X_DOFS, X_DOFS)] - hermite_bar_stiffness(EA, le)).max())
+        validation.record(
+            "element.cable_linearised_is_beam_and_bar", level="element", kind="closed form",
+            quantity="ANCF cable element linearised at the straight rail (0.25 m): stiffness",
+            reference="Euler-Bernoulli Hermite beam EI/l³ [12 6l ...] in y and the cubic bar "
+                      "EA/(30 l) [36 3l ...] in x",
+            measured=gap / scale, tolerance=1e-12, metric="of max |K|")
     # no x-y coupling about the straight configuration
     assert np.abs(K[np.ix_(X_DOFS, Y_DOFS)]).max() <= 1e-14 * scale
 
 
 @pytest.mark.parametrize("le", [0.25, 0.1, 1.3])
-def test_mass_matrix_is_consistent_hermite_mass(section, le):
+def test_mass_matrix_is_consistent_hermite_mass(section, le, validation):
     M = _core.cable_mass(section(length=le))
     Mh = hermite_consistent_mass(RHO_A, le)
     np.testing.assert_allclose(M[np.ix_(Y_DOFS, Y_DOFS)], Mh, rtol=0, atol=1e-13 * Mh.max())
+    if le == 0.25:
+        validation.record(
+            "element.cable_mass", level="element", kind="closed form",
+            quantity="ANCF cable element (0.25 m): mass matrix",
+            reference="consistent Hermite mass ρA l/420 [156 22l 54 -13l ...]",
+            measured=np.abs(M[np.ix_(Y_DOFS, Y_DOFS)] - Mh).max() / Mh.max(),
+            tolerance=1e-13, metric="of max |M|")
     np.testing.assert_allclose(M[np.ix_(X_DOFS, X_DOFS)], Mh, rtol=0, atol=1e-13 * Mh.max())
     assert np.abs(M[np.ix_(X_DOFS, Y_DOFS)]).max() == 0.0
     # a rigid translation carries the element mass rho A le

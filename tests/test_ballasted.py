@@ -91,7 +91,7 @@ def layered_band_decay_rates(scene: tw.Scene, per_band: int = 8) -> np.ndarray:
 
 # ------------------------------------------------------------------ pinned-pinned resonance
 
-def test_pinned_pinned_frequency_of_uic60_on_0_6_m_sleepers_is_about_1_khz():
+def test_pinned_pinned_frequency_of_uic60_on_0_6_m_sleepers_is_about_1_khz(validation):
     """Thompson (2009) ch. 3: for UIC60 on sleepers 0.6 m apart the pinned-pinned resonance is
     near 1 kHz; the Euler-Bernoulli formula overestimates it by a third. The Timoshenko root
     (1068 Hz) lies within 10 % of 1 kHz, and the Euler-Bernoulli one (1422 Hz) is 4/3 of it
@@ -104,6 +104,17 @@ def test_pinned_pinned_frequency_of_uic60_on_0_6_m_sleepers_is_about_1_khz():
         (euler_pinned_pinned(rail, d), timoshenko_pinned_pinned(rail, d)), rel=1e-12)
     assert abs(f_t / 1000.0 - 1.0) < 0.10
     assert f_e / f_t == pytest.approx(4.0 / 3.0, rel=0.05)
+    validation.record(
+        "eigen.uic60_pinned_pinned_published", level="eigen analysis", kind="published",
+        quantity="UIC60 on sleepers 0.6 m apart: pinned-pinned frequency with shear",
+        reference="Thompson (2009), Railway Noise and Vibration, ch. 3: near 1 kHz",
+        measured=abs(f_t / 1000.0 - 1.0), tolerance=0.10)
+    validation.record(
+        "eigen.uic60_shear_lowers_pinned_pinned", level="eigen analysis", kind="published",
+        quantity="UIC60 on 0.6 m: Euler-Bernoulli over Timoshenko pinned-pinned frequency",
+        reference="Thompson (2009), ch. 3: the Euler-Bernoulli beam overestimates it by a "
+                  "third (4/3)",
+        measured=abs(f_e / f_t / (4.0 / 3.0) - 1.0), tolerance=0.05)
 
 
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
@@ -137,7 +148,7 @@ def test_decay_rate_dips_at_the_pinned_pinned_frequency(beam):
 
 # ------------------------------------------------------------------ low-frequency receptance
 
-def test_low_frequency_receptance_is_the_beam_on_a_layered_foundation():
+def test_low_frequency_receptance_is_the_beam_on_a_layered_foundation(validation):
     """Below the pad cut-on the discrete pad-sleeper-ballast supports act as their continuous
     smear k_eff(w) per spacing. Tolerances: below 150 Hz (the wave's length 2 pi / Re(beta) > 4 m,
     7 bays) within 0.15 dB and 0.01 rad at mid-span and above a sleeper, which bracket the
@@ -157,6 +168,13 @@ def test_low_frequency_receptance_is_the_beam_on_a_layered_foundation():
         phase = np.angle(a / a_inf)
         assert np.max(np.abs(db[low])) < 0.15 and np.max(np.abs(phase[low])) < 0.01
         assert np.max(np.abs(db)) < 0.6 and np.max(np.abs(phase)) < 0.1
+        if a is mid:
+            validation.record(
+                "frequency.layered_foundation_receptance", level="frequency domain",
+                kind="closed form",
+                quantity="ballasted preset, mid-span point receptance below 150 Hz",
+                reference="infinite beam on the smeared pad-sleeper-ballast foundation",
+                measured=np.max(np.abs(db[low])), tolerance=0.15, metric="dB")
     quasi_static = f < 0.75 * two_layer_cut_on(LONG)[0]  # well below the track resonance
     assert np.all(np.abs(mid[quasi_static]) > np.abs(a_inf[quasi_static]))
     assert np.all(np.abs(above[quasi_static]) < np.abs(a_inf[quasi_static]))
@@ -164,7 +182,7 @@ def test_low_frequency_receptance_is_the_beam_on_a_layered_foundation():
 
 # ------------------------------------------------------------------ decay rate and ISO 3095
 
-def test_stop_band_decay_rate_is_that_of_the_layered_foundation():
+def test_stop_band_decay_rate_is_that_of_the_layered_foundation(validation):
     """In the 250-400 Hz bands (the stop band between the sleeper frequency, 219 Hz, and the pad
     cut-on, 400 Hz, tests/test_layered.py) no free wave propagates: the decay is reactive and
     large. The EN 15461 band rates of the discrete track equal those of the infinite beam on the
@@ -176,6 +194,12 @@ def test_stop_band_decay_rate_is_that_of_the_layered_foundation():
     assert ISO3095_BANDS[bands] == (250.0, 315.0, 400.0)
     dr = band_decay_rates(LONG)
     np.testing.assert_allclose(dr[bands], layered_band_decay_rates(LONG)[bands], rtol=0.05)
+    validation.record(
+        "frequency.stop_band_decay_rate", level="frequency domain", kind="closed form",
+        quantity="ballasted preset: EN 15461 decay rate in the 250-400 Hz bands",
+        reference="infinite beam on the continuous layered foundation",
+        measured=np.abs(dr[bands] / layered_band_decay_rates(LONG)[bands] - 1.0).max(),
+        tolerance=0.05)
     assert np.all(dr[bands] >= np.asarray(ISO3095_VERTICAL_LIMIT)[bands])
     damped = dc.replace(LONG, supports=dc.replace(LONG.supports,
                                                   damping=2.0 * LONG.supports.damping))

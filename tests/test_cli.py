@@ -14,6 +14,8 @@ import pytest
 
 import trackwheel as tw
 from trackwheel import cli
+from trackwheel.base.limits import MAX_ELEMENTS
+from trackwheel.cli import commands, options, scenes
 from trackwheel.simulate import FIDELITY_LEVELS
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -88,15 +90,15 @@ def test_sweep_command_writes_store_and_table(tmp_path, capsys):
     assert cli.main(argv) == 0
     assert "4 cases: 4 computed, 0 from the store" in capsys.readouterr().out
     table = _csv(csv)
-    assert sorted(zip(table.speed_kmh, table.support_stiffness)) == [
+    assert sorted(zip(table.speed_kmh, table.support_stiffness_N_m)) == [
         (100.0, 40e6), (100.0, 140e6), (300.0, 40e6), (300.0, 140e6)]
     stored = tw.load_sweep(store)
-    assert sorted(stored.amplitude) == sorted(table.amplitude)
+    assert sorted(stored.amplitude_m) == sorted(table.amplitude_m)
     # one case against the API, exactly
-    row = table[(table.speed_kmh == 300.0) & (table.support_stiffness == 140e6)].iloc[0]
+    row = table[(table.speed_kmh == 300.0) & (table.support_stiffness_N_m == 140e6)].iloc[0]
     a = tw.analyse(tw.simulate(tw.Scene.kato2005(), tw.kmh(300), n_elements=20, dt=1e-5,
                                x_end=0.75))
-    assert row.amplitude == a.amplitude and row.main_frequency == a.main_frequency
+    assert row.amplitude_m == a.amplitude and row.main_frequency_hz == a.main_frequency
     # again: everything comes from the store
     assert cli.main(argv) == 0
     assert "4 cases: 0 computed, 4 from the store" in capsys.readouterr().out
@@ -220,9 +222,9 @@ def test_negative_x_start_reaches_validation(capsys):
 def test_output_paths_are_checked_before_computing(argv, words, tmp_path, capsys, monkeypatch):
     """Each bad path is a one-line error, exit code 2, and nothing was computed."""
     calls = []
-    monkeypatch.setattr(cli, "simulate", lambda *a, **k: calls.append(a))
-    monkeypatch.setattr(cli, "sweep", lambda *a, **k: calls.append(a))
-    monkeypatch.setattr(cli, "reproduce", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(commands.run, "simulate", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(commands.sweep, "sweep", lambda *a, **k: calls.append(a))
+    monkeypatch.setattr(commands.reproduce, "reproduce", lambda *a, **k: calls.append(a))
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
     assert cli.main(argv) == 2
     err = capsys.readouterr().err
@@ -288,7 +290,7 @@ def test_a_failed_static_solve_at_the_start_is_one_line(capsys, monkeypatch):
     scene = tw.Scene.kato2005()
     heavy = dataclasses.replace(scene, wheel=dataclasses.replace(scene.wheel, load=2e7),
                                 supports=dataclasses.replace(scene.supports, stiffness=1e6))
-    monkeypatch.setattr(cli, "_scene", lambda stiffness=None: heavy)
+    monkeypatch.setattr(scenes, "paper_scene", lambda stiffness=None: heavy)
     assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
     message = "the simulation could not start: static solve: the wheel lost contact with the rail"
     assert capsys.readouterr().err == f"trackwheel run: {message}\n"
@@ -325,7 +327,7 @@ def test_help_has_no_hand_typed_timings(command, capsys):
 def _scene_of(argv):
     """The scene a `run` command line builds (and its notes)."""
     args = cli.build_parser().parse_args(["run", "--speed-kmh", "100", *argv])
-    return cli._excited_scene(tw.Scene.kato2005(), args)
+    return scenes.excited_scene(tw.Scene.kato2005(), args)
 
 
 def test_excitation_options_build_the_api_scene():
@@ -402,7 +404,7 @@ def test_bad_excitation_values_are_one_line(argv, words, capsys):
 
 def test_seed_lists_and_ranges(tmp_path, capsys):
     """--seeds takes ranges and lists (0-2,5 is 0, 1, 2, 5); bad ones are one-line errors."""
-    assert cli._seed_list("0-2,5") == [0, 1, 2, 5] and cli._seed_list("7") == [7]
+    assert options.seed_list("0-2,5") == [0, 1, 2, 5] and options.seed_list("7") == [7]
     store = str(tmp_path / "s")
     for bad, word in (("5-3", "empty seed range"), ("a", "0-19"), ("-1", "0-19")):
         assert cli.main(["sweep", "--speeds-kmh", "100", "--store", store,
@@ -432,12 +434,12 @@ def test_sweep_over_seeds(tmp_path, capsys):
     table = _csv(csv)
     assert list(table.seed) == [0, 1, 2, 0, 1, 2] and list(table.speed_kmh) == [200.0] * 3 + [
         300.0] * 3
-    assert "dynamic_factor" in table.columns and "loss_duration" in table.columns
-    s = tw.summarise_seeds(table, ["max_contact_force", "dynamic_factor"])
+    assert "dynamic_factor" in table.columns and "loss_duration_s" in table.columns
+    s = tw.summarise_seeds(table, ["max_contact_force_N", "dynamic_factor"])
     p = s.loc[tw.kmh(300)]
     line = [ln for ln in printed.splitlines() if ln.strip().startswith("300 km/h")][0]
-    assert (f"max N {p[('max_contact_force', 'p5')] / 1e3:.4g} / "
-            f"{p[('max_contact_force', 'p50')] / 1e3:.4g}") in line and "(3 seeds)" in line
+    assert (f"max N {p[('max_contact_force_N', 'p5')] / 1e3:.4g} / "
+            f"{p[('max_contact_force_N', 'p50')] / 1e3:.4g}") in line and "(3 seeds)" in line
 
 
 # --------------------------------------------------------------------------------------------
@@ -486,7 +488,7 @@ def test_sweep_with_a_timoshenko_rail_runs_that_scene(tmp_path, capsys):
     row = _csv(csv).iloc[0]
     a = tw.analyse(tw.simulate(_timoshenko(tw.Scene.kato2005()), tw.kmh(300), n_elements=20,
                                dt=1e-5, x_end=0.75, fidelity="linear/hertz"))
-    assert row.amplitude == a.amplitude and row.main_frequency == a.main_frequency
+    assert row.amplitude_m == a.amplitude and row.main_frequency_hz == a.main_frequency
 
 
 def test_eigen_with_a_timoshenko_rail(capsys):
@@ -571,7 +573,7 @@ def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):
     (["receptance", "--n", "0"], "positive integer"),
     (["receptance", "--length", "60"], "--length is only for --track ballasted"),
     (["receptance", "--track", "ballasted", "--length", "31"], "--length 31"),
-    (["decay-rate", "--track", "ballasted", "--length", f"{0.6 * (cli.MAX_ELEMENTS + 1):g}"],
+    (["decay-rate", "--track", "ballasted", "--length", f"{0.6 * (MAX_ELEMENTS + 1):g}"],
      "is too long; allowed: at most"),
     (["receptance", "--shear-coefficient", "0.3"], "only used with --beam timoshenko"),
     (["receptance", "--beam", "timoshenko", "--shear-coefficient", "2"],

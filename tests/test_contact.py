@@ -97,7 +97,8 @@ TOL_CEILING = 1e-7
 @pytest.mark.parametrize("law", list(LAWS))
 @pytest.mark.parametrize("delta", DELTAS)
 @pytest.mark.parametrize("damping", [0.0, 3e4])
-def test_contact_stiffness_matches_central_differences(rail, rel, law, delta, damping):
+def test_contact_stiffness_matches_central_differences(rail, rel, law, delta, damping,
+                                                      validation):
     """K = -dF/dq at rest (qdot = 0, so the damper adds no q-dependence)."""
     f = ContactFunction(rail, bent_rail(rail), params(law, LAWS[law], damping))
     q0 = f.at_penetration(delta)
@@ -106,13 +107,20 @@ def test_contact_stiffness_matches_central_differences(rail, rel, law, delta, da
     K_fd, tol = fd_with_tolerance(lambda q: -f(q)["F"], q0, H_REL * delta, d["K"])
     assert tol < TOL_CEILING
     assert rel(K_fd, d["K"]) < tol
+    if delta == DELTAS[0] and damping == 0.0:
+        validation.record(
+            f"contact.stiffness[{law}]", level="contact", kind="finite differences",
+            quantity=f"{law} contact law on a bent rail, 0.1 mm penetration: contact stiffness "
+                     "on wheel centre and rail element (moving contact point included)",
+            reference="central differences of the contact force",
+            measured=rel(K_fd, d["K"]), tolerance=tol)
     # conservative force: K is the Hessian of V(rho(q)), hence symmetric
     assert np.linalg.norm(d["K"] - d["K"].T) < 1e-12 * np.linalg.norm(d["K"])
 
 
 @pytest.mark.parametrize("law", list(LAWS))
 @pytest.mark.parametrize("delta", DELTAS)
-def test_contact_force_is_minus_gradient_of_potential(rail, rel, law, delta):
+def test_contact_force_is_minus_gradient_of_potential(rail, rel, law, delta, validation):
     f = ContactFunction(rail, bent_rail(rail, seed=9), params(law, LAWS[law]))
     q0 = f.at_penetration(delta)
     F = f(q0)["F"]
@@ -120,6 +128,13 @@ def test_contact_force_is_minus_gradient_of_potential(rail, rel, law, delta):
                                 H_REL * delta, F)
     assert tol < TOL_CEILING
     assert rel(-dV, F) < tol
+    if law == "hertz" and delta == DELTAS[0]:
+        validation.record(
+            "contact.hertz_force_is_potential_gradient", level="contact",
+            kind="finite differences",
+            quantity="Hertzian contact force on wheel centre and rail element, bent rail",
+            reference="central differences of the potential 2/5 C_H δ^(5/2)",
+            measured=rel(-dV, F), tolerance=tol)
 
 
 @pytest.mark.parametrize("law", list(LAWS))

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _kernel
+from trackwheel.run import kernel as _kernel
 
 KATO = tw.Scene.kato2005()
 

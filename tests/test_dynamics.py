@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 
 def fryba(x, t, P, v, L, EI, m, n_terms=60):
@@ -51,7 +52,7 @@ def test_static_equilibrium_at_rest_stays(integrator, dt):
     assert np.max(np.abs(r.y_wheel - st.y_wheel)) < 1e-9 * abs(st.y_contact)
 
 
-def test_moving_force_matches_fryba():
+def test_moving_force_matches_fryba(validation):
     """A light stiff-contact wheel (moving-force limit) on a bare simply supported beam at
     100 km/h matches Fryba's series under the load within 2 % of the peak deflection.
 
@@ -65,6 +66,13 @@ def test_moving_force_matches_fryba():
               rail.mass_per_length)
     err = np.max(np.abs(-r.y_contact - w)) / np.max(np.abs(w))
     assert err < 0.02
+    validation.record(
+        "dynamics.moving_force_fryba", level="time integration", kind="closed form",
+        quantity="full model, light stiff wheel at 100 km/h over a bare simply supported "
+                 "rail: deflection under the load",
+        reference="Frýba's modal series for a constant force moving over a simply supported "
+                  "beam from rest",
+        measured=err, tolerance=0.02, metric="of max deflection")
 
 
 def initial_rail_velocity(model):
@@ -98,7 +106,7 @@ def free_vibration(rho_inf, dt, n_steps=1000, integrator="generalized_alpha"):
     return _core.simulate(model, [wheel], contact, s, init)
 
 
-def test_energy_conserved_undamped():
+def test_energy_conserved_undamped(validation):
     """rho_inf = 1 (trapezoidal rule, no numerical damping) and no physical damping: the total
     energy drifts by less than 1e-6 of the vibration energy over 1000 steps."""
     out = free_vibration(1.0, 1e-5)
@@ -108,6 +116,13 @@ def test_energy_conserved_undamped():
     E_vib = 0.5 * edot0 @ model.mass_dense() @ edot0
     assert out["steps"] == 1000
     assert np.max(np.abs(E - E[0])) < 1e-6 * E_vib
+    validation.record(
+        "dynamics.energy_conserved", level="time integration", kind="closed form",
+        quantity="generalized-α with ρ∞ = 1, undamped free vibration, 1000 steps: total "
+                 "energy drift",
+        reference="energy conservation (no damping, no work done)",
+        measured=np.max(np.abs(E - E[0])) / E_vib, tolerance=1e-6,
+        metric="of the vibration energy")
 
 
 def test_energy_decays_with_numerical_damping():
@@ -118,7 +133,7 @@ def test_energy_decays_with_numerical_damping():
 
 
 @pytest.mark.parametrize("integrator,order", [("generalized_alpha", 2.0), ("explicit", 4.0)])
-def test_convergence_order(integrator, order):
+def test_convergence_order(integrator, order, validation):
     """Self-convergence of the rail's vertical coordinates at t = 0.4 ms on the free vibration
     (nearly linear): the observed order log2(err(4 us)/err(2 us)) against a 0.25 us reference is
     the scheme's order within 0.5 (generalized-alpha 2, RK4 4)."""
@@ -129,6 +144,14 @@ def test_convergence_order(integrator, order):
     errs = [np.max(np.abs(f - finals[-1])) for f in finals[:-1]]
     p = math.log2(errs[0] / errs[1])
     assert abs(p - order) < 0.5, (errs, p)
+    name = "generalized-α" if integrator == "generalized_alpha" else "explicit RK4"
+    validation.record(
+        f"dynamics.convergence_order[{integrator}]", level="time integration",
+        kind="closed form",
+        quantity=f"{name}, free vibration of the paper's track: observed order of the rail "
+                 "coordinates",
+        reference=f"the scheme's formal order, {order:g}",
+        measured=abs(p - order), tolerance=0.5, metric="absolute (order)")
 
 
 def test_pure_rolling_on_stiff_rail():
@@ -200,7 +223,7 @@ def test_explicit_far_above_stability_limit_diverges():
     assert "t = " in str(err)
 
 
-def test_rolling_jacobians_against_finite_differences():
+def test_rolling_jacobians_against_finite_differences(validation):
     """dg/dq, dg/dqdot (= b), db/dq and ds*/dq of the rolling constraint against central
     differences at a deformed rail state (fixed seed)."""
     scene = tw.Scene.kato2005()
@@ -234,6 +257,13 @@ def test_rolling_jacobians_against_finite_differences():
         Bq[:, k] = (np.asarray(p["b"]) - np.asarray(m["b"])) / (2 * h)
         S[k] = (p["s"] - m["s"]) / (2 * h)
     np.testing.assert_allclose(base["dg_dq"], G, rtol=1e-6, atol=1e-6 * np.abs(G).max())
+    validation.record(
+        "dynamics.rolling_constraint_jacobian", level="time integration",
+        kind="finite differences",
+        quantity="rolling constraint on a deformed rail: dg/dq (wheel centre and rail element)",
+        reference="central differences of the constraint g",
+        measured=np.abs(np.asarray(base["dg_dq"]) - G).max() / np.abs(G).max(),
+        tolerance=1e-6, metric="of max |dg/dq|")
     np.testing.assert_allclose(base["db_dq"], Bq, rtol=1e-6, atol=1e-6 * np.abs(Bq).max())
     np.testing.assert_allclose(base["ds_dq"], S, rtol=1e-6, atol=1e-6 * np.abs(S).max())
     # g is linear in the velocities: dg/dqdot = b exactly (theta' coefficient b[10] = -rho)
@@ -253,7 +283,7 @@ def test_deterministic_bit_identical():
         assert np.array_equal(getattr(a, name), getattr(b, name))
 
 
-def test_explicit_and_generalized_alpha_agree():
+def test_explicit_and_generalized_alpha_agree(validation):
     """The two integrators solve the same equations: y_B agree within 1 % of the dynamic
     amplitude over the first bays at 300 km/h (generalized-alpha at 2.5 us, RK4 at 2 us)."""
     scene = tw.Scene.kato2005()
@@ -262,6 +292,12 @@ def test_explicit_and_generalized_alpha_agree():
     y_ex = np.interp(ga.t, ex.t, ex.y_contact)
     dyn = np.ptp(ga.y_contact - np.polyval(np.polyfit(ga.t, ga.y_contact, 3), ga.t))
     assert np.max(np.abs(y_ex - ga.y_contact)) < 0.01 * max(dyn, 1e-9) + 2e-8
+    validation.record(
+        "paths.explicit_equals_generalized_alpha", level="paths agree", kind="path agreement",
+        quantity="full model, explicit RK4 at 2 µs over the first bays at 300 km/h: y_B",
+        reference="generalized-α at 2.5 µs",
+        measured=np.max(np.abs(y_ex - ga.y_contact)), tolerance=0.01 * max(dyn, 1e-9) + 2e-8,
+        metric="m")
 
 
 @pytest.mark.parametrize("kwargs,match", [

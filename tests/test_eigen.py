@@ -8,7 +8,8 @@ import math
 import numpy as np
 import pytest
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 KATO = tw.Scene.kato2005()
@@ -29,12 +30,17 @@ def simply_supported(n):
     return n**2 * math.pi / (2.0 * L**2) * math.sqrt(EI / M_RAIL)
 
 
-def test_simply_supported_beam_frequencies_and_convergence(make_rail):
+def test_simply_supported_beam_frequencies_and_convergence(make_rail, validation):
     """Bare rail, no supports, no wheel: the pinned-pinned Euler-Bernoulli beam."""
     exact = simply_supported(np.arange(1, 6))
     err = {ne: bare_frequencies(make_rail, ne) / exact - 1.0 for ne in (10, 20, 40)}
     # measured at 20 elements: 4e-7, 7e-6, 3.4e-5, 1.1e-4, 2.6e-4
     assert np.all(np.abs(err[20]) < 0.005)
+    validation.record(
+        "eigen.simply_supported_beam", level="eigen analysis", kind="closed form",
+        quantity="bare 5 m rail, 20 elements: the five lowest bending frequencies",
+        reference="simply supported beam: f_n = n²π/(2L²) √(EI/m)",
+        measured=np.abs(err[20]).max(), tolerance=0.005)
     # Rayleigh-Ritz with a conforming mesh: the FE frequencies are upper bounds
     assert np.all(err[20] > 0)
     # cubic Hermite beam: eigenvalue error O(h^4); observed order log2(err_h / err_h/2)
@@ -56,7 +62,7 @@ def test_simply_supported_mode_shapes_are_sines(make_rail):
 
 
 @pytest.mark.parametrize("far_end", ["roller", "pinned"])
-def test_axial_frequencies_of_the_bar(make_rail, far_end):
+def test_axial_frequencies_of_the_bar(make_rail, far_end, validation):
     """x fixed at 0 and a roller at L: fixed-free bar, f = (2n - 1)/(4L) sqrt(E/rho);
     pinned at L: fixed-fixed, f = n/(2L) sqrt(E/rho)."""
     c = math.sqrt(KATO.rail.youngs_modulus / KATO.rail.density)
@@ -69,6 +75,13 @@ def test_axial_frequencies_of_the_bar(make_rail, far_end):
     # C1 cubic elements for a second-order problem: eigenvalue error O(h^6); measured
     # <= 5.5e-8 at 20 elements
     assert np.all(np.abs(err[20]) < 1e-6)
+    validation.record(
+        f"eigen.axial_bar[{far_end}]", level="eigen analysis", kind="closed form",
+        quantity=f"bare 5 m rail, 20 elements, far end {far_end}: three lowest axial "
+                 "frequencies",
+        reference=("fixed-free bar: (2n - 1)/(4L) √(E/ϱ)" if far_end == "roller"
+                   else "fixed-fixed bar: n/(2L) √(E/ϱ)"),
+        measured=np.abs(err[20]).max(), tolerance=1e-6)
     assert np.all(err[20] > -1e-12)  # upper bounds (up to round-off)
     order = np.log2(err[10][1:] / err[20][1:])  # mode 1 is already at round-off at 20
     assert np.all(order > 5.0), order
@@ -77,7 +90,7 @@ def test_axial_frequencies_of_the_bar(make_rail, far_end):
     np.testing.assert_allclose(tw.eigen(scene, [2.5]).axial_frequencies, exact, rtol=1e-6)
 
 
-def test_stiff_supports_give_the_pinned_pinned_span_mode(make_rail):
+def test_stiff_supports_give_the_pinned_pinned_span_mode(make_rail, validation):
     """Nine supports every d_s = 0.5 m (ends rigid). The pinned-pinned frequency
     f_pp = pi/(2 d_s^2) sqrt(EI/m) = 2147 Hz belongs to y = sin(pi x/d_s), which is still at
     rest at every support, so for stiff enough supports (k_s >~ 4e9 N/m, when the foundation's
@@ -97,6 +110,11 @@ def test_stiff_supports_give_the_pinned_pinned_span_mode(make_rail):
     # at 1e11 N/m the lowest mode is the span mode, within the mesh's discretisation error
     # (measured 2.6e-4), and closer than at 1e9 N/m (where it is 56 % below)
     assert freqs[1e11][0] == pytest.approx(f_pp, rel=1e-3)
+    validation.record(
+        "eigen.pinned_pinned_span", level="eigen analysis", kind="closed form",
+        quantity="5 m rail on nine 1e11 N/m supports every 0.5 m: lowest frequency",
+        reference="pinned-pinned span: f_pp = π/(2 d²) √(EI/m) = 2147 Hz",
+        measured=abs(freqs[1e11][0] / f_pp - 1.0), tolerance=1e-3)
     assert abs(freqs[1e11][0] / f_pp - 1) < abs(freqs[1e9][0] / f_pp - 1)
     # the other modes of the span band (2..10: neighbouring spans out of phase, supports
     # moving a little) converge to their rigid-support values like 1/k_s; 1e14 N/m stands in
@@ -172,13 +190,20 @@ def test_frequencies_are_continuous_across_a_node(node):
 
 
 @pytest.mark.parametrize("X", [0.0, L])
-def test_wheel_over_an_end_support_decouples(X):
+def test_wheel_over_an_end_support_decouples(X, validation):
     """Over a rigid end support the rail does not move under the wheel: the spectrum is the
     bare rail's plus the wheel bouncing on its contact spring, sqrt(k/M)/2pi = 1343 Hz."""
     res = tw.eigen(KATO, [X], n_modes=12)
     wheel = math.sqrt(KATO.contact_stiffness / KATO.wheel.mass) / (2 * math.pi)
     expected = np.sort(np.append(rail_frequencies(KATO, 12), wheel))[:12]
     np.testing.assert_allclose(res.frequencies[0], expected, rtol=1e-10)
+    if X == 0.0:
+        validation.record(
+            "eigen.wheel_over_a_rigid_support", level="eigen analysis", kind="closed form",
+            quantity="paper's scene, wheel above the rigid end support: 12 lowest frequencies",
+            reference="the bare track's frequencies plus the wheel on its contact spring, "
+                      "√(k/M)/2π = 1343 Hz",
+            measured=np.abs(res.frequencies[0] / expected - 1.0).max(), tolerance=1e-10)
 
 
 def test_stiff_contact_with_tiny_wheel_recovers_the_bare_rail():

@@ -128,7 +128,7 @@ def test_sweep_auto_fidelity_chooses_and_reports():
     assert set(df.fidelity) == {"linear/sprung"}
     ref = tw.sweep(scene, speed=[tw.kmh(100), V], support_stiffness=[70e6, 140e6],
                    fidelity="linear/sprung", max_workers=1, progress=False, **kw)
-    np.testing.assert_array_equal(df.amplitude.to_numpy(), ref.amplitude.to_numpy())
+    np.testing.assert_array_equal(df.amplitude_m.to_numpy(), ref.amplitude_m.to_numpy())
 
 
 def test_adequacy_says_whether_the_contact_filter_matters():

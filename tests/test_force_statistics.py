@@ -29,7 +29,7 @@ def test_band_centres_are_iec_base10():
 
 
 @pytest.mark.parametrize("f0, amp", [(100.0, 500.0), (1000.0 * 10**0.3, 2000.0), (63.0, 10.0)])
-def test_sine_lands_in_its_band_with_its_rms(f0, amp):
+def test_sine_lands_in_its_band_with_its_rms(f0, amp, validation):
     # a sine of amplitude A has RMS A / sqrt 2; with 0.37 s of record (not a whole number of
     # periods) the rectangular-window leakage outside a band of width 0.23 f0 >= 14 Hz
     # (>= 5 bins) is below a few percent of the power: within 0.5 dB
@@ -41,6 +41,13 @@ def test_sine_lands_in_its_band_with_its_rms(f0, amp):
     lo, hi = centres[i] / 10**0.05, centres[i] * 10**0.05
     assert lo <= f0 < hi
     assert abs(20 * math.log10(rms[i] / (amp / math.sqrt(2)))) < 0.5
+    if f0 == 100.0:
+        validation.record(
+            "excitation.band_rms_of_a_sine", level="excitation", kind="closed form",
+            quantity="one-third-octave band RMS of a 100 Hz sine in the contact force",
+            reference="A/√2 in the band holding 100 Hz (IEC 61260-1 base-10 bands)",
+            measured=abs(20 * math.log10(rms[i] / (amp / math.sqrt(2)))), tolerance=0.5,
+            metric="dB")
 
 
 def test_amplitude_spectrum_of_an_on_bin_sine():
@@ -156,7 +163,7 @@ def test_statistics_of_a_simulated_run():
         result_statistics(object())
 
 
-def test_jenkins_p2_by_hand():
+def test_jenkins_p2_by_hand(validation):
     # illustrative values of the right order for a wheelset on ballasted track: P0 = 112.5 kN,
     # 2 alpha = 0.02 rad, v = 44.7 m/s, M_u = 1275 kg, M_t = 245 kg, K_t = 1.5e8 N/m,
     # C_t = 0.76e5 N s/m
@@ -167,6 +174,12 @@ def test_jenkins_p2_by_hand():
     expected = 112.5e3 + 0.02 * 44.7 * root * damp * math.sqrt(1.5e8 * 1275)
     got = jenkins_p2(112.5e3, 0.02, 44.7, 1275, 245, 1.5e8, 0.76e5)
     assert got == pytest.approx(expected, rel=1e-14)
+    validation.record(
+        "excitation.jenkins_p2", level="excitation", kind="published",
+        quantity="P2 force of a dipped joint (trackwheel.force_statistics.jenkins_p2)",
+        reference="Jenkins et al. (1974): P0 + 2α v √(M_u/(M_u + M_t)) (1 - C_t π/(4 √(K_t "
+                  "(M_u + M_t)))) √(K_t M_u), evaluated by hand",
+        measured=abs(got / expected - 1.0), tolerance=1e-14)
     assert jenkins_p2(1e5, 0.02, 0.0, 1275, 245, 1.5e8, 0.76e5) == 1e5  # at rest: P0
     with pytest.raises(ValueError, match="dip_angle"):
         jenkins_p2(1e5, -0.01, 10.0, 1275, 245, 1.5e8, 0.0)

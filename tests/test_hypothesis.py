@@ -34,7 +34,7 @@ import pytest
 import trackwheel as tw
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
-from trackwheel import _kernel
+from trackwheel.run import kernel as _kernel
 
 SIM = sys.modules["trackwheel.simulate"]
 SCENE = sys.modules["trackwheel.scene"]

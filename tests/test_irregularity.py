@@ -351,10 +351,10 @@ def test_scene_with_excitation_pickles_and_keys_the_sweep_store():
     import hashlib
 
     import trackwheel
-    from trackwheel.sweep import _canonical, _inputs
+    from trackwheel.study.sweep.store import canonical, inputs
 
     def key(scene):
-        return hashlib.sha256(_canonical(_inputs(scene, 50.0, 140e6, {}))).hexdigest()
+        return hashlib.sha256(canonical(inputs(scene, 50.0, 140e6, {}))).hexdigest()
 
     base = trackwheel.Scene()
     wheel = dataclasses.replace(base.wheel, defects=(WheelFlat(0.05, rounded=True),))

@@ -61,7 +61,8 @@ def steady_amplitude(run, f, n_periods):
 
 @pytest.mark.parametrize("fidelity", ["full", "linear/sprung"])
 @pytest.mark.parametrize("wavelength", [0.01, 0.02, 0.04])  # f = 200, 100, 50 Hz
-def test_steady_force_under_sine_profile_matches_receptance_formula(wavelength, fidelity):
+def test_steady_force_under_sine_profile_matches_receptance_formula(wavelength, fidelity,
+                                                                     validation):
     scene = winkler_scene(wavelength)
     f = SPEED / wavelength
     run = tw.simulate(scene, SPEED, x_start=2.6, x_end=2.6 + 0.25 * SPEED, dt=2e-5,
@@ -73,6 +74,15 @@ def test_steady_force_under_sine_profile_matches_receptance_formula(wavelength, 
     # 1 % (the issue allows 2 %): the discrete supports (spacing 1/7 of the decay length) and
     # v > 0 each shift the amplitude by well under 1 %, most at the shortest wavelength
     assert got == pytest.approx(expected, rel=0.01)
+    if wavelength == 0.02:
+        validation.record(
+            f"excitation.sine_profile_force[{fidelity}]", level="excitation",
+            kind="closed form",
+            quantity=f"{fidelity} level, wheel rolling slowly over a 20 mm sine profile on a "
+                     "closely supported damped rail: steady contact-force amplitude at 100 Hz",
+            reference="moving-irregularity model a/|α_R + α_C + α_W| with the infinite "
+                      "beam's receptance",
+            measured=abs(got / expected - 1.0), tolerance=0.01)
 
 
 def test_profile_sharper_than_the_wheel_is_refused_and_the_patch_filter_rounds_it():
@@ -93,7 +103,7 @@ def test_profile_sharper_than_the_wheel_is_refused_and_the_patch_filter_rounds_i
     assert smooth.y_wheel - rest.y_wheel == pytest.approx(1e-3, rel=0.05)
 
 
-def test_polygonal_wheel_equals_the_sine_profile_it_rolls_over():
+def test_polygonal_wheel_equals_the_sine_profile_it_rolls_over(validation):
     """A wheel polygon a cos(m psi) rolling without slip (psi = theta = v t / rho0) excites the
     contact exactly as a rail profile a sin(2 pi X / lambda + phase) with lambda = 2 pi rho0 / m
     and the phase that lines them up. The linear path sees the same gap up to the two cubic
@@ -113,6 +123,12 @@ def test_polygonal_wheel_equals_the_sine_profile_it_rolls_over():
     n_s = tw.simulate(sine, SPEED, fidelity="linear/sprung", **kw).normal_force
     assert np.ptp(n_s[n_s.size // 2:]) > 5.0  # it is excited [N]
     assert np.max(np.abs(n_p - n_s)) < 5e-6 * base.contact_stiffness * a
+    validation.record(
+        "excitation.polygon_equals_sine_profile", level="excitation", kind="path agreement",
+        quantity="linear/sprung, 16th-order wheel polygon: contact force",
+        reference="the same wheel, round, over the rail profile the polygon rolls out",
+        measured=np.max(np.abs(n_p - n_s)) / (base.contact_stiffness * a), tolerance=5e-6,
+        metric="of k a")
     n_p = tw.simulate(poly, SPEED, **kw).normal_force
     n_s = tw.simulate(sine, SPEED, **kw).normal_force
     half = n_s.size // 2

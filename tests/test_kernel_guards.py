@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 KATO = tw.Scene.kato2005()
 NAN, INF = float("nan"), float("inf")

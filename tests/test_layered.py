@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 KATO = tw.Scene.kato2005()
@@ -103,7 +104,7 @@ def one_support_scene(second_moment, youngs_modulus=2.058e11, rail_gravity=False
                     rail_gravity=rail_gravity)
 
 
-def test_static_deflection_is_that_of_pad_and_ballast_in_series():
+def test_static_deflection_is_that_of_pad_and_ballast_in_series(validation):
     """A point load P at mid-span of a pinned span L on a spring k deflects it by
     P / (k + 48 EI/L^3) (exact for the cubic Hermite beam with the load on a node); with a pad
     and a ballast in series k = k_p k_b/(k_p + k_b). A flexible rail (I = 3e-9 m^4, 48 EI/L^3 =
@@ -117,12 +118,17 @@ def test_static_deflection_is_that_of_pad_and_ballast_in_series():
     P = scene.static_load
     expected = -P / (kp * kb / (kp + kb) + 48.0 * EI)
     assert abs(r.y_contact / expected - 1.0) < 1e-5
+    validation.record(
+        "statics.pad_and_ballast_in_series", level="statics", kind="closed form",
+        quantity="one pad-sleeper-ballast support under a flexible pinned span: deflection",
+        reference="P/(k_p k_b/(k_p + k_b) + 48 EI/L³)",
+        measured=abs(r.y_contact / expected - 1.0), tolerance=1e-5)
     support_load = P * (1.0 - 48.0 * EI / (kp * kb / (kp + kb) + 48.0 * EI))
     assert abs(r.ballast_force[0] / support_load - 1.0) < 1e-5
     assert abs(r.sleeper_z[0] / (-support_load / kb) - 1.0) < 1e-5
 
 
-def test_sleeper_bounce_under_a_stiff_rail_is_the_two_spring_frequency():
+def test_sleeper_bounce_under_a_stiff_rail_is_the_two_spring_frequency(validation):
     """Under a nearly rigid rail (E x 1e4: mid-span stiffness k_r = 48 EI/L^3 = 3e12 N/m, the
     rail's own modes above 50 kHz) the sleeper bounces between the pad, in series with the
     rail, and the ballast: omega^2 = (k_p k_r/(k_p + k_r) + k_b)/m_s. The rail's mass shifts it
@@ -133,6 +139,11 @@ def test_sleeper_bounce_under_a_stiff_rail_is_the_two_spring_frequency():
     f = math.sqrt((kp * kr / (kp + kr) + kb) / ms) / (2.0 * math.pi)
     f0 = rail_frequencies(scene, 1)[0]
     assert abs(f0 / f - 1.0) < 1e-4
+    validation.record(
+        "eigen.sleeper_bounce", level="eigen analysis", kind="closed form",
+        quantity="one sleeper under a nearly rigid rail: its bounce frequency",
+        reference="ω² = (k_p k_r/(k_p + k_r) + k_b)/m_s",
+        measured=abs(f0 / f - 1.0), tolerance=1e-4)
 
 
 def test_ballast_carries_the_wheel_load_and_each_sleeper_its_bay():

@@ -35,7 +35,7 @@ def test_static_converges_on_a_fine_mesh_and_agrees_with_the_coarse_one():
     assert fine.y_contact == pytest.approx(coarse.y_contact, rel=1e-6)
 
 
-def test_static_on_a_200_m_rail_matches_winkler():
+def test_static_on_a_200_m_rail_matches_winkler(validation):
     """200 m of rail on supports every 0.1 m at the paper's k_f = 280 MN/m^2 (beta = 1.82 /m,
     beta d_s = 0.18: a continuous foundation; the ends exp(-180) away), 4000 elements, load at
     mid-rail: the Winkler deflection P beta / (2 k_f) (docs: Model § Validation) within 0.1 % (the
@@ -46,10 +46,16 @@ def test_static_on_a_200_m_rail_matches_winkler():
     beta = (kf / (4.0 * scene.rail.bending_stiffness)) ** 0.25
     res = tw.static(scene, 100.0)
     assert -res.y_contact == pytest.approx(scene.static_load * beta / (2.0 * kf), rel=1e-3)
+    validation.record(
+        "long.winkler_beam_200m", level="long tracks", kind="closed form",
+        quantity="200 m rail, 4000 elements, supports every 0.1 m: deflection under the wheel",
+        reference="beam on a Winkler foundation: P β/(2 k_f)",
+        measured=abs(-res.y_contact / (scene.static_load * beta / (2.0 * kf)) - 1.0),
+        tolerance=1e-3)
 
 
 # -------------------------------------------------------------------------------------- eigen
-def test_sparse_and_dense_eigen_agree():
+def test_sparse_and_dense_eigen_agree(validation):
     """The shift-invert Lanczos solver and the dense solver on the same 300-element mesh (600
     vertical coordinates): frequencies to 1e-8 relative, wheel and axial modes included."""
     scene = long_scene(5.0, 300)
@@ -57,12 +63,18 @@ def test_sparse_and_dense_eigen_agree():
     b = tw.eigen(scene, [1.6, 2.5], method="sparse")
     np.testing.assert_allclose(b.frequencies, a.frequencies, rtol=1e-8)
     np.testing.assert_allclose(b.axial_frequencies, a.axial_frequencies, rtol=1e-8)
+    validation.record(
+        "long.sparse_equals_dense_eigen", level="long tracks", kind="path agreement",
+        quantity="paper's scene on 300 elements, wheel at two positions: coupled frequencies "
+                 "by shift-invert Lanczos",
+        reference="the dense symmetric eigensolver",
+        measured=np.abs(b.frequencies / a.frequencies - 1.0).max(), tolerance=1e-8)
     # mass-normalised shapes, equal up to sign
     sign = np.sign(np.sum(a.shapes * b.shapes, axis=1, keepdims=True))
     np.testing.assert_allclose(b.shapes * sign, a.shapes, atol=1e-6 * np.abs(a.shapes).max())
 
 
-def test_long_bare_rail_modes_match_the_simply_supported_beam():
+def test_long_bare_rail_modes_match_the_simply_supported_beam(validation):
     """A 100 m rail without supports, 400 elements, by the sparse solver: f_n = (n pi / L)^2
     sqrt(EI / m) / (2 pi), n = 1..6, within 1e-6. The discretisation error is negligible
     (~(k l_e)^4 < 1e-7 for 0.25 m elements and 33 m and longer wavelengths); round-off is what
@@ -73,7 +85,13 @@ def test_long_bare_rail_modes_match_the_simply_supported_beam():
     n = np.arange(1, 7)
     exact = (n * np.pi / rail.length) ** 2 * np.sqrt(
         rail.bending_stiffness / rail.mass_per_length) / (2 * np.pi)
-    np.testing.assert_allclose(rail_frequencies(scene, 6, method="sparse"), exact, rtol=1e-6)
+    f = rail_frequencies(scene, 6, method="sparse")
+    np.testing.assert_allclose(f, exact, rtol=1e-6)
+    validation.record(
+        "long.simply_supported_beam_100m", level="long tracks", kind="closed form",
+        quantity="bare 100 m rail, 400 elements, sparse Lanczos: six lowest frequencies",
+        reference="simply supported beam: f_n = (nπ/L)² √(EI/m)/2π",
+        measured=np.abs(f / exact - 1.0).max(), tolerance=1e-6)
 
 
 def test_beyond_the_dense_limit_auto_takes_the_sparse_solver():
@@ -245,7 +263,8 @@ def test_iteration_matrix_with_absorbing_ends_matches_central_differences():
     tests/test_system.py, its step and its 1e-6 tolerance), and the zones' axial entries are
     really there (the x columns inside a zone differ from the plain rail's)."""
     from test_system import DT, _probe_case, central_difference_error
-    from trackwheel import _core, _kernel
+    from trackwheel import _core
+    from trackwheel.run import kernel as _kernel
 
     model, wheels, contact, s, st = _probe_case("hertz", False, 1)
     zoned = _kernel.rail_model(long_scene(5.0, 20, ends=tw.AbsorbingEnds(1.0)), 20)
@@ -297,7 +316,7 @@ def layered_scene(length, spacing, n_elements):
     return dataclasses.replace(base, rail=rail, supports=supports)
 
 
-def test_static_on_a_100_m_layered_track_matches_the_series_winkler_foundation():
+def test_static_on_a_100_m_layered_track_matches_the_series_winkler_foundation(validation):
     """100 m of the ballasted preset's rail on pad-sleeper-ballast supports every 0.1 m, 2000
     elements (8004 free coordinates: the tolerance n_free eps L = 1.8e-12 L is above the former
     1e-13 L), load at mid-rail, no gravity (the sleepers' own weight would only pre-load the
@@ -314,6 +333,13 @@ def test_static_on_a_100_m_layered_track_matches_the_series_winkler_foundation()
     res = tw.static(scene, 50.0)
     assert res.iterations <= 10
     assert -res.y_contact == pytest.approx(scene.static_load * beta / (2.0 * kf), rel=1e-3)
+    validation.record(
+        "long.layered_winkler_beam_100m", level="long tracks", kind="closed form",
+        quantity="100 m rail on pad-sleeper-ballast supports every 0.1 m: deflection under "
+                 "the wheel",
+        reference="Winkler beam with pad and ballast in series, k_f = k_p k_b/(k_p + k_b)/d",
+        measured=abs(-res.y_contact / (scene.static_load * beta / (2.0 * kf)) - 1.0),
+        tolerance=1e-3)
 
 
 def test_sparse_and_dense_eigen_agree_with_sleepers():

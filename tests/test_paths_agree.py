@@ -50,7 +50,7 @@ def damped(scene, c_s=2e5):
 
 
 @pytest.mark.parametrize("level", ["sprung", "hertz"])
-def test_linear_matches_full_with_damped_supports(level):
+def test_linear_matches_full_with_damped_supports(level, validation):
     """c_s = 2e5 N s/m at every support: max |d| and the trace d(t) of the linear level agree
     with the ANCF level of the same contact law (same mesh, same dt) within TOL_TRACE of the
     amplitude (measured: 0.06 % trace, 0.02 % amplitude)."""
@@ -60,6 +60,13 @@ def test_linear_matches_full_with_damped_supports(level):
     lin = tw.analyse(tw.simulate(scene, V, fidelity=f"linear/{level}", **kw))
     assert abs(lin.amplitude / full.amplitude - 1.0) < TOL_TRACE
     assert np.max(np.abs(lin.dynamic - full.dynamic)) < TOL_TRACE * full.amplitude
+    validation.record(
+        f"paths.linear_equals_ancf[{level}]", level="paths agree", kind="path agreement",
+        quantity=f"linear/{level} at 300 km/h over the paper's track with damped supports: "
+                 "d(t)",
+        reference=f"ancf/{level}, same mesh and step",
+        measured=np.max(np.abs(lin.dynamic - full.dynamic)) / full.amplitude,
+        tolerance=TOL_TRACE, metric="of the amplitude")
     # and damping matters here: the undamped amplitude differs by far more than the tolerance
     undamped = tw.analyse(tw.simulate(tw.Scene.kato2005(), V, fidelity=f"ancf/{level}", **kw))
     assert abs(undamped.amplitude / full.amplitude - 1.0) > 20 * TOL_TRACE
@@ -94,7 +101,7 @@ ODD_RUN = {"n_elements": 16, "dt": 1e-5, "x_start": 0.3, "x_end": 3.0, "rho_inf"
     ("hertz", {}, {"rail_gravity": False}),
     ("sprung", {"rolling": False}, {}),
 ])
-def test_linear_matches_full_with_every_parameter(level, kw, changes):
+def test_linear_matches_full_with_every_parameter(level, kw, changes, validation):
     """``odd_scene`` at 250 km/h: the rail under the wheel, the wheel height and the contact
     force of the linear level agree with the ANCF level within 1 % of the dynamic amplitude
     (forces: 1e-3 of the static load), with the static start, a sudden load, a dropped wheel
@@ -111,6 +118,15 @@ def test_linear_matches_full_with_every_parameter(level, kw, changes):
     assert np.max(np.abs(a.y_wheel - b.y_wheel)) < 0.01 * scale
     assert np.max(np.abs(a.normal_force - b.normal_force)) < 1e-3 * scene.static_load
     assert a.lost_contact == b.lost_contact == ("drop_height" in kw)
+    if "drop_height" in kw:
+        validation.record(
+            "paths.linear_equals_ancf_with_contact_loss", level="paths agree",
+            kind="path agreement",
+            quantity="linear/hertz, every parameter off its default, a dropped wheel losing "
+                     "and regaining contact: rail under the wheel",
+            reference="ancf/hertz, same mesh and step",
+            measured=np.max(np.abs(a.y_contact - b.y_contact)) / scale, tolerance=0.01,
+            metric="of the amplitude")
 
 
 @pytest.mark.parametrize("level", ["sprung", "hertz"])
@@ -128,7 +144,7 @@ def test_linear_path_models_contact_damping(level):
     assert np.max(np.abs(undamped.dynamic - lin.dynamic)) > 10 * TOL_TRACE * full.amplitude
 
 
-def test_modal_path_with_all_modes_equals_coordinates_with_damping():
+def test_modal_path_with_all_modes_equals_coordinates_with_damping(validation):
     """Modal superposition with all vertical modes is a change of coordinates: with damped
     supports (a full, non-diagonal modal damping matrix) it reproduces the band solution to
     round-off (1e-9 of the amplitude; the eigenvectors are accurate to ~1e-12)."""
@@ -138,6 +154,13 @@ def test_modal_path_with_all_modes_equals_coordinates_with_damping():
     modal = tw.simulate(scene, V, n_modes=2 * (10 + 1) - 2, **kw)
     scale = tw.analyse(band).amplitude
     np.testing.assert_allclose(modal.y_contact, band.y_contact, rtol=0, atol=1e-9 * scale)
+    validation.record(
+        "paths.modal_equals_band", level="paths agree", kind="path agreement",
+        quantity="linear/sprung by modal superposition with every mode, damped supports: "
+                 "rail under the wheel",
+        reference="the band solve in the rail's coordinates",
+        measured=np.max(np.abs(modal.y_contact - band.y_contact)) / scale, tolerance=1e-9,
+        metric="of the amplitude")
 
 
 @pytest.mark.parametrize("fidelity,integrator", [("full", "generalized_alpha"),

@@ -293,11 +293,11 @@ def _table():
     rows = []
     for v in (300.0, 100.0):
         for k in (140e6, 20e6, 70e6):
-            rows.append({"speed": v / 3.6, "speed_kmh": v, "support_stiffness": k,
-                             "amplitude": 1e-6 * v / 100 * 140e6 / k,
-                             "main_frequency": 340.0 * np.sqrt(k / 140e6),
-                             "frequency_resolution": v / 16.0, "error": ""})
-    rows[1].update(amplitude=np.nan, main_frequency=np.nan, error="DivergenceError: x")
+            rows.append({"speed_m_s": v / 3.6, "speed_kmh": v, "support_stiffness_N_m": k,
+                         "amplitude_m": 1e-6 * v / 100 * 140e6 / k,
+                         "main_frequency_hz": 340.0 * np.sqrt(k / 140e6),
+                         "frequency_resolution_hz": v / 16.0, "error": ""})
+    rows[1].update(amplitude_m=np.nan, main_frequency_hz=np.nan, error="DivergenceError: x")
     return pd.DataFrame(rows)
 
 
@@ -309,10 +309,10 @@ def test_support_stiffness_figure_shows_the_table():
     assert "[MN/m]" in ax_f.get_xlabel()
     span = (140e6 - 20e6) / 1e6  # the table's k_s range [MN/m]
     for i, v in enumerate((100.0, 300.0)):
-        ref = df[df.speed_kmh == v].sort_values("support_stiffness")
-        x = ref.support_stiffness.to_numpy() / 1e6
+        ref = df[df.speed_kmh == v].sort_values("support_stiffness_N_m")
+        x = ref.support_stiffness_N_m.to_numpy() / 1e6
         shift = (i - 0.5) * plots.DODGE * span  # two series: half a dodge either side
-        for ax, y, dx in ((ax_a, ref.amplitude * 1e6, 0.0), (ax_f, ref.main_frequency, shift)):
+        for ax, y, dx in ((ax_a, ref.amplitude_m * 1e6, 0.0), (ax_f, ref.main_frequency_hz, shift)):
             line = _labelled(ax, f"{v:g} km/h")
             np.testing.assert_allclose(line.get_xdata(), x + dx, rtol=1e-15)
             np.testing.assert_array_equal(line.get_ydata(), y)  # NaN where the case failed
@@ -342,14 +342,14 @@ def test_support_stiffness_error_bars_are_not_hidden_by_the_other_speed():
 
 def test_speed_figure_shows_the_table_and_the_eigen_bands():
     df = _table()
-    df = df[df.support_stiffness == 140e6]
+    df = df[df.support_stiffness_N_m == 140e6]
     eig = tw.eigen(tw.Scene.kato2005(), np.linspace(0.0, 5.0, 11), n_modes=5)
     fig = plots.speed(df, eig)
     ax_a, ax_f = fig.axes
     assert "[µm]" in ax_a.get_ylabel() and "[Hz]" in ax_f.get_ylabel()
     assert "[km/h]" in ax_f.get_xlabel()
     ref = df.sort_values("speed_kmh")
-    for ax, y in ((ax_a, ref.amplitude * 1e6), (ax_f, ref.main_frequency)):
+    for ax, y in ((ax_a, ref.amplitude_m * 1e6), (ax_f, ref.main_frequency_hz)):
         line = _labelled(ax, "k_s = 140 MN/m")
         np.testing.assert_array_equal(line.get_xdata(), ref.speed_kmh)
         np.testing.assert_array_equal(line.get_ydata(), y)
@@ -388,15 +388,15 @@ def test_new_figures_leave_no_pyplot_state(runs):
     (lambda r: plots.dynamic(r[0], "analysis"), TypeError, "Analysis"),
     (lambda r: plots.dynamic(r[0], tw.analyse(r[1])), ValueError, "analysis"),
     (lambda r: plots.dynamic(r[0], f_max=-1.0), ValueError, "f_max"),
-    (lambda r: plots.support_stiffness(_table().drop(columns="amplitude")), TypeError,
-     "amplitude"),
+    (lambda r: plots.support_stiffness(_table().drop(columns="amplitude_m")), TypeError,
+     "amplitude_m"),
     (lambda r: plots.support_stiffness(_table().iloc[:0]), ValueError, "empty"),
     (lambda r: plots.support_stiffness(_table(), frequency=True, ax=Figure().add_subplot()),
      ValueError, "ax"),
     (lambda r: plots.speed({"speed_kmh": [1]}), TypeError, "sweep table"),
     (lambda r: plots.speed(_table(), tw.eigen(tw.Scene.kato2005(), [1.0])), ValueError,
      "k_s"),
-    (lambda r: plots.speed(_table()[_table().support_stiffness == 140e6],
+    (lambda r: plots.speed(_table()[_table().support_stiffness_N_m == 140e6],
                            tw.eigen(tw.Scene.kato2005(), [1.0], n_modes=2)), ValueError,
      "n_modes"),
 ])
@@ -414,7 +414,7 @@ def _figures_with_legends(runs, sweep):
         "fig4": plots.time_step_convergence(runs),
         "fig5": plots.element_convergence(runs),
         "fig6": plots.support_stiffness(df, frequency=True),
-        "fig7": plots.speed(df[df.support_stiffness == 140e6], eig),
+        "fig7": plots.speed(df[df.support_stiffness_N_m == 140e6], eig),
         "fig7 dynamic": plots.dynamic(runs[0], eigen=eig),
         "fig8": plots.acceleration_terms([runs[0], runs[2]]),
     }

@@ -18,7 +18,10 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel, irregularity, spectra
+from trackwheel import _core, spectra
+from trackwheel.run import kernel as _kernel
+from trackwheel.run import profile
+from trackwheel.run.simulate import execute, plan_run
 
 V = tw.kmh(300)
 
@@ -40,20 +43,8 @@ def _scene():
 def _run(scene, distance, **kw):
     """A window run and the kernel profile it read (the cached rail model's, whose stream
     state the run advanced)."""
-    made = []
-    build = _kernel.profile
-
-    def spy(*a, **k):
-        made.append(build(*a, **k))
-        return made[-1]
-
-    mp = pytest.MonkeyPatch()
-    mp.setattr(_kernel, "profile", spy)
-    try:
-        r = tw.simulate(scene, V, distance=distance, x_start=0.3, progress=False, **kw)
-    finally:
-        mp.undo()
-    return r, made[-1]
+    plan = plan_run(scene, V, distance=distance, x_start=0.3, **kw)
+    return execute(plan, progress=False), plan.model.profile
 
 
 def _assert_same_run(a, b):
@@ -68,10 +59,10 @@ def test_streamed_linear_run_is_bit_identical_to_the_whole_table(fresh_models, m
     scene = _scene()
     kw = dict(fidelity="linear/hertz", dt=1e-4, output_every=10)
     streamed, table = _run(scene, 500.0, **kw)
-    assert table.streamed and table.n_intervals > 7 * irregularity.SPLINE_CHUNK
-    assert table.peak_loaded_intervals == 5 * irregularity.SPLINE_CHUNK
+    assert table.streamed and table.n_intervals > 7 * profile.SPLINE_CHUNK
+    assert table.peak_loaded_intervals == 5 * profile.SPLINE_CHUNK
     _kernel.rail_model.cache_clear()
-    monkeypatch.setattr(_kernel, "STREAM_MIN_CHUNKS", 10**6)
+    monkeypatch.setattr(profile, "STREAM_MIN_CHUNKS", 10**6)
     eager, whole = _run(scene, 500.0, **kw)
     assert not whole.streamed and whole.n_intervals == table.n_intervals
     _assert_same_run(streamed, eager)
@@ -84,8 +75,8 @@ def test_streamed_full_run_and_its_rerun_are_bit_identical_to_the_whole_table(fr
     drops 3; the same as on the whole table (same chunks), bit for bit.
     A second run on the same (cached) rail model starts behind the kept range: the stream
     re-opens once and the run repeats bit for bit."""
-    monkeypatch.setattr(irregularity, "SPLINE_CHUNK", 2048)
-    monkeypatch.setattr(_kernel, "STREAM_RETENTION", 4.0)
+    monkeypatch.setattr(profile, "SPLINE_CHUNK", 2048)
+    monkeypatch.setattr(profile, "STREAM_RETENTION", 4.0)
     scene = _scene()
     kw = dict(fidelity="full", output_every=10)
     streamed, table = _run(scene, 12.0, **kw)
@@ -96,7 +87,7 @@ def test_streamed_full_run_and_its_rerun_are_bit_identical_to_the_whole_table(fr
     assert table.rewinds == 1
     _assert_same_run(streamed, again)
     _kernel.rail_model.cache_clear()
-    monkeypatch.setattr(_kernel, "STREAM_MIN_CHUNKS", 10**6)
+    monkeypatch.setattr(profile, "STREAM_MIN_CHUNKS", 10**6)
     eager, whole = _run(scene, 12.0, **kw)
     assert not whole.streamed
     _assert_same_run(streamed, eager)
@@ -110,21 +101,21 @@ def test_most_intervals_held_does_not_grow_with_the_distance(fresh_models, dista
     (327 680 intervals, 10 MiB) whether the run is 600 m or 1 km (their tables 625 and
     1025 m long, 10 and 16 chunks)."""
     _, table = _run(_scene(), distance, fidelity="linear/hertz", dt=2e-4, output_every=100)
-    chunk = irregularity.SPLINE_CHUNK
+    chunk = profile.SPLINE_CHUNK
     assert table.n_intervals > distance / 1e-3
     assert table.peak_loaded_intervals == (math.floor(200.0 / (chunk * 1e-3)) + 2) * chunk
     assert table.loaded_intervals <= table.peak_loaded_intervals
 
 
 def _chunks(irr, end):
-    return (c for _, c, _, _ in irr.spline_chunks(0.0, end, 1e-3, chunk=1000))
+    return (c for _, c, _, _ in profile.spline_chunks(irr, 0.0, end, 1e-3, chunk=1000))
 
 
 def test_request_behind_the_kept_range():
     """A one-pass stream (an iterator) raises behind its kept range, never a wrong value; a
     re-openable one (a callable) reads forwards again and gives the whole table's value."""
     irr = tw.Irregularity.sine(2.0, 1e-4)
-    x0, h, n = irr.spline_grid(0.0, 10.0, 1e-3)
+    x0, h, n = profile.spline_grid(irr, 0.0, 10.0, 1e-3)
     whole = _core.Profile(x0, h, n - 1, _chunks(irr, 10.0))
     once = _core.Profile(x0, h, n - 1, _chunks(irr, 10.0), 2.5)
     again = _core.Profile(x0, h, n - 1, lambda: _chunks(irr, 10.0), 2.5)
@@ -148,7 +139,7 @@ def test_a_failed_reopening_is_retried_not_read_from_the_old_source():
     """An exception while re-opening surfaces; the next request opens afresh and gives the
     whole table's value (the old source, past the kept range, is never read on)."""
     irr = tw.Irregularity.sine(2.0, 1e-4)
-    x0, h, n = irr.spline_grid(0.0, 10.0, 1e-3)
+    x0, h, n = profile.spline_grid(irr, 0.0, 10.0, 1e-3)
     whole = _core.Profile(x0, h, n - 1, _chunks(irr, 10.0))
     opened = []
 
@@ -167,7 +158,7 @@ def test_a_failed_reopening_is_retried_not_read_from_the_old_source():
 
 def test_stream_shorter_than_its_intervals_raises():
     irr = tw.Irregularity.sine(2.0, 1e-4)
-    x0, h, n = irr.spline_grid(0.0, 10.0, 1e-3)
+    x0, h, n = profile.spline_grid(irr, 0.0, 10.0, 1e-3)
     p = _core.Profile(x0, h, n, _chunks(irr, 10.0), 2.5)
     with pytest.raises(RuntimeError, match="profile stream ended after 10000 intervals"):
         p(10.0)
@@ -191,8 +182,8 @@ def test_threads_on_one_rail_model_read_their_own_passes(fresh_models, monkeypat
     Chunks of 2 m, 4 m kept, 30 m run on the linear path."""
     import threading
 
-    monkeypatch.setattr(irregularity, "SPLINE_CHUNK", 2048)
-    monkeypatch.setattr(_kernel, "STREAM_RETENTION", 4.0)
+    monkeypatch.setattr(profile, "SPLINE_CHUNK", 2048)
+    monkeypatch.setattr(profile, "STREAM_RETENTION", 4.0)
     scene = _scene()
     kw = dict(fidelity="linear/hertz", dt=1e-4, output_every=10)
     serial, table = _run(scene, 30.0, **kw)

@@ -81,22 +81,35 @@ def test_consistent_gravity_load_is_mass_times_gravity(make_rail):
 
 
 @pytest.mark.parametrize("exact", [True, False])
-def test_assembled_tangent_matches_central_differences(make_rail, fd, rel, exact):
+def test_assembled_tangent_matches_central_differences(make_rail, fd, rel, exact, validation):
     model = make_rail(n_elements=20, supports=SUPPORTS, stiffness=KS, exact=exact)
     e = deformed_rail(model)
     K = np.array(model.tangent_dense(e))
     # h = 1e-6 on O(1) coordinates: central-difference error ~1e-9 relative (test_ancf.py)
     K_fd = fd(lambda x: model.internal_force(x)[0], e, 1e-6)
     assert rel(K_fd, K) < 1e-6
+    if exact:
+        validation.record(
+            "rail.tangent", level="rail", kind="finite differences",
+            quantity="assembled rail (20 elements, supports on and between nodes): tangent "
+                     "stiffness at a bent, noisy state",
+            reference="central differences of the internal force",
+            measured=rel(K_fd, K), tolerance=1e-6, metric="relative")
     assert np.linalg.norm(K - K.T) < 1e-12 * np.linalg.norm(K)
 
 
-def test_internal_force_is_gradient_of_elastic_and_support_energy(make_rail, fd, rel):
+def test_internal_force_is_gradient_of_elastic_and_support_energy(make_rail, fd, rel,
+                                                                  validation):
     model = make_rail(n_elements=20, supports=SUPPORTS, stiffness=KS)
     e = deformed_rail(model, seed=11)
     Q, _ = model.internal_force(e)
     Q_fd = fd(lambda x: model.internal_force(x)[1], e, 1e-6)
     assert rel(Q_fd, Q) < 1e-6
+    validation.record(
+        "rail.force_is_energy_gradient", level="rail", kind="finite differences",
+        quantity="assembled rail: internal force (elastic + supports) at a bent, noisy state",
+        reference="central differences of the elastic and support energy",
+        measured=rel(Q_fd, Q), tolerance=1e-6, metric="relative")
 
 
 def test_support_between_nodes_acts_through_shape_functions(make_rail):

@@ -268,10 +268,10 @@ def test_convergence_conclusion_finds_the_coarsest_agreeing_run():
     rows = [  # dt [s], largest d difference [m], largest acceleration difference [m/s^2]
         ("explicit", 1e-6, 0.5e-8, 50.0), ("explicit", 1e-7, 1e-10, 5.0),
         ("explicit", 1e-8, 0.0, 0.0), ("generalized_alpha", 1e-5, 5e-8, 200.0)]
-    table = pd.DataFrame([{"integrator": i, "dt": dt, "run": f"{i} {dt}",
-                           "reference": "explicit 1e-08", "diff_dynamic": dd,
-                           "diff_acc_contact": da, "ref_amplitude": 1e-6,
-                           "ref_max_abs_acc_contact": 1000.0} for i, dt, dd, da in rows])
+    table = pd.DataFrame([{"integrator": i, "dt_s": dt, "run": f"{i} {dt}",
+                           "reference": "explicit 1e-08", "diff_dynamic_m": dd,
+                           "diff_acc_contact_m_s2": da, "ref_amplitude_m": 1e-6,
+                           "ref_max_abs_acc_contact_m_s2": 1000.0} for i, dt, dd, da in rows])
     lines = rp.convergence_conclusions(table, "dt")
     assert lines[0].endswith("(explicit): coarsest run within 1% of its reference -- "
                              "d from dt = 1e-06 s; acceleration from dt = 1e-07 s.")

@@ -15,11 +15,18 @@ RTOL = 1e-12
 
 
 @pytest.mark.parametrize("omega", [0.05, 0.8245, 3.0])
-def test_fra_class_5_against_published_formula(omega):
+def test_fra_class_5_against_published_formula(omega, validation):
     # Garg & Dukkipati: k A_v Omega_c^2 / (Omega^2 (Omega^2 + Omega_c^2)) [cm^2/(rad/m)], class 5
     # A_v = 0.2095 cm^2 rad/m, k = 0.25, Omega_c = 0.8245 rad/m; 1 cm^2 = 1e-4 m^2.
     cm2 = 0.25 * 0.2095 * 0.8245**2 / (omega**2 * (omega**2 + 0.8245**2))
     assert spectra.fra(5)(omega) == pytest.approx(cm2 * 1e-4, rel=RTOL)
+    if omega == 0.8245:
+        validation.record(
+            "excitation.fra_class_5", level="excitation", kind="published",
+            quantity="FRA class 5 PSD at Ω = Ω_c = 0.8245 rad/m",
+            reference="Garg & Dukkipati (1984): k A_v Ω_c²/(Ω²(Ω² + Ω_c²)), the published "
+                      "constants",
+            measured=abs(spectra.fra(5)(omega) / (cm2 * 1e-4) - 1.0), tolerance=RTOL)
 
 
 def test_fra_classes_order_and_band():
@@ -32,10 +39,18 @@ def test_fra_classes_order_and_band():
 
 
 @pytest.mark.parametrize("level, av", [("low", 4.032e-7), ("high", 1.080e-6)])
-def test_german_against_published_formula(level, av):
+def test_german_against_published_formula(level, av, validation):
+    gaps = []
     for omega in (0.01, 0.5, 5.0):
         expected = av * 0.8246**2 / ((omega**2 + 0.0206**2) * (omega**2 + 0.8246**2))
         assert spectra.german(level)(omega) == pytest.approx(expected, rel=RTOL)
+        gaps.append(abs(spectra.german(level)(omega) / expected - 1.0))
+    if level == "high":
+        validation.record(
+            "excitation.german_high", level="excitation", kind="published",
+            quantity="German high-speed spectrum, high disturbance, at 0.01, 0.5, 5 rad/m",
+            reference="A_v Ω_c²/((Ω² + Ω_r²)(Ω² + Ω_c²)), the published constants",
+            measured=max(gaps), tolerance=RTOL)
 
 
 @pytest.mark.parametrize("f, a, n", [(0.01, 1.0544e-5, 3.3891), (0.03, 3.5588e-3, 1.9271),

@@ -7,7 +7,8 @@ import dataclasses
 import numpy as np
 import pytest
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 KATO = tw.Scene.kato2005()
 
@@ -31,7 +32,7 @@ def winkler_deflection(scene):
 
 
 @pytest.mark.parametrize("x_offset", [0.0, 0.5], ids=["on_support", "mid_bay"])
-def test_long_rail_on_dense_supports_matches_winkler(x_offset):
+def test_long_rail_on_dense_supports_matches_winkler(x_offset, validation):
     """A 30 m rail on supports every 0.1 m with the paper's foundation modulus
     k_f = 140 MN/m / 0.5 m = 280 MN/m^2: beta = 1.82 /m, so beta L = 55 (the ends, where the
     deflection decays like exp(-beta x), are exp(-27) away from the load: an infinite beam)
@@ -45,6 +46,13 @@ def test_long_rail_on_dense_supports_matches_winkler(x_offset):
     assert res.normal_force == pytest.approx(scene.static_load, rel=1e-9)
     err = abs(-res.y_contact / w - 1.0)
     assert err < 0.03  # the issue's criterion (measured: 8e-6 on a support, 2.4e-4 mid-bay)
+    where = "above a support" if x_offset == 0.0 else "mid-bay"
+    validation.record(
+        f"statics.winkler_beam[{'on_support' if x_offset == 0.0 else 'mid_bay'}]",
+        level="statics", kind="closed form",
+        quantity=f"deflection under the wheel, 30 m rail on supports every 0.1 m, {where}",
+        reference="beam on a Winkler foundation: P β/(2 k_f), β = (k_f/4EI)^(1/4)",
+        measured=err, tolerance=0.03)
     # the discrete-support error is what remains: it falls as the supports get denser at the
     # same k_f (measured 2.4e-4 -> 1.8e-5 mid-bay for d = 0.1 -> 0.05)
     finer = winkler_scene(d / 2, stiffness=280e6 * d / 2)
@@ -111,7 +119,7 @@ def test_static_equilibrium_balances_forces():
         scene.wheel.radius - P / scene.contact_stiffness, abs=1e-9)
 
 
-def test_static_matches_linear_finite_element_solution():
+def test_static_matches_linear_finite_element_solution(validation):
     """The deflection is ~1e-4 m on 5 m: geometric nonlinearity is ~(w/d_s)^2 ~ 1e-7, so the
     Newton solution equals the linear Euler-Bernoulli FE solution (tangent at the straight rail,
     wheel on a spring k at a node) to ~1e-6."""
@@ -136,11 +144,17 @@ def test_static_matches_linear_finite_element_solution():
     u = np.linalg.solve(A, b)
     res = tw.static(scene, X)
     assert res.y_contact == pytest.approx(u[i], rel=1e-6)
+    validation.record(
+        "statics.nonlinear_equals_linear_fe", level="statics", kind="path agreement",
+        quantity="paper's scene, wheel at rest at 2.5 m: rail deflection under the wheel "
+                 "(Newton on the nonlinear ANCF rail)",
+        reference="linear Euler-Bernoulli finite elements, a dense solve in the test",
+        measured=abs(res.y_contact / u[i] - 1.0), tolerance=1e-6)
     # the wheel centre moves by u_wheel from rest, where it touched the undeformed rail
     assert res.y_wheel - scene.wheel.radius == pytest.approx(u[n], rel=1e-6)
 
 
-def test_hertz_and_linearised_contact_give_the_same_rail_deflection():
+def test_hertz_and_linearised_contact_give_the_same_rail_deflection(validation):
     """Both laws carry N = P at equilibrium, so the rail is loaded identically; only the wheel's
     approach differs: delta = P/k (linear) or (P/C_H)^(2/3) (Hertz)."""
     hertz = dataclasses.replace(KATO, contact=tw.Contact(law="hertz"))
@@ -152,6 +166,12 @@ def test_hertz_and_linearised_contact_give_the_same_rail_deflection():
     # the linearisation k = 1.5 C_H^(2/3) P^(1/3) is the tangent, so delta_lin = 2/3 delta_H
     d_hertz = (P / KATO.hertz_constant) ** (2.0 / 3.0)
     assert her.y_wheel - her.y_contact == pytest.approx(KATO.wheel.radius - d_hertz, abs=1e-9)
+    validation.record(
+        "contact.hertz_approach", level="contact", kind="closed form",
+        quantity="Hertzian contact at rest under P = F + Mg: approach of wheel and rail",
+        reference="Hertz: δ = (P/C_H)^(2/3), C_H = 4/3 E* √ρ0",
+        measured=abs(her.y_wheel - her.y_contact - (KATO.wheel.radius - d_hertz)),
+        tolerance=1e-9, metric="m")
     assert KATO.wheel.radius - (lin.y_wheel - lin.y_contact) == pytest.approx(
         2.0 / 3.0 * d_hertz, rel=1e-6)
 
@@ -191,7 +211,8 @@ def test_quasi_static_line_is_symmetric():
     assert mid_bay < on_support < 0
 
 
-def test_linear_quasi_static_is_the_point_load_deflection_of_a_simply_supported_beam():
+def test_linear_quasi_static_is_the_point_load_deflection_of_a_simply_supported_beam(
+        validation):
     """Bare simply supported rail, no rail weight: y(a) = -P a^2 b^2 / (3 EI L) under the load
     at a, b = L - a (beam tables). Hermite cubics reproduce a beam under nodal point loads
     exactly, so at nodes only round-off remains (a band solve of ~80 unknowns whose stiffness
@@ -203,6 +224,11 @@ def test_linear_quasi_static_is_the_point_load_deflection_of_a_simply_supported_
     y = tw.linear_quasi_static(scene, a, n_elements=ne)
     exact = -P * a**2 * (L - a) ** 2 / (3.0 * ei * L)
     np.testing.assert_allclose(y, exact, rtol=1e-9)
+    validation.record(
+        "statics.point_load_on_a_simply_supported_beam", level="statics", kind="closed form",
+        quantity="linear track, bare 5 m rail: deflection under a point load at nine positions",
+        reference="beam tables: P a² b²/(3 EI L)",
+        measured=np.max(np.abs(y / exact - 1.0)), tolerance=1e-9)
 
 
 def test_linear_quasi_static_is_the_ancf_line_linearised():
@@ -244,3 +270,22 @@ def test_linear_quasi_static_rejects_bad_input():
         tw.linear_quasi_static(scene, [6.0])
     with pytest.raises(ValueError, match="n_modes"):
         tw.linear_quasi_static(scene, [1.0], n_modes=0)
+
+
+def test_the_static_fields_are_the_kernels():
+    """The static result classes come from one table (run.results.STATIC_FIELDS): every field of
+    it is in the kernel's static solution, and StaticResult carries each of them, with the
+    kernel's values."""
+    from trackwheel.run.results import STATIC_FIELDS, static_from_kernel
+
+    scene = tw.Scene.ballasted_track()
+    model = _kernel.rail_model(scene)
+    d = _core.static_solve(model, _kernel.wheel_params(scene), _kernel.contact_params(scene),
+                           15.3)
+    names = [q.name for q in STATIC_FIELDS]
+    values = static_from_kernel(d, names)
+    res = tw.static(scene, 15.3)
+    for name in names:
+        np.testing.assert_array_equal(getattr(res, name), values[name])
+        assert f"``{name}``" in tw.StaticResult.__doc__
+    assert res.sleeper_z.size == len(scene.support_positions)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import dataclasses as dc
+import hashlib
 import importlib
 import json
 import math
@@ -27,19 +28,23 @@ import psutil
 import pytest
 
 import trackwheel as tw
+from trackwheel.study.columns import label
 
 sweep_mod = importlib.import_module("trackwheel.sweep")  # (tw.sweep is the function)
+cases = importlib.import_module("trackwheel.study.sweep.cases")  # where the sweep runs a case
 
 SCENE = tw.Scene.kato2005()
 KW = {"x_start": 0.25, "x_end": 0.5, "dt": 2e-5}
 SPEEDS = [tw.kmh(200), tw.kmh(300)]
 STIFF = [70e6, 140e6]
+#: the analysis outputs compared, by name (the table's column of each: its label)
 OUTPUTS = ["amplitude", "main_frequency", "frequency_resolution", "min_contact_force",
            "max_contact_force"]
+COLUMN = {name: label(name) for name in OUTPUTS}
 
 
 def no_wall(df):
-    return df.drop(columns=["wall_time"])
+    return df.drop(columns=["wall_time_s"])
 
 
 @pytest.fixture
@@ -47,13 +52,13 @@ def counted(monkeypatch):
     """Replace the case function by a wrapper recording (speed, stiffness) of each computed case
     (in-process execution only: max_workers=1 or a thread pool)."""
     calls = []
-    real = sweep_mod._run_case
+    real = cases.run_case
 
     def run(scene, speed, kwargs):
         calls.append((speed, scene.supports.stiffness))
         return real(scene, speed, kwargs)
 
-    monkeypatch.setattr(sweep_mod, "_run_case", run)
+    monkeypatch.setattr(cases, "run_case", run)
     return calls
 
 
@@ -75,17 +80,17 @@ def test_rows_equal_single_runs_bit_for_bit(max_workers, reference):
         scene = dc.replace(SCENE, supports=dc.replace(SCENE.supports, stiffness=k))
         r = tw.simulate(scene, v, **KW)
         a = tw.analyse(r)
-        assert (row.speed, row.support_stiffness, row.speed_kmh) == (v, k, v * 3.6)
+        assert (row.speed_m_s, row.support_stiffness_N_m, row.speed_kmh) == (v, k, v * 3.6)
         for name in OUTPUTS:
-            assert getattr(row, name) == getattr(a, name), name
+            assert getattr(row, COLUMN[name]) == getattr(a, name), name
         assert row.lost_contact == a.lost_contact and row.error == ""
         assert row.steps == r.steps
         for name in ("integrator", "dt", "n_elements", "x_start", "t_end", "output_every",
                      "rho_inf", "rolling", "start"):
-            assert getattr(row, name) == getattr(r.settings, name), name
-        assert row.x_end == pytest.approx(0.5, abs=1e-12)
-        assert row.version == tw.__version__ and 0.0 < row.wall_time < 60.0
-    assert np.all(df.amplitude > 0) and np.all(df.main_frequency > 0)
+            assert getattr(row, label(name)) == getattr(r.settings, name), name
+        assert row.x_end_m == pytest.approx(0.5, abs=1e-12)
+        assert row.version == tw.__version__ and 0.0 < row.wall_time_s < 60.0
+    assert np.all(df.amplitude_m > 0) and np.all(df.main_frequency_hz > 0)
 
 
 #: distributed's in-process cluster can leave a socket to the garbage collector at teardown (a
@@ -113,7 +118,7 @@ def test_same_table_whatever_the_executor(reference):
 def test_scalars_and_default_stiffness():
     """A scalar speed and no stiffness list: one case with the scene's support stiffness."""
     df = tw.sweep(SCENE, tw.kmh(300), max_workers=1, progress=False, **KW)
-    assert len(df) == 1 and df.support_stiffness[0] == SCENE.supports.stiffness
+    assert len(df) == 1 and df.support_stiffness_N_m[0] == SCENE.supports.stiffness
 
 
 # --------------------------------------------------------------------------------------------
@@ -145,14 +150,14 @@ def test_resume_after_a_worker_raises(tmp_path, monkeypatch, counted):
     2 finished cases are in the store; the re-run computes exactly the 4 others."""
     store = tmp_path / "s"
     speeds = [tw.kmh(150), tw.kmh(200), tw.kmh(300)]
-    real = sweep_mod._run_case
+    real = cases.run_case
 
     def failing(scene, speed, kwargs):  # real counts the cases it runs
         if len(counted) == 2:
             raise RuntimeError("worker lost")
         return real(scene, speed, kwargs)
 
-    monkeypatch.setattr(sweep_mod, "_run_case", failing)
+    monkeypatch.setattr(cases, "run_case", failing)
     with pytest.raises(RuntimeError, match="worker lost"):
         tw.sweep(SCENE, speeds, STIFF, max_workers=1, store=store, progress=False, **KW)
     assert len(records(store)) == 2
@@ -163,7 +168,7 @@ def test_resume_after_a_worker_raises(tmp_path, monkeypatch, counted):
         calls.append((speed, scene.supports.stiffness))
         return real(scene, speed, kwargs)
 
-    monkeypatch.setattr(sweep_mod, "_run_case", count)
+    monkeypatch.setattr(cases, "run_case", count)
     df = tw.sweep(SCENE, speeds, STIFF, max_workers=1, store=store, progress=False, **KW)
     assert df.attrs == {"computed": 4, "from_store": 2}
     assert set(calls) == {(v, k) for v in speeds for k in STIFF} - done
@@ -176,7 +181,7 @@ def test_parallel_sweep_keeps_every_finished_case_when_one_raises(tmp_path, monk
     ones still running at the time) is stored; the re-run recomputes only the missing ones."""
     store = tmp_path / "s"
     speeds = [tw.kmh(150), tw.kmh(200), tw.kmh(250), tw.kmh(300)]
-    real = sweep_mod._run_case
+    real = cases.run_case
     bad = (speeds[1], STIFF[0])
 
     def failing(scene, speed, kwargs):
@@ -184,10 +189,10 @@ def test_parallel_sweep_keeps_every_finished_case_when_one_raises(tmp_path, monk
             raise RuntimeError("worker lost")
         return real(scene, speed, kwargs)
 
-    monkeypatch.setattr(sweep_mod, "_run_case", failing)
+    monkeypatch.setattr(cases, "run_case", failing)
     with cf.ThreadPoolExecutor(2) as ex, pytest.raises(RuntimeError, match="worker lost"):
         tw.sweep(SCENE, speeds, STIFF, executor=ex, store=store, progress=False, **KW)
-    stored = {(r.speed, r.support_stiffness) for r in tw.load_sweep(store).itertuples()}
+    stored = {(r.speed_m_s, r.support_stiffness_N_m) for r in tw.load_sweep(store).itertuples()}
     assert bad not in stored and len(stored) >= 1
     calls = []
 
@@ -195,7 +200,7 @@ def test_parallel_sweep_keeps_every_finished_case_when_one_raises(tmp_path, monk
         calls.append((speed, scene.supports.stiffness))
         return real(scene, speed, kwargs)
 
-    monkeypatch.setattr(sweep_mod, "_run_case", count)
+    monkeypatch.setattr(cases, "run_case", count)
     with cf.ThreadPoolExecutor(2) as ex:
         df = tw.sweep(SCENE, speeds, STIFF, executor=ex, store=store, progress=False, **KW)
     assert set(calls) == {(v, k) for v in speeds for k in STIFF} - stored
@@ -215,7 +220,7 @@ def test_corrupt_records_are_detected_and_recomputed(tmp_path, counted):
     text = paths[0].read_text()
     paths[0].write_text(text[: len(text) // 2])
     rec = json.loads(paths[1].read_text())
-    rec["row"]["amplitude"] *= 1.0 + 1e-12
+    rec["row"]["amplitude_m"] *= 1.0 + 1e-12
     paths[1].write_text(json.dumps(rec))
     paths[2].write_bytes(paths[3].read_bytes())
     paths[4].write_bytes(b"\x00\xff not json")
@@ -230,6 +235,43 @@ def test_corrupt_records_are_detected_and_recomputed(tmp_path, counted):
     pd.testing.assert_frame_equal(no_wall(df), no_wall(first), check_exact=True)
     pd.testing.assert_frame_equal(no_wall(tw.load_sweep(store)), no_wall(first),
                                   check_exact=True)
+
+
+def test_a_store_written_before_the_columns_carried_units_is_read(tmp_path, counted):
+    """Format-3 records (the same rows, columns named without their units: ``amplitude``,
+    ``speed``) are read with today's names: a re-run computes nothing and gives the same table,
+    and load_sweep reads them; a record of format 2 is recomputed with a warning naming it."""
+    from trackwheel.study.sweep import store as records_module
+
+    store = tmp_path / "s"
+    first = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    old = {new: old for old, new in records_module.RENAMED.items()}
+    for p in records(store):
+        rec = json.loads(p.read_text())
+        rec.pop("checksum")
+        rec["format_version"] = 3
+        rec["row"] = {old.get(k, k): val for k, val in rec["row"].items()}
+        assert "amplitude" in rec["row"] and "speed" in rec["row"]
+        rec["checksum"] = hashlib.sha256(records_module.canonical(rec)).hexdigest()
+        p.write_text(json.dumps(rec))
+    n_runs = len(counted)
+    again = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    assert again.attrs["computed"] == 0 and len(counted) == n_runs
+    pd.testing.assert_frame_equal(again, first, check_exact=True)
+    pd.testing.assert_frame_equal(tw.load_sweep(store), first.sort_values(
+        ["speed_m_s", "support_stiffness_N_m"], ignore_index=True), check_exact=True)
+    p = records(store)[0]
+    rec = json.loads(p.read_text())
+    rec["format_version"] = 2
+    p.write_text(json.dumps(rec))
+    with pytest.warns(RuntimeWarning, match="format version 2"):
+        tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+
+
+def test_the_sweep_documents_every_column():
+    """The column table is the sweep's docs: every column with its unit in the docstring."""
+    for c in sweep_mod.COLUMNS:
+        assert f"``{c}``" in tw.sweep.__doc__, c
 
 
 def test_load_sweep_leaves_out_corrupt_records(tmp_path):
@@ -260,9 +302,10 @@ def test_diverging_and_rejected_cases_are_recorded(tmp_path):
     assert ok.tolist() == [True, False, False, False]
     assert df.error[1].startswith("DivergenceError:") and "stability limit" in df.error[1]
     assert all(e.startswith("ValueError: speed = 400.0") for e in df.error[2:])
-    assert np.isfinite(df.amplitude[0]) and df.lost_contact[0] in (False,)  # not None
-    assert df.loc[~ok, OUTPUTS].isna().all().all() and df.lost_contact[~ok].isna().all()
-    assert (df.integrator == "explicit").all() and (df.dt == 5e-6).all()
+    assert np.isfinite(df.amplitude_m[0]) and df.lost_contact[0] in (False,)  # not None
+    assert df.loc[~ok, list(COLUMN.values())].isna().all().all()
+    assert df.lost_contact[~ok].isna().all()
+    assert (df.integrator == "explicit").all() and (df.dt_s == 5e-6).all()
     again = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)
     assert again.attrs == {"computed": 0, "from_store": 4}
     pd.testing.assert_frame_equal(again, df, check_exact=True)
@@ -287,10 +330,10 @@ def test_a_failed_static_solve_is_a_failed_case(tmp_path):
                   progress=False, **kw)
     assert (df.error == "").tolist() == [False, True]
     assert df.error[0] == "RuntimeError: static solve: the wheel lost contact with the rail"
-    assert df.loc[0, OUTPUTS].isna().all() and np.isfinite(df.amplitude[1])
+    assert df.loc[0, list(COLUMN.values())].isna().all() and np.isfinite(df.amplitude_m[1])
     # the case that ran is the single run, exactly
     stiff = dc.replace(heavy, supports=dc.replace(heavy.supports, stiffness=1e9))
-    assert df.amplitude[1] == tw.analyse(tw.simulate(stiff, tw.kmh(200), **kw)).amplitude
+    assert df.amplitude_m[1] == tw.analyse(tw.simulate(stiff, tw.kmh(200), **kw)).amplitude
     again = tw.sweep(heavy, tw.kmh(200), [1e6, 1e9], max_workers=1, store=tmp_path / "s",
                      progress=False, **kw)
     assert again.attrs == {"computed": 0, "from_store": 2}
@@ -422,7 +465,8 @@ def test_seed_axis_rows_records_and_resume(tmp_path):
     store = tmp_path / "s"
     df = tw.sweep(ROUGH, SPEEDS, seeds=[0, 3], max_workers=1, store=store, progress=False,
                   **KW)
-    assert list(df.seed) == [0, 3, 0, 3] and list(df.speed) == [SPEEDS[0]] * 2 + [SPEEDS[1]] * 2
+    assert list(df.seed) == [0, 3, 0, 3]
+    assert list(df.speed_m_s) == [SPEEDS[0]] * 2 + [SPEEDS[1]] * 2
     assert df.case.nunique() == 4 and len(records(store)) == 4
     for p in records(store):
         rec = json.loads(p.read_text())
@@ -473,13 +517,13 @@ def test_force_columns_are_the_analysis_of_each_case():
     r = tw.simulate(case, SPEEDS[1], **KW)
     a = tw.analyse(r, defect_at=0.35)
     row = df.iloc[0]
-    assert row.dynamic_factor == a.dynamic_factor and row.loss_duration == a.loss_duration
-    assert (row.p1, row.p1_time, row.p2, row.p2_time) == (
+    assert row.dynamic_factor == a.dynamic_factor and row.loss_duration_s == a.loss_duration
+    assert (row.p1_N, row.p1_time_s, row.p2_N, row.p2_time_s) == (
         a.forces.p1, a.forces.p1_time, a.forces.p2, a.forces.p2_time)
     n = r.normal_force
-    assert row.force_rms == pytest.approx(math.sqrt(np.mean((n - n.mean()) ** 2)), rel=1e-12)
+    assert row.force_rms_N == pytest.approx(math.sqrt(np.mean((n - n.mean()) ** 2)), rel=1e-12)
     plain = tw.sweep(ROUGH, SPEEDS[1], seeds=[7], max_workers=1, progress=False, **KW)
-    assert plain.p1.isna().all() and plain.p2.isna().all()
+    assert plain.p1_N.isna().all() and plain.p2_N.isna().all()
 
 
 @pytest.mark.parametrize("scene, seeds, exc, match", [
@@ -501,22 +545,24 @@ def test_summarise_seeds_percentiles_per_speed():
     """Per speed, numpy's percentiles of each column over the seeds that ran (a failed row is
     left out and not counted); a table mixing support stiffnesses must say how to group."""
     rng = np.random.default_rng(0)
-    rows = [{"speed": sp, "support_stiffness": 1e8, "seed": s, "error": "",
-             "max_contact_force": 5e4 + 1e3 * rng.random(), "dynamic_factor": 1 + rng.random()}
+    rows = [{"speed_m_s": sp, "support_stiffness_N_m": 1e8, "seed": s, "error": "",
+             "max_contact_force_N": 5e4 + 1e3 * rng.random(),
+             "dynamic_factor": 1 + rng.random()}
             for sp in (10.0, 20.0) for s in range(7)]
-    rows[3]["error"], rows[3]["max_contact_force"] = "DivergenceError: x", 1e9
+    rows[3]["error"], rows[3]["max_contact_force_N"] = "DivergenceError: x", 1e9
     df = pd.DataFrame(rows)
-    out = tw.summarise_seeds(df, ["max_contact_force", "dynamic_factor"], q=(5, 50, 95))
+    out = tw.summarise_seeds(df, ["max_contact_force_N", "dynamic_factor"], q=(5, 50, 95))
     assert list(out.index) == [10.0, 20.0] and list(out[("n_seeds", "")]) == [6, 7]
     for sp in (10.0, 20.0):
-        ok = df[(df.speed == sp) & (df.error == "")]
-        for col in ("max_contact_force", "dynamic_factor"):
+        ok = df[(df.speed_m_s == sp) & (df.error == "")]
+        for col in ("max_contact_force_N", "dynamic_factor"):
             for q in (5, 50, 95):
                 assert out.loc[sp, (col, f"p{q}")] == np.percentile(ok[col], q)
-    mixed = pd.concat([df, df.assign(support_stiffness=2e8)])
+    mixed = pd.concat([df, df.assign(support_stiffness_N_m=2e8)])
     with pytest.raises(ValueError, match="support_stiffness"):
         tw.summarise_seeds(mixed, ["dynamic_factor"])
-    both = tw.summarise_seeds(mixed, ["dynamic_factor"], by=["speed", "support_stiffness"])
-    assert both.index.names == ["speed", "support_stiffness"] and len(both) == 4
+    by = ["speed_m_s", "support_stiffness_N_m"]
+    both = tw.summarise_seeds(mixed, ["dynamic_factor"], by=by)
+    assert both.index.names == by and len(both) == 4
     with pytest.raises(ValueError, match="seed"):
         tw.summarise_seeds(df.drop(columns="seed"), ["dynamic_factor"])

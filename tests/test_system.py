@@ -29,7 +29,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 V = tw.kmh(300)
 DT = 1e-5
@@ -97,7 +98,7 @@ def _probe_case(law, slide, n_wheels, polygon=False, layered=False, irregularity
     ("linear", False, 1, False, True, False), ("hertz", True, 2, False, True, False),
     ("linear", True, 1, False, False, True), ("hertz", True, 2, True, False, True)])
 def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, polygon, layered,
-                                                      locked):
+                                                      locked, validation):
     model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, polygon, layered,
                                                 locked=locked)
 
@@ -114,6 +115,13 @@ def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, poly
     assert np.all(np.max(np.abs(J), axis=0) > 0.0)
     err = central_difference_error(R, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
+    if (law, slide, n_wheels, polygon, layered, locked) == ("hertz", True, 2, False, True, False):
+        validation.record(
+            "dynamics.iteration_matrix", level="time integration", kind="finite differences",
+            quantity="generalized-α iteration matrix: two sliding wheels, Hertz contact, "
+                     "pad-sleeper-ballast supports",
+            reference="central differences of the step's residual",
+            measured=np.max(err), tolerance=1e-6, metric="of each column's max")
     # the border is really coupled: the rolling/slide rows and lambda columns are not empty
     for k in range(n_wheels):
         lam = model.n_free + 3 * k + 2

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 from trackwheel.eigen import rail_frequencies
 
 EI, KGA, L_EL = 6.36e6, 2.2e8, 0.125  # a rail-like section and element [N m^2, N, m]
@@ -99,7 +100,7 @@ def test_thin_beam_limit_frequencies_equal_euler_bernoulli():
     np.testing.assert_allclose(f_t, rail_frequencies(s, 8), rtol=1e-7)
 
 
-def test_static_midspan_deflection_with_shear():
+def test_static_midspan_deflection_with_shear(validation):
     """Simply supported span under a central point load: w = P L^3/(48 EI) + P L/(4 kGA) (bending
     plus shear); the IIE element is exact for point loads at nodes, so to round-off."""
     s = _span("timoshenko", length=2.0, n_elements=8)
@@ -107,10 +108,15 @@ def test_static_midspan_deflection_with_shear():
     a0 = tw.receptance(s, 1.0, [0.0])[0]
     expected = 2.0**3 / (48 * r.bending_stiffness) + 2.0 / (4 * r.shear_stiffness)
     assert a0.real == pytest.approx(expected, rel=1e-9)
+    validation.record(
+        "statics.timoshenko_span", level="statics", kind="closed form",
+        quantity="linear Timoshenko rail, 2 m simply supported span: mid-span compliance",
+        reference="P L³/(48 EI) + P L/(4 κGA) (bending plus shear)",
+        measured=abs(a0.real / expected - 1.0), tolerance=1e-9)
     assert a0.imag == 0.0
 
 
-def test_pinned_pinned_frequency_against_the_timoshenko_equation():
+def test_pinned_pinned_frequency_against_the_timoshenko_equation(validation):
     """First bending frequency of a simply supported 0.5 m span: within 0.5 % of the closed form
     (20 elements: the FE error is ~1e-3 of it); Euler-Bernoulli within 0.5 % of
     (pi/(2 d^2)) sqrt(EI/m). The paper's rail: ~2.15 kHz without, ~1.44 kHz with shear (issue 12)."""
@@ -121,6 +127,11 @@ def test_pinned_pinned_frequency_against_the_timoshenko_equation():
     assert f_t == pytest.approx(_timoshenko_pinned_pinned(r, d), rel=5e-3)
     assert f_e == pytest.approx(math.pi / (2 * d * d) * math.sqrt(r.bending_stiffness
                                                                  / r.mass_per_length), rel=5e-3)
+    validation.record(
+        "eigen.timoshenko_pinned_pinned", level="eigen analysis", kind="closed form",
+        quantity="linear Timoshenko rail, bare 0.5 m span, 20 elements: first bending frequency",
+        reference="lower root of the Timoshenko frequency equation of a simply supported span",
+        measured=abs(f_t / _timoshenko_pinned_pinned(r, d) - 1.0), tolerance=5e-3)
     assert f_e == pytest.approx(2150, rel=0.01)
     assert f_t == pytest.approx(1440, rel=0.01)
 

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
 
 L = 20.0  # [m]: 80 elements of 0.25 m, the paper's element length
 SEPARATION = 10.0  # [m]

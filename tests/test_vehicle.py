@@ -17,9 +17,11 @@ import pytest
 from test_system import central_difference_error
 
 import trackwheel as tw
-from trackwheel import _core, _kernel
-from trackwheel.results import result_from_kernel
-from trackwheel.simulate import _run, kernel_settings, resolve
+from trackwheel import _core
+from trackwheel.run import kernel as _kernel
+from trackwheel.run.plan import resolve
+from trackwheel.run.results import result_from_kernel
+from trackwheel.run.simulate import kernel_settings, run_kernel
 from trackwheel.vehicle import Bogie, CarBody, Vehicle, rigid_track_frequencies
 
 G = 9.8
@@ -54,7 +56,7 @@ def _run_perturbed(scene, body_offset, duration, dt):
     ``body_offset`` [z, phi per body]."""
     plan = _plan(scene, 0.0, duration=duration, dt=dt)
     plan.init.body = np.asarray(plan.init.body) + np.asarray(body_offset)
-    out, wall = _run(plan, kernel_settings(plan), False)
+    out, wall = run_kernel(plan, kernel_settings(plan), False)
     return result_from_kernel(out, plan.scene, plan.settings, wall, False)
 
 
@@ -67,7 +69,7 @@ def _frequency(t, x):
     return (len(tc) - 1) / (tc[-1] - tc[0])
 
 
-def test_bogie_bounce_and_pitch_on_a_rigid_track_match_the_closed_forms():
+def test_bogie_bounce_and_pitch_on_a_rigid_track_match_the_closed_forms(validation):
     """Bogie on two held wheels: bounce sqrt(2 k_1 / M_b), pitch sqrt(2 k_1 a^2 / J_b)
     (rigid_track_frequencies); each mode excited alone by displacing z or phi. Tolerance 0.5 %
     (the issue's), well above the track's 3e-4 and generalized-alpha's period error
@@ -81,6 +83,16 @@ def test_bogie_bounce_and_pitch_on_a_rigid_track_match_the_closed_forms():
     fp = _frequency(pitch.t, pitch.body_phi[:, 0])
     assert fb == pytest.approx(f["bogie0_bounce"], rel=5e-3)
     assert fp == pytest.approx(f["bogie0_pitch"], rel=5e-3)
+    validation.record(
+        "vehicle.bogie_bounce", level="vehicle", kind="closed form",
+        quantity="bogie on a rigid track, free vibration: bounce frequency",
+        reference="√(2 k_1/M_b)/2π", measured=abs(fb / f["bogie0_bounce"] - 1.0),
+        tolerance=5e-3)
+    validation.record(
+        "vehicle.bogie_pitch", level="vehicle", kind="closed form",
+        quantity="bogie on a rigid track, free vibration: pitch frequency",
+        reference="√(2 k_1 a²/J_b)/2π", measured=abs(fp / f["bogie0_pitch"] - 1.0),
+        tolerance=5e-3)
     # the modes are uncoupled: the bounce run does not pitch, the pitch run does not bounce
     assert np.ptp(bounce.body_phi[:, 0]) < 1e-3 * 1e-3
     assert np.ptp(pitch.body_z[:, 0]) < 1e-2 * 1e-3
@@ -153,7 +165,8 @@ def _biggs_reference(v, t, n_modes=10):
 
 
 @pytest.mark.parametrize("speed", [27.78, 60.0, 120.0])
-def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(speed):
+def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(speed,
+                                                                              validation):
     """Linear path, moving-mass level: the sprung mass is a one-wheel 'bogie' (5750 kg on
     1.595 MN/m) on a 1 kg wheel held on a bare simply supported beam (no supports, no rail
     weight), 50 Hermite elements, 1e-4 s, rho_inf = 1. Speed parameters v / (2 f_1 L) = 0.12,
@@ -175,6 +188,15 @@ def test_sprung_mass_crossing_a_simply_supported_beam_matches_the_biggs_model(sp
     assert np.max(np.abs(r.y_contact - w)) < 0.02 * np.max(np.abs(w))
     dz = r.body_z[:, 0] - r.body_z[0, 0]
     assert np.max(np.abs(dz - z)) < 0.02 * np.max(np.abs(z))
+    if speed == 60.0:
+        validation.record(
+            "vehicle.sprung_mass_on_a_beam_biggs", level="vehicle", kind="published",
+            quantity="linear/moving_mass: a 5750 kg sprung mass crossing a 25 m simply "
+                     "supported beam at 60 m/s, beam deflection under it",
+            reference="Biggs (1964) example as in Yang, Yau & Wu (2004) ch. 2: its modal "
+                      "equations integrated by scipy",
+            measured=np.max(np.abs(r.y_contact - w)) / np.max(np.abs(w)), tolerance=0.02,
+            metric="of max deflection")
     # and the dynamic amplification is real: the peak exceeds the static mid-span deflection
     # M g L^3 / 48 EI only through the dynamics (speed-dependent); it stays finite
     static = M * G * L**3 / (48 * E * I2)
@@ -199,7 +221,7 @@ def vehicle_probe(scene, speed):
 
 
 @pytest.mark.parametrize("preset", ["bogie", "half_car"])
-def test_iteration_matrix_with_bodies_matches_central_differences(preset):
+def test_iteration_matrix_with_bodies_matches_central_differences(preset, validation):
     """ga_probe's iteration matrix against central differences of its residual with the
     bodies' (z'', phi'') in the border (steps and tolerance as tests/test_system.py: 1e3 m/s^2
     on accelerations, 1 N on multipliers, 1e-6 of each column's largest entry); the scene moves
@@ -216,6 +238,13 @@ def test_iteration_matrix_with_bodies_matches_central_differences(preset):
     h[nf + 2:nf + 3 * nw:3] = 1.0
     err = central_difference_error(R, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
+    if preset == "half_car":
+        validation.record(
+            "vehicle.iteration_matrix", level="vehicle", kind="finite differences",
+            quantity="half car at 300 km/h: generalized-α iteration matrix with the bodies in "
+                     "the border",
+            reference="central differences of the step's residual",
+            measured=np.max(err), tolerance=1e-6, metric="of each column's max")
     # the suspensions couple each wheel's Y row with its bogie's z and phi
     ob = nf + 3 * nw
     for w in range(nw):
@@ -349,7 +378,8 @@ def test_per_wheel_analysis_plot_and_cli(capsys):
     assert "wheel 0 (x = 0 m)" in out and "wheel 1 (x = 2.5 m)" in out
 
 
-def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_modes():
+def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_modes(
+        validation):
     """trackwheel.eigen with the vehicle: on the rigid track (supports and contact 1e12 N/m)
     the two lowest modes are the car body's bounce and pitch of the closed-form 2-DOF systems
     (_car_modes), and the bogies' pitch sqrt(2 k_1 a^2 / J_b) appears twice (both bogies),
@@ -361,6 +391,16 @@ def test_eigen_of_the_half_car_on_a_rigid_track_has_the_closed_form_suspension_m
     f = r.frequencies[0]
     assert f[0] == pytest.approx(_car_modes(veh, pitch=False)[0], rel=5e-3)
     assert f[1] == pytest.approx(_car_modes(veh, pitch=True)[0], rel=5e-3)
+    validation.record(
+        "vehicle.car_body_bounce_eigen", level="vehicle", kind="closed form",
+        quantity="half car on a rigid track, tw.eigen: car-body bounce frequency",
+        reference="lower root of the two-mass system (car, two bogies) on 2 k_2 and 4 k_1",
+        measured=abs(f[0] / _car_modes(veh, pitch=False)[0] - 1.0), tolerance=5e-3)
+    validation.record(
+        "vehicle.car_body_pitch_eigen", level="vehicle", kind="closed form",
+        quantity="half car on a rigid track, tw.eigen: car-body pitch frequency",
+        reference="lower root of the two-mass system (J_c/l², two bogies) on 2 k_2 and 4 k_1",
+        measured=abs(f[1] / _car_modes(veh, pitch=True)[0] - 1.0), tolerance=5e-3)
     fp = rigid_track_frequencies(veh)["bogie0_pitch"]
     assert np.sum(np.abs(f / fp - 1.0) < 5e-3) == 2
     assert np.all(r.body_fraction[0][f < 20.0] > 0.99)
@@ -394,16 +434,16 @@ def test_sweep_has_one_row_per_wheel_and_marks_the_worst(tmp_path):
     speeds = [tw.kmh(100), tw.kmh(200)]
     df = tw.sweep(scene, speeds, max_workers=1, progress=False, dt=5e-5, store=tmp_path)
     assert list(df.wheel) == [0, 1, 0, 1]
-    assert df.groupby("speed").worst.sum().tolist() == [1, 1]
+    assert df.groupby("speed_m_s").worst.sum().tolist() == [1, 1]
     r = tw.simulate(scene, speeds[1], dt=5e-5)
     for i in range(2):
-        row = df[(df.speed == speeds[1]) & (df.wheel == i)].iloc[0]
-        assert row.amplitude == tw.analyse(r, wheel=i).amplitude
+        row = df[(df.speed_m_s == speeds[1]) & (df.wheel == i)].iloc[0]
+        assert row.amplitude_m == tw.analyse(r, wheel=i).amplitude
     worst = df[df.worst]
     best = df[~df.worst]
-    assert np.all(worst.amplitude.to_numpy() >= best.amplitude.to_numpy())
+    assert np.all(worst.amplitude_m.to_numpy() >= best.amplitude_m.to_numpy())
     back = tw.load_sweep(tmp_path)
-    assert back[["wheel", "worst", "amplitude"]].equals(df[["wheel", "worst", "amplitude"]])
+    assert back[["wheel", "worst", "amplitude_m"]].equals(df[["wheel", "worst", "amplitude_m"]])
 
 
 @pytest.mark.parametrize("integrator, dt, bound", [("generalized_alpha", 2e-5, 1e-5),

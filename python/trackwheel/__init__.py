@@ -3,30 +3,81 @@
 SI units everywhere (m, s, kg, N, Pa, Hz); speeds in m/s -- :func:`kmh` converts from km/h.
 The physics is described in the documentation (docs: Model) and follows Kato et al. (2005).
 
-Data flow one way: :class:`Scene` -> the C++ kernel (:func:`simulate`, :func:`static`,
-:func:`eigen`) -> :class:`Result` -> :func:`analyse` -> ``trackwheel.plots``; the defaults
-derived from a scene live in ``trackwheel.defaults``.
+Data flow one way, one layer per subpackage (docs: Development):
+``base`` (limits, units, checks) -> ``excitation`` (rail profiles, spectra, wheel defects) ->
+``scene`` (:class:`Scene`) -> ``run`` (the C++ kernel: :func:`simulate`, :func:`static`,
+:func:`eigen`, :func:`receptance` -> :class:`Result`) -> ``study`` (:func:`analyse`,
+:func:`sweep`, :func:`adequacy`, ...) -> ``plots`` -> ``reproduce`` -> ``cli``.
 """
 
-from ._errors import DivergenceError
+import importlib as _importlib
+import sys as _sys
+
 from ._version import __version__
-from .analysis import Analysis, amplitude_spectrum, analyse, main_frequency
-from .convergence import Convergence, ConvergenceWarning, converged
-from .defaults import MeshWarning, StabilityWarning, default_settings, stability_limit
-from .eigen import EigenResult, eigen
-from .fidelity import adequacy, recommend
-from .force_statistics import ForceStatistics, force_statistics
-from .frequency import decay_rate, receptance
-from .irregularity import Irregularity, Polygon, WheelFlat
-from .results import Result, RunSettings
-from .scene import AbsorbingEnds, Contact, Rail, Scene, Supports, Wheel, Window, kmh
-from .simulate import FIDELITY_LEVELS, simulate
-from .vehicle import Bogie, CarBody, Vehicle
-from .steady import SteadyState, steady_state
-from .statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
-from .sweep import load_sweep, summarise_seeds, sweep
-from . import spectra as spectra  # the module, re-exported (trackwheel.spectra.fra, ...)
-from . import frequency as frequency  # the module (trackwheel.frequency.decay_rate_limit, ...)
+from .base.errors import DivergenceError
+from .base.units import kmh
+from .excitation import Irregularity, Polygon, WheelFlat
+from .excitation import spectra as spectra  # the module (trackwheel.spectra.fra, ...)
+from .run.defaults import MeshWarning, StabilityWarning, default_settings, stability_limit
+from .run.eigen import EigenResult, eigen
+from .run.frequency import decay_rate, receptance
+from .run.periodic import (
+    PeriodicResponse,
+    RandomResponse,
+    moving_receptance,
+    periodic_response,
+    random_response,
+)
+from .run.results import Result, RunSettings
+from .run.simulate import FIDELITY_LEVELS, simulate
+from .run.statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
+from .scene import (
+    AbsorbingEnds,
+    Bogie,
+    CarBody,
+    Contact,
+    Rail,
+    Scene,
+    Supports,
+    Vehicle,
+    Wheel,
+    Window,
+)
+from .study.analysis import Analysis, amplitude_spectrum, analyse, main_frequency
+from .study.convergence import Convergence, ConvergenceWarning, converged
+from .study.fidelity import adequacy, recommend
+from .study.force_statistics import ForceStatistics, force_statistics
+from .study.steady import SteadyState, steady_state
+from .study.sweep import load_sweep, summarise_seeds, sweep
+
+#: The module paths of the flat layout and the modules they are now: ``import
+#: trackwheel.simulate`` (or ``from trackwheel.eigen import rail_frequencies``) keeps working,
+#: and gives the module itself (the same object: its names, its monkeypatchable globals).
+#: ``trackwheel.scene``, ``.plots``, ``.reproduce`` and ``.cli`` are packages at their old paths.
+FLAT_MODULES = {
+    "irregularity": "excitation",
+    "spectra": "excitation.spectra",
+    "vehicle": "scene.vehicle",
+    "defaults": "run.defaults",
+    "results": "run.results",
+    "simulate": "run.simulate",
+    "statics": "run.statics",
+    "eigen": "run.eigen",
+    "frequency": "run.frequency",
+    "analysis": "study.analysis",
+    "steady": "study.steady",
+    "force_statistics": "study.force_statistics",
+    "convergence": "study.convergence",
+    "fidelity": "study.fidelity",
+    "sweep": "study.sweep",
+}
+for _old, _new in FLAT_MODULES.items():
+    _module = _importlib.import_module(f"{__name__}.{_new}")
+    _sys.modules[f"{__name__}.{_old}"] = _module
+    # the attribute too, unless a public function of the same name holds it (trackwheel.eigen,
+    # .simulate, .sweep, .force_statistics are the functions, as they always were)
+    globals().setdefault(_old, _module)
+del _old, _new, _module
 
 __all__ = [
     "FIDELITY_LEVELS",
@@ -78,4 +129,9 @@ __all__ = [
     "CarBody",
     "receptance",
     "decay_rate",
+    "PeriodicResponse",
+    "RandomResponse",
+    "moving_receptance",
+    "periodic_response",
+    "random_response",
 ]

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'OUTPUT_FIELDS', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'periodic_lattice_sum', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
 class CableSection:
     exact_curvature: bool
     def __init__(self) -> None:
@@ -513,6 +513,14 @@ class ContactParams:
     def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def element_compliance(self) -> bool:
+        """
+        the rail element's fixed-end compliance under the load in series with the law (docs: Model § Contact)
+        """
+    @element_compliance.setter
+    def element_compliance(self, arg0: bool) -> None:
+        ...
+    @property
     def friction(self) -> float:
         """
         mu, slip judgement [-]
@@ -596,6 +604,89 @@ class BeamParams:
         """
     @shear_stiffness.setter
     def shear_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class PeriodicTrackParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def EI(self) -> float:
+        """
+        bending stiffness [N m^2]
+        """
+    @EI.setter
+    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ballast_damping(self) -> float:
+        """
+        c_b [N s/m]
+        """
+    @ballast_damping.setter
+    def ballast_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ballast_stiffness(self) -> float:
+        """
+        k_b [N/m]
+        """
+    @ballast_stiffness.setter
+    def ballast_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bay(self) -> float:
+        """
+        d, support spacing [m]
+        """
+    @bay.setter
+    def bay(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mass(self) -> float:
+        """
+        rho A [kg/m]
+        """
+    @mass.setter
+    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pad_damping(self) -> float:
+        """
+        c_s or c_p [N s/m]
+        """
+    @pad_damping.setter
+    def pad_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pad_stiffness(self) -> float:
+        """
+        k_s or k_p [N/m]
+        """
+    @pad_stiffness.setter
+    def pad_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotary(self) -> float:
+        """
+        rho I [kg m]
+        """
+    @rotary.setter
+    def rotary(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shear(self) -> float:
+        """
+        kappa G A [N]; 0: Euler-Bernoulli
+        """
+    @shear.setter
+    def shear(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sleeper_mass(self) -> float:
+        """
+        m_s [kg]; 0: single
+        """
+    @sleeper_mass.setter
+    def sleeper_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class Integrator:
     """
@@ -1028,6 +1119,10 @@ def direction_pencil(rail: RailModel, component: typing.SupportsInt | typing.Sup
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
+def fixed_end_compliance(EI: typing.SupportsFloat | typing.SupportsIndex, shear_compliance: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float]:
+    """
+    The element's clamped-clamped compliance under a point load at a in [0, l]: (G [m/N], dG/da, d2G/da2); shear_compliance = 1/kGA [1/N], 0 for Euler-Bernoulli
+    """
 def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, vehicle: VehicleParams = ...) -> dict:
     """
     Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, z'' per sleeper] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}
@@ -1040,9 +1135,17 @@ def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, a
     """
     omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
     """
-def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
-    Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction.
+    Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; element_compliance: the element's own deflection under the load G(X_i) P included.
+    """
+def periodic_lattice_sum(track: PeriodicTrackParams, k: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex, w: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex) -> complex:
+    """
+    The lattice sum S(k, w) [m/N] of the periodic track
+    """
+def periodic_receptance_matrix(track: PeriodicTrackParams, speed: typing.SupportsFloat | typing.SupportsIndex, omega: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsInt | typing.SupportsIndex, offsets: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, stats: bool = False) -> typing.Any:
+    """
+    Moving-load receptance matrices (n_offsets, 2n+1, 2n+1) [m/N] of the periodic track; with stats=True also the work counts {points, poles, rounds, den_evaluations}
     """
 def quasi_static(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
     ...
@@ -1055,6 +1158,10 @@ def receptance(rail: RailModel, beam: BeamParams, x: typing.SupportsFloat | typi
 def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"], arg6: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     """
     Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
+    """
+def series_contact(law: ContactLaw, stiffness: typing.SupportsFloat | typing.SupportsIndex, G: typing.SupportsFloat | typing.SupportsIndex, delta: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float, float]:
+    """
+    The contact law in series with a compliance G [m/N] at the approach delta [m]: (N [N], dN/d(delta) [N/m], the law's compression [m], the stored energy [J])
     """
 def shear_elastic(arg0: ShearSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
     """
@@ -1071,6 +1178,10 @@ def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], con
 def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
     Linear vertical track fast path (Euler-Bernoulli or Timoshenko rail, constant matrices)
+    """
+def static_bodies(vehicle: VehicleParams, y_wheels: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    [z_0, phi_0, z_1, phi_1, ...] [m, rad] of the bodies in static equilibrium above wheel centres held at heights y_wheels [m]: the bodies' rows of K_v u = -G (vehicle.hpp)
     """
 def static_solve(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.SupportsFloat | typing.SupportsIndex) -> dict:
     ...
@@ -1106,6 +1217,10 @@ def track_static(arg0: RailModel) -> dict:
     """
     Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}
     """
+def vehicle_matrices(vehicle: VehicleParams, n_wheels: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    """
+    The vehicle's constant matrices over u = [Y_A per wheel, (z, phi) per body] (vehicle.hpp): {'K' [N/m], 'C' [N s/m]: sum k g g^T, sum c g g^T over the suspensions; 'mass': the bodies' masses [kg] and pitch inertias [kg m^2], the wheels' entries 0; 'G': the bodies' weights and loads [N]}
+    """
 def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.SupportsIndex, arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], arg4: typing.SupportsInt | typing.SupportsIndex) -> tuple:
     """
     Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
@@ -1114,4 +1229,5 @@ GAUSS_RANGE: tuple = (2, 10)
 MAX_DENSE_EIGEN_DOF: int = 4000
 MAX_ELEMENTS: int = 20000
 MAX_SPEED: float = 300.0
+MAX_SUPPORTS: int = 100000
 OUTPUT_FIELDS: tuple = (('t', 's', 'time', False, 'float64'), ('x_wheel', 'm', 'X_A, wheel-centre position (prescribed X_0 + v t)', True, 'float64'), ('y_wheel', 'm', 'Y_A, wheel-centre height', True, 'float64'), ('ydot_wheel', 'm/s', 'dY_A/dt', True, 'float64'), ('theta', 'rad', 'rolling angle', True, 'float64'), ('thetadot', 'rad/s', 'rolling rate', True, 'float64'), ('contact_s', 'm', 's*, rail coordinate of the contact point', True, 'float64'), ('y_contact', 'm', 'y_B = y(s*), rail displacement under the wheel', True, 'float64'), ('normal_force', 'N', 'N, normal contact force (0 without contact)', True, 'float64'), ('tangential_force', 'N', 'lambda, tangential contact force on the wheel', True, 'float64'), ('slip', 'm/s', 'slip velocity t.(V_A - S edot) - rho thetadot', True, 'float64'), ('slip_state', '', '0 no contact, 1 stick, 2 slide', True, 'int32'), ('v_error', '%', "paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100", True, 'float64'), ('phi', 'rad', 'rail obliquity at the contact point', True, 'float64'), ('acc_contact', 'm/s^2', "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss (s'' y_s neglected)", True, 'float64'), ('acc_A', 'm/s^2', "rho cos(phi) theta' v phi_s (docs: Model § Outputs)", True, 'float64'), ('acc_B', 'm/s^2', "rho cos(phi) theta' phi_t", True, 'float64'), ('acc_C', 'm/s^2', 'rho cos(phi) v^2 phi_s^2', True, 'float64'), ('acc_D', 'm/s^2', 'rho cos(phi) phi_t^2', True, 'float64'), ('acc_E', 'm/s^2', '2 rho cos(phi) phi_t v phi_s', True, 'float64'), ('reaction', 'N', 'horizontal force holding X_A = X_0 + v t', True, 'float64'), ('penetration', 'm', 'rho0 - rho (negative: gap)', True, 'float64'), ('energy', 'J', 'total mechanical energy (recorded on request only)', False, 'float64'))

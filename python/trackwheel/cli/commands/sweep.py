@@ -1,0 +1,156 @@
+"""``trackwheel sweep``: a speed x support-stiffness (x seed) sweep into a resumable store."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ...base.limits import MAX_SPEED
+from ...base.units import kmh
+from ...study.columns import OUTPUTS, SPEED_KMH, SUPPORT_STIFFNESS, label
+from ...study.sweep import summarise_seeds, sweep
+from ..checks import option_error, output_file, speeds_kmh, writable_folder
+from ..formatting import print_notes
+from ..options import (
+    excitation_options,
+    finite_float,
+    positive_int,
+    simulate_kwargs,
+    simulate_options,
+    track_option,
+)
+from ..scenes import OptionError, describe, excited_scene, track_scene
+
+
+def add(sub) -> None:
+    p = sub.add_parser(
+        "sweep", help="run a speed x support-stiffness sweep into a store",
+        description="Run every (speed, support stiffness) case of Scene.kato2005() in parallel "
+                    "(trackwheel.sweep), with --seeds one case per realisation of the random "
+                    "--irregularity, keep each finished case in --store (a re-run skips them) "
+                    "and print the table (with --seeds also the 5/50/95 % percentiles over "
+                    "the seeds per speed). Exit code 1 if a case failed (it is recorded with "
+                    "its error).")
+    p.add_argument("--speeds-kmh", type=finite_float, nargs="+", required=True, metavar="V",
+                   help=f"forward speeds [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
+    p.add_argument("--support-stiffness", type=finite_float, nargs="+", metavar="K",
+                   help="support stiffnesses k_s [N/m] (default 140e6; with --track ballasted "
+                        "the rail pad's, default 180e6)")
+    track_option(p)
+    p.add_argument("--store", type=Path, required=True, metavar="DIR",
+                   help="folder keeping one record per finished case (created if missing)")
+    p.add_argument("--out", type=Path, metavar="CSV", help="also write the table to this file")
+    p.add_argument("--workers", type=positive_int, metavar="N",
+                   help="processes (default: one per core)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    excitation_options(p, seeds=True)
+    simulate_options(p, auto=True)
+    p.set_defaults(run=run, parser=p)
+
+
+#: the table printed, one column per quantity (the min and max force share one): the header
+#: and the displayed unit and scale come from the quantity (trackwheel.study.columns)
+_OUT = {q.name: q for q in OUTPUTS}
+_TABLE = ((SPEED_KMH, ">8g"), (SUPPORT_STIFFNESS, ">10g"))
+_ROW = ((_OUT["amplitude"], ">14.3f"), (_OUT["main_frequency"], ">11.1f"),
+        (_OUT["frequency_resolution"], ">6.1f"))
+_N_MIN, _N_MAX, _FACTOR, _LOST = (_OUT[n] for n in ("min_contact_force", "max_contact_force",
+                                                     "dynamic_factor", "lost_contact"))
+_SEED, _ERROR, _SPEED = (label(n) for n in ("seed", "error", "speed"))
+
+
+def _print_sweep(df, store: Path, excitation: str) -> None:
+    print(f"excitation: {excitation}")
+    auto = df.attrs.get("fidelity_auto")
+    if auto:
+        print(f"--fidelity auto: {auto['chosen']} (adequate within {auto['tol']:g} on "
+              f"{auto['sample_speed'] * 3.6:g} km/h, "
+              f"{auto['sample_support_stiffness'] / 1e6:g} MN/m)")
+    seeded = bool(df[_SEED].notna().any())
+    n_range = f"{_N_MAX.symbol} min..max [{_N_MAX.display[0]}]"
+    print("  ".join(f"{q.header:>{_width(fmt)}}" for q, fmt in _TABLE) + "  "
+          + ("seed  " if seeded else "")
+          + "  ".join(f"{q.header:>{_width(fmt)}}" for q, fmt in _ROW)
+          + f"  {n_range:>15}  {_FACTOR.header:>6}  {_LOST.header}  error")
+    for _, row in df.iterrows():
+        head = ("  ".join(f"{q.shown(row[q.label]):{fmt}}" for q, fmt in _TABLE) + "  "
+                + (f"{row[_SEED]:>4}  " if seeded else ""))
+        if row[_ERROR]:
+            print(f"{head}{row[_ERROR]}")
+            continue
+        print(head + "  ".join(f"{q.shown(row[q.label]):{fmt}}" for q, fmt in _ROW)
+              + f"  {_N_MIN.shown(row[_N_MIN.label]):>6.2f}.."
+              f"{_N_MAX.shown(row[_N_MAX.label]):<7.2f}  "
+              f"{row[_FACTOR.label]:>6.3f}  {'yes' if row[_LOST.label] else 'no':>4}")
+    if seeded and (df[_ERROR] == "").any():
+        _print_seed_summary(df)
+    print(f"{len(df)} cases: {df.attrs.get('computed', 0)} computed, "
+          f"{df.attrs.get('from_store', 0)} from the store {store}")
+
+
+def _width(fmt: str) -> int:
+    """The field width of a format such as ">14.3f"."""
+    return int(fmt.lstrip("<>^").split(".")[0].rstrip("gfd"))
+
+
+def _print_seed_summary(df) -> None:
+    """The 5th / 50th / 95th percentiles over the seeds of the largest force and the dynamic
+    factor, per speed (and support stiffness, if the sweep has several)."""
+    stiffness = SUPPORT_STIFFNESS.label
+    by = _SPEED if df[stiffness].nunique() == 1 else [_SPEED, stiffness]
+    summary = summarise_seeds(df, [_N_MAX.label, _FACTOR.label], by=by)
+    print("over the seeds (5th / 50th / 95th percentile):")
+    for key, row in summary.iterrows():
+        v, k = (key, None) if isinstance(by, str) else key
+        where = f"{v * 3.6:>8g} km/h" + (f", {k / 1e6:g} MN/m" if k is not None else "")
+        print(f"{where}: max N {_pcts(row, _N_MAX)} {_N_MAX.display[0]}, N/P0 "
+              f"{_pcts(row, _FACTOR)} ({int(row[('n_seeds', '')])} seeds)")
+
+
+def _pcts(row, q) -> str:
+    return " / ".join(f"{q.shown(row[(q.label, p)]):.4g}" for p in ("p5", "p50", "p95"))
+
+
+def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    speeds_kmh(args.speeds_kmh, "--speeds-kmh", parser)
+    if args.out is not None:
+        output_file(args.out, "--out", parser)
+    writable_folder(args.store, "--store", parser, create=True)
+    extra = {}
+    if args.fidelity_tol is not None:
+        if args.fidelity != "auto":
+            parser.error("--fidelity-tol is only used with --fidelity auto")
+        extra["fidelity_tol"] = args.fidelity_tol
+    seeds = None
+    if args.seeds is not None:
+        seeds = [s for group in args.seeds for s in group]
+        if len(set(seeds)) != len(seeds):
+            parser.error(f"--seeds: a seed is given twice ({', '.join(map(str, seeds))})")
+        if args.seed is not None:
+            parser.error("give --seed (one realisation) or --seeds (several), not both")
+    try:
+        scene, notes = excited_scene(track_scene(args), args)
+    except OptionError as exc:
+        parser.error(str(exc))
+    print_notes(notes, "sweep")
+    try:
+        df = sweep(scene, speed=[kmh(v) for v in args.speeds_kmh], seeds=seeds,
+                   support_stiffness=args.support_stiffness, store=args.store,
+                   progress=not args.no_progress, max_workers=args.workers,
+                   **simulate_kwargs(args), **extra)
+    except (ValueError, TypeError) as exc:
+        parser.error(option_error(exc))
+    _print_sweep(df, args.store, describe(scene))
+    if args.out is not None:
+        try:
+            df.to_csv(args.out, index=False)
+        except OSError as exc:
+            print(f"trackwheel sweep: cannot write --out {args.out}: {exc}", file=sys.stderr)
+            return 1
+        print(f"table written to {args.out}")
+    n_failed = int((df["error"] != "").sum())
+    if n_failed:
+        print(f"{n_failed} case(s) failed (recorded with their error)", file=sys.stderr)
+        return 1
+    return 0

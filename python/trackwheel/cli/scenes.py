@@ -1,0 +1,205 @@
+"""The scene a command runs, from its options: the --track preset (with --length, --beam,
+--shear-coefficient and a support stiffness), the --vehicle and the excitation (--irregularity,
+--seed, --wavelengths, --joint, --wheel-flat, --patch-filter)."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+
+from ..base.limits import MAX_ELEMENTS
+from ..excitation import Irregularity, WheelFlat, spectra
+from ..scene import Scene, Vehicle
+from .checks import option_error
+from .options import TRACKS, floats
+
+#: sleeper spacing of Scene.ballasted_track [m]
+BALLASTED_SPACING = Scene.ballasted_track().supports.spacing
+
+
+def track_scene(args: argparse.Namespace, stiffness: float | None = None,
+                length: float | None = None) -> Scene:
+    """The --track preset with --length (or ``length`` [m] if not given), the support (pad)
+    stiffness ``stiffness`` [N/m] and the beam options applied. Raises OptionError."""
+    if args.shear_coefficient is not None and args.beam != "timoshenko":
+        raise OptionError("--shear-coefficient is only used with --beam timoshenko")
+    if args.length is not None and args.track != "ballasted":
+        raise OptionError(f"--length is only for --track ballasted (--track {args.track} "
+                           "has its fixed length)")
+    try:
+        scene = preset(args.track, stiffness, args.length or length)
+        rail = dataclasses.replace(scene.rail, beam=args.beam)
+        if args.shear_coefficient is not None:
+            rail = dataclasses.replace(rail, shear_coefficient=args.shear_coefficient)
+    except ValueError as exc:
+        raise OptionError(option_error(exc)) from None
+    return dataclasses.replace(scene, rail=rail)
+
+
+def scene_name(scene: Scene, args: argparse.Namespace) -> str:
+    """The preset's name, with the length and beam theory if not the defaults."""
+    name = "Scene.kato2005()" if args.track == "kato2005" else (
+        "Scene.ballasted_track()" if args.length is None
+        else f"Scene.ballasted_track(length={args.length:g})")
+    if scene.rail.beam == "timoshenko":
+        name += f" with a Timoshenko rail (kappa = {scene.rail.shear_coefficient:g})"
+    return name
+
+
+
+#: --vehicle choices of ``trackwheel run``
+VEHICLES = ("single", "bogie", "half-car")
+#: rail length for --vehicle half-car [m]: the half car's 20 m of wheels plus the paper's 5 m
+HALF_CAR_RAIL = 25.0
+
+
+def vehicle_scene(scene: Scene, vehicle: str) -> Scene:
+    """``scene`` carrying the --vehicle choice (the rail lengthened for a half car, the
+    paper's element length kept)."""
+    if vehicle == "single":
+        return scene
+    if vehicle == "bogie":
+        return dataclasses.replace(scene, vehicle=Vehicle.bogie())
+    ne = round(scene.rail.n_elements * HALF_CAR_RAIL / scene.rail.length)
+    rail = dataclasses.replace(scene.rail, length=HALF_CAR_RAIL, n_elements=ne)
+    return dataclasses.replace(scene, rail=rail, vehicle=Vehicle.half_car())
+
+
+
+def preset(track: str, stiffness: float | None = None, length: float | None = None) -> Scene:
+    """The --track preset, with the support (pad) stiffness [N/m] and the ballasted track's
+    length [m] replaced if given."""
+    if track == "kato2005":
+        return paper_scene(stiffness)
+    if length is None:
+        scene = TRACKS[track]()
+    else:  # the preset's 4 elements per bay, fewer on a long rail (the CLI re-meshes anyway)
+        n_bays = max(round(length / BALLASTED_SPACING), 1)
+        if n_bays > MAX_ELEMENTS:
+            raise ValueError(f"length = {length:g} m is too long; allowed: at most "
+                             f"{MAX_ELEMENTS * BALLASTED_SPACING:g} m ({MAX_ELEMENTS} "
+                             f"elements, one per {BALLASTED_SPACING:g} m sleeper bay)")
+        scene = TRACKS[track](length, elements_per_bay=min(4, MAX_ELEMENTS // n_bays))
+    if stiffness is not None:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
+    return scene
+
+
+def paper_scene(stiffness: float | None = None) -> Scene:
+    """Scene.kato2005(), with the support stiffness replaced if given [N/m]."""
+    scene = Scene.kato2005()
+    if stiffness is not None:
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
+    return scene
+
+
+class OptionError(ValueError):
+    """A bad excitation value, worded for the command line."""
+
+
+def spectrum(kind: str, arg: str):
+    if kind == "fra":
+        try:
+            track_class = int(arg)
+        except ValueError:
+            raise OptionError(f"--irregularity fra:{arg}: the FRA class must be an integer "
+                               "1..6") from None
+        return spectra.fra(track_class)
+    if kind == "german":
+        return spectra.german(arg)
+    return spectra.china_hsr() if kind == "china" else spectra.iso3095()
+
+
+def profile(args: argparse.Namespace) -> Irregularity | None:
+    """The rail profile of --irregularity/--joint (None: smooth). The random parts are drawn
+    with --seed (first part) and seeds derived from it (Irregularity.reseeded)."""
+    parts = []
+    for kind, arg in args.irregularity or ():
+        text = f"--irregularity {kind}{':' + arg if arg else ''}"
+        try:
+            if kind == "sine":
+                lam, amp = floats(arg, 2, "sine:WAVELENGTH,AMPLITUDE in m, e.g. sine:0.5,1e-5")
+                parts.append(Irregularity.sine(lam, amp))
+            else:
+                parts.append(Irregularity.random(spectrum(kind, arg), seed=0,
+                                                 wavelengths=args.wavelengths))
+        except OptionError:
+            raise
+        except (ValueError, argparse.ArgumentTypeError) as exc:
+            msg = str(exc).replace("wavelengths = ", "--wavelengths ")
+            raise OptionError(f"{text}: {msg}") from None
+    irr = sum(parts) if parts else None
+    n_random = 0 if irr is None else irr.n_random
+    if n_random == 0 and (args.seed is not None or args.wavelengths is not None
+                          or getattr(args, "seeds", None)):
+        used = [o for o, val in (("--seed", args.seed), ("--wavelengths", args.wavelengths),
+                                 ("--seeds", getattr(args, "seeds", None))) if val is not None]
+        raise OptionError(f"{' and '.join(used)} need(s) a random --irregularity "
+                           "(fra:N, german:low|high, china or iso3095)")
+    if n_random:
+        if args.seed is not None and args.seed < 0:
+            raise OptionError(f"--seed {args.seed}: allowed range 0 .. 2^63 - 1")
+        irr = irr.reseeded(args.seed or 0)
+    if args.joint is not None:
+        depth, length, at = args.joint
+        try:
+            joint = Irregularity.dipped_joint(depth, length, at)
+        except ValueError as exc:
+            raise OptionError(f"--joint: {exc}") from None
+        irr = joint if irr is None else irr + joint
+    return irr
+
+
+def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[str]]:
+    """``scene`` with the excitation options applied, and notes to print (stdout) or warn
+    (lines starting "warning:"). Raises OptionError for bad values."""
+    notes = []
+    irr = profile(args)
+    if irr is not None:
+        length = scene.rail.length
+        if args.joint is not None and not 0.0 <= args.joint[2] <= length - args.joint[1]:
+            raise OptionError(f"--joint: the joint from X = {args.joint[2]:g} m over "
+                               f"{args.joint[1]:g} m leaves the rail; allowed AT range "
+                               f"[0, {length - args.joint[1]:g}] m")
+        scene = dataclasses.replace(scene, irregularity=irr)
+    if args.wheel_flat is not None:
+        if not args.wheel_flat > 0.0:
+            raise OptionError(f"--wheel-flat {args.wheel_flat:g}: the flat's length must be "
+                               "> 0 m")
+        try:
+            flat = WheelFlat(args.wheel_flat, at_angle=math.pi)
+            scene = dataclasses.replace(scene, wheel=dataclasses.replace(
+                scene.wheel, defects=(*scene.wheel.defects, flat)))
+        except ValueError as exc:
+            raise OptionError(f"--wheel-flat: {exc}") from None
+    if args.patch_filter or args.joint is not None:
+        scene = dataclasses.replace(scene, contact=dataclasses.replace(scene.contact,
+                                                                       patch_filter=True))
+        if not args.patch_filter:
+            notes.append("--joint turns the contact filter on (Contact.patch_filter = True: "
+                         "the dip's cusp curves more sharply than the wheel)")
+    return scene, notes
+
+
+def describe(scene: Scene) -> str:
+    """One line naming the excitation of ``scene``."""
+    words = []
+    for p in () if scene.irregularity is None else scene.irregularity.parts:
+        if p.kind == "random":
+            words.append(f"{p.spectrum.name} (seed {p.seed}, {p.wavelengths[0]:g}-"
+                         f"{p.wavelengths[1]:g} m)")
+        elif p.kind == "sine":
+            words.append(f"sine {p.wavelength:g} m x {p.amplitude:g} m")
+        elif p.kind == "dipped_joint":
+            words.append(f"dipped joint {p.depth * 1e3:g} mm over {p.length:g} m at "
+                         f"X = {p.at:g} m")
+    for d in scene.wheel.defects:
+        words.append(f"wheel flat {d.length * 1e3:g} mm" if d.kind == "wheel_flat"
+                     else f"polygon order {d.order}")
+    if scene.contact.patch_filter:
+        words.append("contact filter on")
+    return ", ".join(words) if words else "none (smooth rail, round wheel)"
+

@@ -1,0 +1,203 @@
+"""A run resolved before the kernel starts: the arguments of :func:`trackwheel.simulate`
+validated, its defaults taken (the same derived mesh and time step at every fidelity level,
+:mod:`.defaults`), the scene rewritten for the fidelity level, the rail model built and the
+start state solved, as one :class:`RunPlan`.
+"""
+
+from __future__ import annotations
+
+import dataclasses as dc
+import math
+from dataclasses import dataclass
+
+from ..base import validate as v
+from ..base.limits import MAX_OUTPUT_BYTES, MAX_STEPS
+from ..scene import Scene
+from . import kernel
+from .defaults import (
+    check_speed,
+    derived_dt,
+    derived_mesh,
+    explicit_limit,
+    warn_above_stability_limit,
+    warn_unresolved_mesh,
+)
+from .passage import passage, window_params
+from .results import RunSettings, sample_bytes
+from .start import initial_state
+
+#: Model fidelity levels, most to least detailed. "full" is the paper's model: the
+#: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
+#: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
+#: levels use the linear rail with constant matrices (factorised once, or modal with ``n_modes``)
+#: and a vertical contact at X_A: a moving force P, a moving mass (rigid contact), a sprung wheel
+#: (linear bilateral contact spring k) or a Hertzian wheel (unilateral). Every level takes the
+#: scene's beam theory: ``Rail(beam="timoshenko")`` is the shear-deformable ANCF rail on the
+#: "full" and "ancf/..." levels and the linear Timoshenko beam on the "linear/..." ones.
+FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
+                   "linear/moving_mass", "linear/moving_force")
+
+#: Default number of kept samples: output_every is chosen so that at most this many are kept.
+DEFAULT_MAX_SAMPLES = 100_000
+#: The time integrators of the full model (the linear levels take "generalized_alpha").
+INTEGRATORS = ("generalized_alpha", "explicit")
+
+
+@dataclass(frozen=True)
+class RunPlan:
+    """A resolved run: everything the kernel needs, and the settings the Result reports."""
+
+    scene: Scene  #: the scene, its contact law replaced for the "*/sprung", "*/hertz" levels
+    settings: RunSettings
+    model: object  #: _core.RailModel of the scene on settings.n_elements
+    init: object  #: _core.SimState at the start (None for the linear levels)
+    n_steps: int
+    energy: bool  #: record the total mechanical energy
+    max_newton: int
+    newton_tol: float  #: [m]
+    rolling: bool  #: the rolling flag as given (the linear kernel path has no constraint)
+    window: object = None  #: _core.WindowParams of a travelling window, or None
+
+    @property
+    def linear(self) -> bool:
+        return self.settings.fidelity.startswith("linear/")
+
+
+def _with_law(scene: Scene, law: str) -> Scene:
+    """The scene with its contact law replaced; stiffness None takes the Hertz values."""
+    if scene.contact.law == law:
+        return scene
+    k = scene.contact_stiffness if law == "linear" else None
+    if law == "hertz" and scene.contact.stiffness is not None:
+        # a given linear k becomes the Hertz constant with the same stiffness at the static load
+        k = (scene.contact.stiffness / (1.5 * scene.static_load ** (1 / 3))) ** 1.5
+    return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+
+
+def _scene_for(scene: Scene, fidelity: str) -> Scene:
+    if fidelity in ("ancf/sprung", "linear/sprung"):
+        return _with_law(scene, "linear")
+    if fidelity in ("ancf/hertz", "linear/hertz"):
+        return _with_law(scene, "hertz")
+    return scene
+
+
+def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
+    """(fidelity, n_modes) checked against each other, the integrator and the mesh."""
+    v.choice("fidelity", fidelity, set(FIDELITY_LEVELS))
+    linear = fidelity.startswith("linear/")
+    if linear and integrator != "generalized_alpha":
+        raise ValueError(f"integrator = {integrator!r} is not available with fidelity = "
+                         f"{fidelity!r}; the linear levels use 'generalized_alpha'")
+    if n_modes is not None:
+        if not linear:
+            raise ValueError(f"n_modes is only used with the linear fidelity levels, not "
+                             f"{fidelity!r}")
+        n_modes = v.integer("n_modes", n_modes, low=1, high=2 * (ne + 1) - 2)
+    return fidelity, n_modes
+
+
+def _time_step(scene: Scene, dt, integrator: str, linear: bool, model, init, x0: float) -> float:
+    """The time step [s]: ``dt`` checked, or the derived default (explicit: at most half the
+    predicted stability limit). An explicit ``dt`` above the limit warns before the run."""
+    explicit = integrator == "explicit" and not linear
+    wheel, contact = kernel.wheel_params(scene), kernel.contact_params(scene)
+    if dt is None:
+        dt = derived_dt(scene)
+        if explicit:
+            dt = min(dt, 0.5 * explicit_limit(model, wheel, contact, init.e, x0,
+                                              init.wheels[0].y)[0])
+        return dt
+    dt = v.number("dt", dt, low=0.0, low_open=True, high=1.0, unit="s")
+    if explicit:  # warn before a doomed run (stack: here, resolve, simulate, caller)
+        warn_above_stability_limit(model, wheel, contact, init.e, x0, init.wheels[0].y, dt,
+                                   stacklevel=5)
+    return dt
+
+
+def _steps(dt: float, t_end: float, dt_default: bool) -> int:
+    n_steps = round(t_end / dt)
+    if n_steps < 1:
+        raise ValueError(f"dt = {dt} s ({'default' if dt_default else 'given'}) is longer than "
+                         f"the simulated time {t_end:.6g} s; allowed range (0, {t_end:.6g}] s")
+    if n_steps > MAX_STEPS:
+        raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s, above "
+                         f"the limit of {MAX_STEPS:.0e} steps; allowed range "
+                         f"[{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s")
+    return n_steps
+
+
+def _output_every(output_every, n_steps: int, energy: bool) -> int:
+    """``output_every`` checked (default: at most DEFAULT_MAX_SAMPLES samples) against the
+    output size limit MAX_OUTPUT_BYTES (the sample size from the kernel's output table)."""
+    if output_every is None:
+        output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))
+    output_every = v.integer("output_every", output_every, low=1, high=2**31 - 1)
+    n_samples = n_steps // output_every + 1
+    per_sample = sample_bytes(energy)
+    if n_samples * per_sample > MAX_OUTPUT_BYTES:
+        raise ValueError(
+            f"output_every = {output_every} keeps {n_samples} samples "
+            f"({n_samples * per_sample / 2**30:.1f} GiB), above the limit of "
+            f"{MAX_OUTPUT_BYTES / 2**30:.0f} GiB: increase output_every to at least "
+            f"{math.ceil(n_steps * per_sample / MAX_OUTPUT_BYTES)}")
+    return output_every
+
+
+def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, x_end, duration,
+            output_every, rho_inf, baumgarte, rolling, start, drop_height, energy, fidelity,
+            n_modes, max_newton, newton_tol, distance=None) -> RunPlan:
+    """Validate the arguments of :func:`simulate`, resolve its defaults (the same derived mesh
+    and step at every fidelity level) and rewrite the scene for the fidelity level."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    speed = check_speed(speed)
+    v.choice("integrator", integrator, set(INTEGRATORS))
+    v.choice("start", start, {"static", "sudden"})
+    ne = (derived_mesh(scene) if dt is None else scene.rail.n_elements) if n_elements is None \
+        else v.n_elements(n_elements)
+    x0, t_end = passage(scene, speed, x_start, x_end, duration, distance)
+    rho_inf = v.number("rho_inf", rho_inf, low=0.0, high=1.0)
+    baumgarte = v.number("baumgarte", baumgarte, low=0.0, unit="1/s")
+    drop_height = v.number("drop_height", drop_height, low=0.0, high=scene.wheel.radius,
+                           unit="m")
+    max_newton = v.integer("max_newton", max_newton, low=1, high=1000)
+    newton_tol = v.number("newton_tol", newton_tol, low=0.0, low_open=True, unit="m")
+    if not isinstance(rolling, bool):
+        raise TypeError("rolling must be True or False")
+    fidelity, n_modes = _check_fidelity(fidelity, integrator, n_modes, ne)
+    if fidelity == "linear/moving_force" and scene.active_vehicle.n_bodies:
+        raise ValueError("fidelity = 'linear/moving_force' has no wheel dynamics, so no "
+                         "suspension; a vehicle with bogies or a car body needs one of "
+                         "'linear/moving_mass', 'linear/sprung', 'linear/hertz', 'ancf/...', "
+                         "'full'")
+    linear = fidelity.startswith("linear/")
+    if linear and any(w.brake_torque > 0.0 for w in scene.active_vehicle.wheels):
+        # the linear levels have no wheel rotation (a defect sits at theta = v t / rho0)
+        raise ValueError(f"Wheel.brake_torque > 0 needs the wheel's rotation, which fidelity = "
+                         f"{fidelity!r} does not model; use 'full', 'ancf/sprung' or "
+                         f"'ancf/hertz'")
+    if scene.window is not None and n_modes is not None:
+        raise ValueError("Scene.window needs all coordinates: n_modes = None")
+    energy = v.boolean("energy", energy)
+    warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
+    scene = _scene_for(scene, fidelity)
+    window = None if scene.window is None else window_params(scene, ne, x0)
+    profile_end = None if window is None else (
+        x0 + speed * t_end + scene.active_vehicle.span[1] + scene.rail.length)
+    # the full path reads the profile in the rail coordinate s = X - X_w of the start window
+    # (the kernel shifts it as the window travels); the linear path reads it at X
+    s0 = 0.0 if window is None or linear else window.origin
+    model = kernel.rail_model(scene, ne, profile_end, s0)
+    init = None if linear else initial_state(scene, model, speed, x0 - s0, start, drop_height)
+    h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
+    n_steps = _steps(h, t_end, dt is None)
+    output_every = _output_every(output_every, n_steps, energy)
+    settings = RunSettings(
+        integrator=integrator, dt=h, n_elements=ne, speed=speed, x_start=x0,
+        t_end=n_steps * h, output_every=output_every, rho_inf=rho_inf, baumgarte=baumgarte,
+        rolling=rolling and not linear, start=start, drop_height=drop_height, fidelity=fidelity,
+        n_modes=n_modes)
+    return RunPlan(scene=scene, settings=settings, model=model, init=init, n_steps=n_steps,
+                   energy=energy, max_newton=max_newton, newton_tol=newton_tol,
+                   rolling=rolling, window=window)

@@ -1,0 +1,176 @@
+"""Static equilibrium and the quasi-static contact line (docs: Model § Outputs).
+
+``static`` solves the nonlinear ANCF rail on its supports, under its own weight, with the wheel
+held at ``x_wheel`` and pressed down by P = F + M g through the contact law (Newton on the
+analytic Jacobian, in the C++ kernel). ``quasi_static`` repeats it along the track and returns
+y_qs(X), the line the dynamic contact-point displacement is measured from. The fields of every
+static result come from one table, :data:`trackwheel.run.results.STATIC_FIELDS`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .. import _core
+from ..base import validate as v
+from ..base.fields import Quantity, by_name, dataclass_fields, generated_doc
+from ..scene import Scene
+from . import kernel
+from .defaults import mesh
+from .results import STATIC_FIELDS, static_from_kernel
+
+_STATIC = by_name(STATIC_FIELDS)
+#: the quasi-static line's fields, each an array over the wheel positions
+_LINE = ("y_contact", "y_wheel", "contact_s", "normal_force")
+#: the rail's state shared by the wheels of a vehicle's static solve
+_RAIL = ("rail_coordinates", "sleeper_z", "ballast_force")
+
+
+def _per_position(name: str, shape: str, rename: str = "") -> Quantity:
+    """The static field ``name`` as an array of ``shape`` (named ``rename`` if given)."""
+    q = _STATIC[name]
+    return dataclasses.replace(q, name=rename or name, doc=f"{q.doc}, {shape}",
+                               kind="np.ndarray")
+
+
+class _StaticMethods:
+    def __repr__(self) -> str:
+        return (f"<trackwheel.StaticResult: wheel at X = {self.x_wheel:.4g} m, "
+                f"{self.n_elements} elements>\n"
+                f"  y_contact = {self.y_contact:.6g} m, y_wheel = {self.y_wheel:.6g} m, "
+                f"N = {self.normal_force:.6g} N, s* = {self.contact_s:.6g} m "
+                f"({self.iterations} Newton iterations)")
+
+    def rail_shape(self, n_points: int = 201) -> tuple[np.ndarray, np.ndarray]:
+        """(x, y) of the deflected rail at ``n_points`` material points [m]."""
+        n_points = v.integer("n_points", n_points, low=2, high=10**7)
+        model = kernel.rail_model(self.scene, self.n_elements)
+        s = np.linspace(0.0, self.scene.rail.length, n_points)
+        r = model.positions(self.rail_coordinates, s)
+        return r[:, 0], r[:, 1]
+
+
+_STATIC_RESULT = (Quantity("scene", "", "the scene", "Scene"),
+                  Quantity("x_wheel", "m", "X_A, where the wheel rests"),
+                  *STATIC_FIELDS[:-2], Quantity("n_elements", "", "mesh used", "int"),
+                  *STATIC_FIELDS[-2:])
+StaticResult = dataclasses.make_dataclass(
+    "StaticResult", dataclass_fields(_STATIC_RESULT), bases=(_StaticMethods,), frozen=True,
+    repr=False, namespace={"__module__": __name__, "__doc__": generated_doc(
+        "The static state with the wheel resting at ``x_wheel``:", _STATIC_RESULT)})
+
+
+class _LineMethods:
+    def __repr__(self) -> str:
+        x, y = self.positions, self.y_contact
+        return (f"<trackwheel.QuasiStatic: {x.size} wheel positions "
+                f"X = {x.min():.4g}..{x.max():.4g} m>\n"
+                f"  y_qs = {y.min():.6g}..{y.max():.6g} m, "
+                f"N = {self.normal_force.min():.6g}..{self.normal_force.max():.6g} N")
+
+
+_QUASI_STATIC = (Quantity("positions", "m", "X, the wheel positions, (n,)", "np.ndarray"),
+                 *(_per_position(name, "(n,)") for name in _LINE))
+QuasiStatic = dataclasses.make_dataclass(
+    "QuasiStatic", dataclass_fields(_QUASI_STATIC), bases=(_LineMethods,), frozen=True,
+    repr=False, namespace={"__module__": __name__, "__doc__": generated_doc(
+        "y_qs(X): the static contact-point displacement with the wheel resting at each X "
+        "(``y_contact``):", _QUASI_STATIC)})
+
+_VEHICLE_STATIC = (
+    Quantity("x_wheels", "m", "X_A of each wheel, (n_wheels,)", "np.ndarray"),
+    _per_position("y_wheel", "(n_wheels,)", "y_wheels"),
+    _per_position("y_contact", "(n_wheels,)"),
+    _per_position("normal_force", "(n_wheels,): the lever rule's static wheel loads"),
+    Quantity("bodies", "", "(n_bodies, 2): z [m], phi [rad] of the bogies, then the car body",
+             "np.ndarray"),
+    *(_STATIC[name] for name in _RAIL))
+VehicleStatic = dataclasses.make_dataclass(
+    "VehicleStatic", dataclass_fields(_VEHICLE_STATIC), frozen=True,
+    namespace={"__module__": __name__, "__doc__": generated_doc(
+        "The static state of a vehicle on the track (the start of "
+        ":func:`trackwheel.simulate`); the per-wheel fields are arrays over the wheels:",
+        _VEHICLE_STATIC)})
+
+
+def _check_scene(scene) -> Scene:
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
+    return scene
+
+
+def static(scene: Scene, x_wheel: float, *, n_elements: int | None = None) -> StaticResult:
+    """Static equilibrium with the wheel centre held at ``x_wheel`` [m] (0 <= x_wheel <= L).
+
+    Returns the deflected rail and the contact-point displacement y_B [m]. With a
+    ``scene.vehicle`` this is its derived ``Scene.wheel`` alone (the first wheel under the mean
+    static load); :func:`vehicle_static` gives the whole vehicle's static state.
+    """
+    _check_scene(scene)
+    x = v.number("x_wheel", x_wheel, low=0.0, high=scene.rail.length, unit="m")
+    ne = mesh(scene, n_elements)
+    model = kernel.rail_model(scene, ne)
+    d = _core.static_solve(model, kernel.wheel_params(scene), kernel.contact_params(scene), x)
+    return StaticResult(scene=scene, x_wheel=x, n_elements=ne,
+                        **static_from_kernel(d, (q.name for q in STATIC_FIELDS)))
+
+
+def quasi_static(scene: Scene, positions, *, n_elements: int | None = None) -> QuasiStatic:
+    """The quasi-static line y_qs(X) [m] at each wheel position X [m] (vectorised; each solve
+    warm-starts from the previous one), on the full model's rail (with
+    ``Rail(beam="timoshenko")`` the shear-deformable ANCF rail; the linear track's line is
+    :func:`linear_quasi_static`)."""
+    _check_scene(scene)
+    x = v.positions("positions", positions, 0.0, scene.rail.length)
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    d = _core.quasi_static(model, kernel.wheel_params(scene), kernel.contact_params(scene),
+                           x.tolist())
+    return QuasiStatic(positions=x, **{name: np.asarray(d[name]) for name in _LINE})
+
+
+def vehicle_static(scene: Scene, x_ref: float, *, n_elements: int | None = None
+                   ) -> VehicleStatic:
+    """Static equilibrium of the scene's vehicle with its reference point (x = 0) at
+    ``x_ref`` [m]: the rail under every wheel's static load of the weight distribution at once
+    (docs: Model § The vehicle), each body where its springs carry those loads."""
+    _check_scene(scene)
+    veh = scene.active_vehicle
+    rear, front = veh.span
+    x = v.number("x_ref", x_ref, low=-rear, high=scene.rail.length - front, unit="m")
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    xs = [x + p for p in veh.positions]
+    contacts = []
+    for w in veh.wheels:
+        c = kernel.contact_params(scene)
+        c.radius = w.radius
+        contacts.append(c)
+    sols = _core.static_solve_wheels(model, kernel.static_wheels_params(scene), contacts, xs)
+    y = np.array([d["y_wheel"] for d in sols])
+    return VehicleStatic(
+        x_wheels=np.asarray(xs), y_wheels=y,
+        y_contact=np.array([d["y_contact"] for d in sols]),
+        normal_force=np.array([d["normal_force"] for d in sols]),
+        bodies=kernel.static_bodies(scene, y).reshape(-1, 2),
+        **static_from_kernel(sols[0], _RAIL))
+
+
+def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = None,
+                        n_modes: int | None = None) -> np.ndarray:
+    """The quasi-static line of the linear track (the ``linear/*`` levels): the rail
+    displacement y_qs(X) [m] under the wheel at each position X [m], from the linear track's
+    own statics K q = Q_g - P s(X) with P = F + M g (docs: Model § Rail (linearised)), for
+    the scene's beam theory (Euler-Bernoulli or Timoshenko).
+
+    A linear run starts on this line whatever its contact law (at rest N = P), and it differs
+    from :func:`quasi_static`'s ANCF line only by the ANCF model's nonlinearity. ``n_modes``:
+    the line of the modal reduction the run used (None: all coordinates).
+    """
+    _check_scene(scene)
+    x = v.positions("positions", positions, 0.0, scene.rail.length)
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
+    return np.asarray(_core.linear_static_line(model, kernel.beam_params(scene),
+                                               scene.static_load, x.tolist(), modes,
+                                               kernel.element_compliance(scene)))
