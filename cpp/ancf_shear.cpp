@@ -117,22 +117,22 @@ void shear_force(const ShearSection& c, const Vec8& e, Vec8& Q, double* U,
     const ShearShapes& s = q.s[g];
     const Eigen::Vector2d rs = combine(s.ws, e), d = combine(s.psi, e), ds = combine(s.psis, e);
     const double dd = d.squaredNorm(), eps = 0.5 * (rs.squaredNorm() - 1.0);
-    const double em = 0.5 * (dd - rs.squaredNorm());  // the director's stretch against r_s's
-    const Eigen::Vector2d perp(-d.y(), d.x());        // d(d x v)/dv
+    const Eigen::Vector2d perp(-d.y(), d.x());  // d(d x v)/dv
     const double cb = d.x() * ds.y() - d.y() * ds.x(), cs = d.x() * rs.y() - d.y() * rs.x();
     const double gb = c.exact_curvature ? 1.0 / (dd * std::sqrt(dd)) : 1.0;
     const double pb = c.exact_curvature ? 1.5 : 0.0;
     const double kappa = cb * gb, gamma = cs / dd;
+    const double stretch = 0.5 * (dd - rs.squaredNorm());  // the director's, against r_s's
     const double wl = q.w[g] * c.length;
     const double fa = wl * c.EA * eps, fb = wl * c.EI * kappa, fs = wl * c.kGA * gamma;
-    const double fm = wl * c.EA * em;
-    if (U) *U += 0.5 * (fa * eps + fb * kappa + fs * gamma + fm * em);
+    const double ft = wl * c.kGA * stretch;
+    if (U) *U += 0.5 * (fa * eps + fb * kappa + fs * gamma + ft * stretch);
     // dkappa/dd = gb (d_s.y, -d_s.x) - 2 p kappa d / dd, dkappa/dd_s = gb perp;
     // dgamma/dd = (r_s.y, -r_s.x) / dd - 2 gamma d / dd, dgamma/dr_s = perp / dd
-    const Eigen::Vector2d vr = (fa - fm) * rs + (fs / dd) * perp;
+    const Eigen::Vector2d vr = (fa - ft) * rs + (fs / dd) * perp;
     const Eigen::Vector2d vd =
         fb * (gb * Eigen::Vector2d(ds.y(), -ds.x()) - (2.0 * pb * kappa / dd) * d) +
-        fs * (Eigen::Vector2d(rs.y(), -rs.x()) / dd - (2.0 * gamma / dd) * d) + fm * d;
+        fs * (Eigen::Vector2d(rs.y(), -rs.x()) / dd - (2.0 * gamma / dd) * d) + ft * d;
     const Eigen::Vector2d vds = (fb * gb) * perp;
     for (int k = 0; k < 4; ++k)
       Q.segment<2>(2 * k) += s.ws[k] * vr + s.psi[k] * vd + s.psis[k] * vds;
@@ -160,24 +160,28 @@ void shear_elastic(const ShearSection& c, const Vec8& e, Vec8* Q, Mat8* K, doubl
     const Eigen::Vector2d rs = combine(s.ws, e);
     const double eps = 0.5 * (rs.squaredNorm() - 1.0);
     const Vec8 deps = spread(s.ws, rs);
-    const Eigen::Vector2d d = combine(s.psi, e);
-    const double em = 0.5 * (d.squaredNorm() - rs.squaredNorm());
-    const Vec8 dem = spread(s.psi, d) - deps;
     const double kappa = cross_ratio(s.psi, s.psis, s.psi, pk, e, dk, K ? &d2k : nullptr);
     const double gamma = cross_ratio(s.psi, s.ws, s.psi, 1.0, e, dgam, K ? &d2gam : nullptr);
+    const Eigen::Vector2d d = combine(s.psi, e);
+    const double stretch = 0.5 * (d.squaredNorm() - rs.squaredNorm());
+    const Vec8 dstretch = spread(s.psi, d) - deps;
     const double wl = q.w[g] * c.length;
     const double sa = wl * c.EA, sb = wl * c.EI, ss = wl * c.kGA;
-    if (U) *U += 0.5 * (sa * eps * eps + sb * kappa * kappa + ss * gamma * gamma + sa * em * em);
-    if (Q) *Q += (sa * eps) * deps + (sb * kappa) * dk + (ss * gamma) * dgam + (sa * em) * dem;
+    if (U)
+      *U +=
+          0.5 * (sa * eps * eps + ss * stretch * stretch + sb * kappa * kappa + ss * gamma * gamma);
+    if (Q)
+      *Q += (sa * eps) * deps + (ss * stretch) * dstretch + (sb * kappa) * dk + (ss * gamma) * dgam;
     if (K) {
-      K->noalias() += sa * deps * deps.transpose() + sb * dk * dk.transpose() +
-                      ss * dgam * dgam.transpose() + sa * dem * dem.transpose();
+      K->noalias() += sa * deps * deps.transpose() + ss * dstretch * dstretch.transpose() +
+                      sb * dk * dk.transpose() + ss * dgam * dgam.transpose();
       *K += (sb * kappa) * d2k + (ss * gamma) * d2gam;
-      // the Hessians of eps (ws_i ws_j) and of the director's stretch (psi_i psi_j - ws_i
-      // ws_j), on both components
+      // the Hessians of eps and of the stretch: ws_i ws_j and psi_i psi_j - ws_i ws_j on both
+      // components
       for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) {
-          const double v = sa * (eps - em) * s.ws[i] * s.ws[j] + sa * em * s.psi[i] * s.psi[j];
+          const double v =
+              (sa * eps - ss * stretch) * s.ws[i] * s.ws[j] + ss * stretch * s.psi[i] * s.psi[j];
           (*K)(2 * i, 2 * j) += v;
           (*K)(2 * i + 1, 2 * j + 1) += v;
         }

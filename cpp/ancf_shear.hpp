@@ -12,13 +12,15 @@
 //   bending kappa = (d x d_s) / |d|^3 (exact) or d x d_s (simplified)
 //   shear   gamma = (d x r_s) / (d.d)                          (-> w' - psi, linearised)
 //   stretch eps_d = (d.d - r_s.r_s) / 2                        (-> d_x - 1 - u', linearised)
-// U = 1/2 int (EA eps^2 + EI kappa^2 + kGA gamma^2 + EA eps_d^2) ds; Q = dU/de and K = d2U/de2
+// U = 1/2 int (EA eps^2 + EI kappa^2 + kGA gamma^2 + kGA eps_d^2) ds; Q = dU/de and K = d2U/de2
 // analytic. The director's length has no meaning of its own (the section turns, it does not
 // stretch); without eps_d it entered U only through the centre line's interpolation, with weight
 // 1/(1 + phi) ~ l^2, and the rail had a branch of near-free director-stretch modes that softened
 // with the mesh (docs: Model, section "Shear-deformable rail (Timoshenko)"). eps_d holds |d| at
-// |r_s| with EA; it vanishes identically at phi = 0 (d = r_s, the cable) and has no linear part
-// in y, so the linearised element's y part is unchanged.
+// |r_s| with the shear stiffness: linearised, the director's departure from the tangent costs kGA
+// |r_s - d|^2 / 2 in either direction (gamma: its turn, eps_d: its length). eps_d vanishes
+// identically at phi = 0 (d = r_s, the cable) and has no linear part in y, so the linearised
+// element's y part is unchanged.
 // Mass M = int (rhoA N^T N + rhoI Psi^T Psi) ds (constant): the rhoI |d_dot|^2 term is the
 // rotary inertia rhoI psi_dot^2 of the section, and also gives the director's stretch rate
 // d_x_dot a tiny inertia (relative to the axial inertia of a wave of wavenumber k: (r_g k)^2,

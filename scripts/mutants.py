@@ -238,8 +238,8 @@ MUTANTS: list[Mutant] = [
       "absorbing end zones without their axial dampers"),
     M("window-default-zones", SCENE, "absorbing_length: float = 4.8",
       "absorbing_length: float = 0.0", "the travelling window without its default end zones"),
-    M("shear-director-stretch", SHEAR, "const double fm = wl * c.EA * em;",
-      "const double fm = 0.0 * wl * c.EA * em;",
+    M("shear-director-stretch", SHEAR, "const double ft = wl * c.kGA * stretch;",
+      "const double ft = 0.0 * wl * c.kGA * stretch;",
       "shear-deformable element's time-loop force without the director's stretch term (the "
       "director's length free again: near-free axial modes at fine meshes)"),
     # --- the vehicle: suspensions and weight distribution

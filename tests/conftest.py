@@ -120,7 +120,8 @@ VALIDATION_JSON = ROOT / "docs" / "validation.json"
 REFRESH_OPTION = "--refresh-validation"
 #: the model levels, in the page's order
 LEVELS = ("element", "rail", "statics", "eigen analysis", "contact", "time integration",
-          "paths agree", "frequency domain", "excitation", "vehicle", "long tracks")
+          "paths agree", "frequency domain", "periodic level", "excitation", "vehicle",
+          "long tracks")
 #: the kinds of independent reference
 KINDS = ("closed form", "published", "finite differences", "path agreement")
 #: a committed measured value stays current while the suite measures it within 5 % of itself

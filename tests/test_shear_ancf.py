@@ -482,11 +482,11 @@ def test_axial_frequencies_do_not_depend_on_the_mesh(per_bay):
     x held at X = 0, the far end a roller) are those of the rod whose kinetic energy is the
     element's, rho A u_t^2 + rho I u_st^2 (the director follows u_s):
     f_n = c k_n / (2 pi) / sqrt(1 + r_g^2 k_n^2), k_n = (2n - 1) pi / (2L), c = sqrt(E / rho),
-    r_g^2 = I / A, at 0.15 m to 9.4 mm elements. Tolerance 1e-4: the cubic elements' error is
-    below 1e-8 at these wavelengths; the director's stretch is held by EA, not rigidly, which
-    adds rho I omega^2 / EA of the correction (7e-3 of it at the third mode: measured 2.3e-5).
-    The director's length had no stiffness of its own before: its modes fell as l^2 (106 Hz at
-    8 elements per bay, 1.7 Hz at 64) below the rod's 215 Hz."""
+    r_g^2 = I / A, at 0.15 m to 9.4 mm elements. Tolerance 5e-4: the cubic elements' error is
+    below 1e-8 at these wavelengths; the director's stretch is held by kappa G A, not rigidly,
+    which adds rho I omega^2 / (kappa G A) of the correction (4 % of it at the third mode:
+    measured 1.5e-4). The director's length had no stiffness of its own before: its modes fell
+    as l^2 (106 Hz at 8 elements per bay, 1.7 Hz at 64) below the rod's 215 Hz."""
     base = tw.Scene.ballasted_track(length=6.0, elements_per_bay=per_bay)
     s = dc.replace(base, rail=dc.replace(base.rail, beam="timoshenko"))
     rail = s.rail
@@ -494,4 +494,4 @@ def test_axial_frequencies_do_not_depend_on_the_mesh(per_bay):
     k = (2 * np.arange(1, 4) - 1) * math.pi / (2 * rail.length)
     f = c * k / (2 * math.pi) / np.sqrt(1.0 + rail.second_moment / rail.area * k**2)
     got = tw.eigen(s, [3.0], n_modes=1, n_axial=3, n_elements=rail.n_elements)
-    np.testing.assert_allclose(got.axial_frequencies, f, rtol=1e-4)
+    np.testing.assert_allclose(got.axial_frequencies, f, rtol=5e-4)

@@ -425,10 +425,10 @@ def test_full_model_on_a_window_equals_a_fixed_rail_at_any_mesh(per_bay):
       the wheel's longitudinal force at the sleeper-passing frequency depends on the length of
       rail free to move; that harmonic of the tangential force is 68 N on this 24.6 m window,
       24 N on the 60 m rail and on a window of 40 + 40 bays, 10 N on a 90 m rail (measured at
-      8 el/bay), and the window differs from the 60 m rail by 1.0-1.05e-3 P, alike at every
+      8 el/bay), and the window differs from the 60 m rail by 1.07e-3 P, alike at every
       mesh;
     - the wheel sticks throughout, and Newton needs as many iterations per step as on the fixed
-      rail within 5 % (measured 0.0-0.3 %).
+      rail within 5 % (measured 0.0-0.1 %).
 
     Before the director's stretch had its stiffness (docs: Model, section "Shear-deformable
     rail (Timoshenko)") the window's shifts excited its near-free modes: here the tangential

@@ -29,7 +29,7 @@ from .run.periodic import (
     random_response,
 )
 from .run.results import Result, RunSettings
-from .run.simulate import FIDELITY_LEVELS, simulate
+from .run.simulate import FIDELITY_LEVELS, TIME_DOMAIN_LEVELS, simulate
 from .run.statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .scene import (
     AbsorbingEnds,
@@ -81,6 +81,7 @@ del _old, _new, _module
 
 __all__ = [
     "FIDELITY_LEVELS",
+    "TIME_DOMAIN_LEVELS",
     "AbsorbingEnds",
     "Analysis",
     "Contact",

@@ -9,7 +9,7 @@ import math
 import re
 
 from ..run.defaults import default_settings
-from ..run.simulate import FIDELITY_LEVELS
+from ..run.simulate import FIDELITY_LEVELS, TIME_DOMAIN_LEVELS
 from ..scene import Scene, Window
 
 #: the paper's scene, whose derived defaults the help texts quote
@@ -181,10 +181,13 @@ def simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
                    help="wheel start [m] (default: middle of the first support bay)")
     g.add_argument("--x-end", type=finite_float, metavar="X",
                    help="wheel end [m] (default: middle of the last support bay)")
-    g.add_argument("--fidelity", choices=FIDELITY_LEVELS + (("auto",) if auto else ()),
+    g.add_argument("--fidelity", choices=(FIDELITY_LEVELS + ("auto",)) if auto
+                   else TIME_DOMAIN_LEVELS,
                    help="model level (default full: the paper's model)"
-                        + ("; auto: the cheapest level within --fidelity-tol of the full model "
-                           "on the highest speed and softest supports of the sweep"
+                        + ("; periodic/linear: each case's steady state in the frequency "
+                           "domain (trackwheel periodic), milliseconds a case; auto: the "
+                           "cheapest level within --fidelity-tol of the full model on the "
+                           "highest speed and softest supports of the sweep"
                            if auto else ""))
     if auto:
         g.add_argument("--fidelity-tol", type=positive_float, metavar="TOL",

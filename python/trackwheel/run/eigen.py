@@ -296,7 +296,7 @@ def _vehicle_pencil(scene: Scene, model) -> tuple[np.ndarray, np.ndarray, np.nda
     nr, nt = vert.size, d["n"]
     nu = veh.n_wheels + 2 * veh.n_bodies
     _check_dense(nt + nu)
-    Kv, mv = kernel.vehicle_matrices(scene)
+    Kv, _, mv = kernel.vehicle_matrices(scene)
     n = nt + nu
     track = np.r_[0:nr, nr + nu:n]  # the track's rows in the assembled order
     K, M = np.zeros((n, n)), np.zeros((n, n))

@@ -26,7 +26,7 @@ from .passage import passage, window_params
 from .results import RunSettings, sample_bytes
 from .start import initial_state
 
-#: Model fidelity levels, most to least detailed. "full" is the paper's model: the
+#: The time-domain levels, most to least detailed. "full" is the paper's model: the
 #: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
 #: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
 #: levels use the linear rail with constant matrices (factorised once, or modal with ``n_modes``)
@@ -34,8 +34,15 @@ from .start import initial_state
 #: (linear bilateral contact spring k) or a Hertzian wheel (unilateral). Every level takes the
 #: scene's beam theory: ``Rail(beam="timoshenko")`` is the shear-deformable ANCF rail on the
 #: "full" and "ancf/..." levels and the linear Timoshenko beam on the "linear/..." ones.
-FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
-                   "linear/moving_mass", "linear/moving_force")
+TIME_DOMAIN_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
+                      "linear/moving_mass", "linear/moving_force")
+#: The least detailed level: the steady state of the linear levels' model on the infinite track
+#: periodic in its bay, in the frequency domain (``trackwheel.periodic_response``, the scene's
+#: contact law linearised: "linear/hertz" for a Hertzian contact, else "linear/sprung"). No
+#: time history: ``simulate`` refuses it; ``adequacy`` and ``sweep`` run it.
+PERIODIC_LEVEL = "periodic/linear"
+#: Model fidelity levels, most to least detailed (docs: Model § The periodic level for the last)
+FIDELITY_LEVELS = TIME_DOMAIN_LEVELS + (PERIODIC_LEVEL,)
 
 #: Default number of kept samples: output_every is chosen so that at most this many are kept.
 DEFAULT_MAX_SAMPLES = 100_000
@@ -84,7 +91,13 @@ def _scene_for(scene: Scene, fidelity: str) -> Scene:
 
 def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
     """(fidelity, n_modes) checked against each other, the integrator and the mesh."""
-    v.choice("fidelity", fidelity, set(FIDELITY_LEVELS))
+    if fidelity == PERIODIC_LEVEL:
+        raise ValueError(
+            f"fidelity = {PERIODIC_LEVEL!r} is the periodic level, a steady state in the "
+            "frequency domain with no time history to simulate: use "
+            "trackwheel.periodic_response(scene, speed) (or sweep/adequacy, which run it); "
+            f"simulate's levels: {', '.join(TIME_DOMAIN_LEVELS)}")
+    v.choice("fidelity", fidelity, set(TIME_DOMAIN_LEVELS))
     linear = fidelity.startswith("linear/")
     if linear and integrator != "generalized_alpha":
         raise ValueError(f"integrator = {integrator!r} is not available with fidelity = "

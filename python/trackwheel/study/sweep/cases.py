@@ -14,11 +14,12 @@ import time
 import numpy as np
 
 from ...base.errors import DivergenceError
-from ...run.simulate import simulate
+from ...run.simulate import PERIODIC_LEVEL, simulate
 from ...scene import Scene
 from ..analysis import analyse
 from ..columns import COLUMNS, FLOAT_COLUMNS, SETTINGS_COLUMNS, SWEEP_COLUMNS, label
 from ..force_statistics import defect_position
+from . import periodic
 
 #: simulate's keyword arguments and their defaults (what a sweep passes on)
 SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).parameters.items()
@@ -69,7 +70,10 @@ def wheel_outputs(r, scene: Scene) -> list[dict]:
 def run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
     """Simulate and analyse one case; DivergenceError, ValueError and the kernel's RuntimeError
     (a failed static solve) become an error row. A vehicle's case row holds its worst wheel's
-    outputs and, under ``wheels``, every wheel's (the table has one row per wheel)."""
+    outputs and, under ``wheels``, every wheel's (the table has one row per wheel). At the
+    periodic level, the steady state's row (:mod:`.periodic`)."""
+    if kwargs.get("fidelity") == PERIODIC_LEVEL:
+        return periodic.run_case(scene, speed, kwargs)
     t0 = time.perf_counter()
     try:
         r = simulate(scene, speed, progress=False, **kwargs)

@@ -14,9 +14,10 @@ from ..._version import __version__
 from ...base import validate as v
 from ...base.limits import MAX_SEED
 from ...scene import Scene
-from ..columns import SPEED_KMH, SWEEP_COLUMNS, doc_table, label
+from ..columns import SPEED_KMH, SWEEP_COLUMNS, doc_table, label, periodic_doc_table
 from ..fidelity import adequacy
-from . import cases, pool
+from ...run.simulate import PERIODIC_LEVEL
+from . import cases, periodic, pool
 from . import store as store_module  # sweep's argument `store` is the directory
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
@@ -59,6 +60,13 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
         supports, the most dynamic corner of the sweep -- and sweeps at the cheapest level
         within ``fidelity_tol`` of the full model; the choice is in the ``fidelity`` column and
         ``df.attrs["fidelity_auto"]`` (chosen level, sample case, the adequacy table).
+        ``fidelity="periodic/linear"`` (:data:`trackwheel.FIDELITY_LEVELS`' least detailed)
+        takes each case's steady state from :func:`trackwheel.periodic_response` in
+        milliseconds, in this process (a pool costs more than it saves; an ``executor``
+        given is used); the columns it fills are listed below, and the other simulate
+        keywords, which it has no use for, are refused (chosen by ``"auto"``, it ignores
+        them). A case it refuses (contact loss, an undamped track, a random profile, ...)
+        is an error row like a diverged one.
 
     Returns
     -------
@@ -88,6 +96,8 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     seed_axis = _seeds(seeds, scene)
     kwargs = _simulate_kwargs(simulate_kwargs)
     auto = None
+    if kwargs.get("fidelity") == PERIODIC_LEVEL:
+        periodic.check_keywords(kwargs)
     if kwargs.get("fidelity") == "auto":
         auto = _auto_fidelity(scene, speeds, stiffs, kwargs, fidelity_tol)
         kwargs["fidelity"] = auto["chosen"]
@@ -132,8 +142,10 @@ def _compute(case_list, rows, todo, kwargs, store_dir, executor, workers, progre
         rows[i] = row
         bar.update(1)
 
+    # the periodic level's cases take milliseconds: a pool would cost more than it saves
+    serial = workers == 1 or len(todo) == 1 or kwargs.get("fidelity") == PERIODIC_LEVEL
     try:
-        if todo and executor is None and (workers == 1 or len(todo) == 1):
+        if todo and executor is None and serial:
             for i in todo:
                 finish(i, cases.run_case(case_list[i][3], case_list[i][0], kwargs))
         elif todo:
@@ -223,3 +235,6 @@ def _seeds(seeds, scene: Scene) -> list[int | None]:
 
 sweep.__doc__ += "\n    Columns\n    -------\n" + "\n".join(
     "    " + line for line in doc_table(SWEEP_COLUMNS).splitlines()) + "\n"
+_PERIODIC_TITLE = 'At the periodic level (``fidelity="periodic/linear"``)'
+sweep.__doc__ += (f"\n    {_PERIODIC_TITLE}\n    {'-' * len(_PERIODIC_TITLE)}\n" + "\n".join(
+    "    " + line for line in periodic_doc_table().splitlines()) + "\n")
