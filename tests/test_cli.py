@@ -300,13 +300,13 @@ def test_a_failed_static_solve_in_the_analysis_is_one_line(capsys, monkeypatch):
     """The kernel's static solve failing on the quasi-static line of the analysis (forced here:
     which loads make it fail depends on the solver's start, not on anything the CLI does) is
     exit code 1 and one line, not a traceback."""
-    analysis = importlib.import_module("trackwheel.analysis")
+    line = importlib.import_module("trackwheel.study.static_line")
 
     def fail(*args, **kwargs):
         raise RuntimeError("static solve: the wheel lost contact with the rail")
 
-    monkeypatch.setattr(analysis, "quasi_static", fail)
-    analysis._qs_series.cache_clear()  # nothing cached may hide the failing solver
+    monkeypatch.setattr(line, "quasi_static", fail)
+    line.qs_series.cache_clear()  # nothing cached may hide the failing solver
     assert cli.main(["run", "--speed-kmh", "100", *CHEAP]) == 1
     message = "the analysis failed: static solve: the wheel lost contact with the rail"
     assert capsys.readouterr().err == f"trackwheel run: {message}\n"
@@ -545,8 +545,10 @@ def test_band_decay_rate_with_one_frequency_is_the_centre_value():
     scene = tw.Scene.ballasted_track(60.0)
     e = iso3095_band_edges()
     centres = np.sqrt(e[:-1] * e[1:])
+    # rtol: np.geomspace's middle point and sqrt(lo hi) differ by an ulp or two, which the sharp
+    # resonances of the 60 m rail on its default 1200 elements turn into ~4e-12 of the rate
     np.testing.assert_allclose(tw.frequency.band_decay_rates(scene, 1), tw.decay_rate(scene, centres),
-                               rtol=1e-12)
+                               rtol=1e-10)
 
 
 def test_decay_rate_command_prints_and_writes_the_bands(tmp_path, capsys):

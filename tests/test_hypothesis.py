@@ -249,7 +249,7 @@ def test_eigen(scene, fracs, n_modes):
         return
     assert all(0.0 <= xi <= length for xi in x)
     assert r.frequencies.shape == (len(x), n_modes)
-    assert r.shapes.shape == (len(x), 4 * (scene.rail.n_elements + 1) + 1, n_modes)
+    assert r.shapes.shape == (len(x), 4 * (r.n_elements + 1) + 1, n_modes)
     assert finite(r.frequencies, r.shapes, r.axial_frequencies)
     assert np.all(r.frequencies >= 0.0)
     assert np.all(np.diff(r.frequencies, axis=1) >= -1e-9 * r.frequencies[:, 1:])

@@ -71,7 +71,7 @@ def test_static_limit_equals_static(validation):
     s = dc.replace(tw.Scene.kato2005(), rail_gravity=False)
     gaps = []
     for x in (2.25, 2.5, 1.3):
-        a0 = tw.receptance(s, x, [0.0])[0]
+        a0 = tw.receptance(s, x, [0.0], n_elements=s.rail.n_elements)[0]  # static's mesh
         assert a0.imag == 0.0
         assert -s.static_load * a0.real == pytest.approx(tw.static(s, x).y_contact, rel=1e-6)
         gaps.append(abs(-s.static_load * a0.real / tw.static(s, x).y_contact - 1.0))
@@ -89,9 +89,10 @@ def test_undamped_receptance_has_its_poles_at_the_eigenfrequencies(validation):
     s = tw.Scene.kato2005()
     for beam in ("euler", "timoshenko"):
         sb = dc.replace(s, rail=dc.replace(s.rail, beam=beam))
-        fk = rail_frequencies(sb, 5)
-        near = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-7)))
-        far = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-5)))
+        ne = sb.rail.n_elements  # the same mesh for both
+        fk = rail_frequencies(sb, 5, n_elements=ne)
+        near = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-7), n_elements=ne))
+        far = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-5), n_elements=ne))
         np.testing.assert_allclose(near / far, 100.0, rtol=0.02)
         if beam == "timoshenko":
             validation.record(
@@ -178,14 +179,15 @@ def test_layered_support_with_a_stiff_ballast_and_light_sleeper_is_the_single_sp
         sp.stiffness = [s.supports.stiffness] * n
         sp.damping = [s.supports.damping] * n
         sp.sleeper_mass, sp.ballast_stiffness, sp.ballast_damping = [ms] * n, [kb] * n, [cb] * n
-        return np.asarray(_core.receptance(_core.RailModel(p, sp), beam, 2.25, [2.25], f))[:, 0]
+        return np.asarray(_core.receptance(_core.RailModel(p, sp), beam, [2.25], [2.25], f))[:, 0]
 
-    single = tw.receptance(s, 2.25, f)
+    single = tw.receptance(s, 2.25, f, n_elements=s.rail.n_elements)
     np.testing.assert_allclose(layered(1e-9, 1e16, 0.0), single, rtol=1e-6)
     half = dc.replace(s, supports=dc.replace(s.supports, stiffness=s.supports.stiffness / 2,
                                              damping=0.0))
     np.testing.assert_allclose(layered(1e-9, s.supports.stiffness, 0.0)[:1],
-                               tw.receptance(half, 2.25, f)[:1], rtol=1e-9)
+                               tw.receptance(half, 2.25, f, n_elements=s.rail.n_elements)[:1],
+                               rtol=1e-9)
 
 
 def test_decay_rate_limit_is_the_iso3095_band_value():
@@ -269,9 +271,9 @@ def test_pinned_pinned_peak_of_the_midspan_receptance(beam, validation):
 @pytest.mark.parametrize("f_max", [500.0, 2000.0, 5000.0])
 def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
     """The frequency-domain mesh (what `receptance` and `decay-rate` use): whole elements per
-    support bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
-    at f_max, and the fewest such (one element per bay less would miss it), never fewer than
-    the scene's own."""
+    quarter bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
+    at f_max, and the fewest such (one element per quarter bay less would miss it), never fewer
+    than the scene's own."""
     from trackwheel.run.defaults import frequency_mesh
 
     scene = tw.Scene.ballasted_track()
@@ -280,9 +282,9 @@ def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
     w = 2.0 * np.pi * f_max
     wavelength = 2.0 * np.pi * (r.bending_stiffness / (r.mass_per_length * w * w)) ** 0.25
     n = frequency_mesh(scene, f_max)
-    assert n % n_bays == 0 and n >= r.n_elements
+    assert n % (4 * n_bays) == 0 and n >= r.n_elements  # whole quarter bays
     assert r.length / n <= wavelength / 10.0
-    assert n == r.n_elements or r.length / (n - n_bays) > wavelength / 10.0
+    assert n == r.n_elements or r.length / (n - 4 * n_bays) > wavelength / 10.0
 
 
 def test_frequency_mesh_capped_by_the_element_limit_warns():
@@ -290,6 +292,6 @@ def test_frequency_mesh_capped_by_the_element_limit_warns():
     from trackwheel.run.defaults import frequency_mesh
 
     scene = tw.Scene.ballasted_track(3000.0, elements_per_bay=1)
-    with pytest.warns(tw.MeshWarning, match="fewer than ten per bending wavelength"):
+    with pytest.warns(tw.MeshWarning, match="per bay that resolve the bending wavelength"):
         n = frequency_mesh(scene, 5000.0)
     assert n == MAX_ELEMENTS  # 5000 bays, 4 elements each

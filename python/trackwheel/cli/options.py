@@ -160,6 +160,9 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None
     g.add_argument("--shear-coefficient", type=positive_float, metavar="K",
                    help="shear coefficient kappa of the rail section, 0 < K <= 1 (default 0.4; "
                         "with --beam timoshenko)")
+    g.add_argument("--shear-modulus", type=positive_float, metavar="G",
+                   help="shear modulus G of the rail [Pa] (default E / (2 (1 + nu)); with "
+                        "--beam timoshenko)")
 
 
 
@@ -174,13 +177,18 @@ def simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
                    help=f"time step [s] (default: derived from the scene, {PAPER['dt']:.3g} s "
                         "for the paper's)")
     g.add_argument("--n-elements", type=positive_int, metavar="N",
-                   help=f"rail elements (default: 8 per support bay, {PAPER['n_elements']} for "
-                        "the paper's scene, when --dt is not given, else the scene's 20; fewer "
-                        "elements than support bays warn)")
+                   help=f"rail elements (default, when --dt is not given: derived from the "
+                        f"scene, whole elements per support bay, at least 8 and enough for the "
+                        f"pinned-pinned wavelength (12 with --beam timoshenko), "
+                        f"{PAPER['n_elements']} for the paper's scene; with --dt the scene's "
+                        "own; fewer elements than support bays warn)")
     g.add_argument("--x-start", type=finite_float, metavar="X",
-                   help="wheel start [m] (default: middle of the first support bay)")
+                   help="wheel start [m] (default: the middle of the first support bay clear "
+                        "of the rail's end, 5.1 m on --track ballasted; the first bay's on a "
+                        "rail too short for that, e.g. the paper's)")
     g.add_argument("--x-end", type=finite_float, metavar="X",
-                   help="wheel end [m] (default: middle of the last support bay)")
+                   help="wheel end [m] (default: the middle of the last support bay clear of "
+                        "the rail's end, or of the last bay)")
     g.add_argument("--fidelity", choices=(FIDELITY_LEVELS + ("auto",)) if auto
                    else TIME_DOMAIN_LEVELS,
                    help="model level (default full: the paper's model)"
@@ -213,7 +221,7 @@ def window_spec(text: str) -> Window:
 
 def mesh_option(p: argparse.ArgumentParser) -> None:
     p.add_argument("--n-elements", type=positive_int, metavar="N",
-                   help="rail elements (default: whole elements per support bay, at least ten "
-                        "per Euler-Bernoulli bending wavelength at the highest frequency, and "
-                        "no fewer than the preset's)")
+                   help="rail elements (default: whole elements per support bay, enough per "
+                        "bending wavelength of the --beam at the highest frequency to put the "
+                        "track's resonances within 0.1 %%, and no fewer than the preset's)")
 

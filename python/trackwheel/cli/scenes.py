@@ -1,5 +1,5 @@
 """The scene a command runs, from its options: the --track preset (with --length, --beam,
---shear-coefficient and a support stiffness), the --vehicle and the excitation (--irregularity,
+--shear-coefficient, --shear-modulus and a support stiffness), the --vehicle and the excitation (--irregularity,
 --seed, --wavelengths, --joint, --wheel-flat, --patch-filter)."""
 
 from __future__ import annotations
@@ -27,11 +27,15 @@ def track_scene(args: argparse.Namespace, stiffness: float | None = None,
     if args.length is not None and args.track != "ballasted":
         raise OptionError(f"--length is only for --track ballasted (--track {args.track} "
                            "has its fixed length)")
+    if getattr(args, "shear_modulus", None) is not None and args.beam != "timoshenko":
+        raise OptionError("--shear-modulus is only used with --beam timoshenko")
     try:
         scene = preset(args.track, stiffness, args.length or length)
         rail = dataclasses.replace(scene.rail, beam=args.beam)
         if args.shear_coefficient is not None:
             rail = dataclasses.replace(rail, shear_coefficient=args.shear_coefficient)
+        if getattr(args, "shear_modulus", None) is not None:
+            rail = dataclasses.replace(rail, shear_modulus=args.shear_modulus)
     except ValueError as exc:
         raise OptionError(option_error(exc)) from None
     return dataclasses.replace(scene, rail=rail)
@@ -49,21 +53,28 @@ def scene_name(scene: Scene, args: argparse.Namespace) -> str:
 
 
 #: --vehicle choices of ``trackwheel run``
-VEHICLES = ("single", "bogie", "half-car")
-#: rail length for --vehicle half-car [m]: the half car's 20 m of wheels plus the paper's 5 m
-HALF_CAR_RAIL = 25.0
+VEHICLES = ("single", "quarter-car", "bogie", "half-car")
 
 
 def vehicle_scene(scene: Scene, vehicle: str) -> Scene:
-    """``scene`` carrying the --vehicle choice (the rail lengthened for a half car, the
-    paper's element length kept)."""
+    """``scene`` carrying the --vehicle choice; for a half car the rail lengthened by the
+    vehicle's span (20 m: 25 m for the paper's track, 50.4 m for the ballasted one), in whole
+    support bays with the preset's elements per bay, so that the car runs on the stretch the
+    one wheel has (clear of the rail's ends where the preset's rail leaves one)."""
     if vehicle == "single":
         return scene
+    if vehicle == "quarter-car":
+        return dataclasses.replace(scene, vehicle=Vehicle.quarter_car())
     if vehicle == "bogie":
         return dataclasses.replace(scene, vehicle=Vehicle.bogie())
-    ne = round(scene.rail.n_elements * HALF_CAR_RAIL / scene.rail.length)
-    rail = dataclasses.replace(scene.rail, length=HALF_CAR_RAIL, n_elements=ne)
-    return dataclasses.replace(scene, rail=rail, vehicle=Vehicle.half_car())
+    veh = Vehicle.half_car()
+    d, L = scene.supports.spacing, scene.rail.length
+    bays = max(round(L / d), 1)
+    more = math.ceil((veh.span[1] - veh.span[0]) / d - 1e-9)
+    per_bay = max(1, round(scene.rail.n_elements / bays))
+    rail = dataclasses.replace(scene.rail, length=(bays + more) * d,
+                               n_elements=(bays + more) * per_bay)
+    return dataclasses.replace(scene, rail=rail, vehicle=veh)
 
 
 

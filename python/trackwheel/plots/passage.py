@@ -135,7 +135,9 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
         raise TypeError(f"analysis must be a trackwheel.Analysis (from trackwheel.analyse), "
                         f"got {type(analysis).__name__}")
     a = analysis
-    if a.t.shape != result.t.shape or not np.array_equal(a.t, result.t):
+    i0 = int(np.searchsorted(result.t, a.t[0]))
+    if not np.array_equal(a.t, result.t[i0:i0 + a.t.size]):
+        # the analysis measures a stretch of the run (Analysis.x_range), its samples the run's
         raise ValueError("analysis does not belong to result (its times differ)")
     if eigen is not None:
         n_modes = check_n_modes(eigen, n_modes)

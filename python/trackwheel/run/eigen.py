@@ -32,7 +32,7 @@ from ..base import validate as v
 from ..base.limits import MAX_DENSE_EIGEN_DOF
 from ..scene import Scene
 from . import kernel
-from .defaults import mesh
+from .defaults import derived_mesh, mesh
 
 #: ``method="auto"`` solves problems with more coordinates than this by the sparse method [-]:
 #: below it the dense solve takes milliseconds and gives every mode.
@@ -109,6 +109,10 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     lowest are the suspension's rigid-body modes (car body ~1 Hz, bogies 5-10 Hz),
     ``body_fraction`` tells them from the track modes.
 
+    ``n_elements`` defaults to the mesh a run of the scene takes
+    (:func:`trackwheel.default_settings`: 80 for the paper's scene), so that the modes are the
+    run's.
+
     >>> r = eigen(Scene.kato2005(), [2.5])
     >>> r.frequencies.shape
     (1, 6)
@@ -116,7 +120,7 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    model = kernel.rail_model(scene, _mesh(scene, n_elements))
     if scene.vehicle is not None:
         _dense_only(method)
         return _vehicle_eigen(scene, x, n_modes, model.n_nodes - 1, n_axial)
@@ -152,10 +156,10 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
 def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None,
                      method: str = "auto") -> np.ndarray:
     """Vertical natural frequencies of the rail on its supports without the wheel [Hz]
-    (``method`` as in :func:`eigen`)."""
+    (``method`` and the default mesh as in :func:`eigen`)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    model = kernel.rail_model(scene, _mesh(scene, n_elements))
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n = n_y + (len(scene.support_positions) if scene.supports.layered else 0)
     sparse = _sparse(method, n)
@@ -178,6 +182,12 @@ def vertical_matrices(scene: Scene, *, n_elements: int | None = None):
     model = kernel.rail_model(scene, mesh(scene, n_elements))
     d = _core.direction_pencil(model, 1)
     return (*(_csr(d, key) for key in ("M", "C", "K")), np.asarray(d["dofs"]))
+
+
+def _mesh(scene: Scene, n_elements) -> int:
+    """``n_elements`` checked, or the mesh a run of the scene takes by default
+    (:func:`trackwheel.run.defaults.derived_mesh`), so that the modes are those of the run."""
+    return derived_mesh(scene) if n_elements is None else mesh(scene, n_elements)
 
 
 def _sparse(method: str, n: int) -> bool:
@@ -259,7 +269,12 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
                          f"reference must lie in [{-rear:.4g}, {scene.rail.length - front:.4g}] m")
     K0, M0, vert, nu = _vehicle_pencil(scene, model)
     nr, nw, n = vert.size, veh.n_wheels, K0.shape[0]
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n)
+    # a body that cannot pitch (every spring under its centre) has a pitch coordinate that
+    # nothing couples: left out of the pencil (it would be a 0 Hz mode), zero in the shapes
+    free = np.ones(n, dtype=bool)
+    for j, unpitched in enumerate(veh.unpitched):
+        free[nr + nw + 2 * j + 1] = not unpitched
+    n_modes = v.integer("n_modes", n_modes, low=1, high=int(free.sum()))
     kc = scene.contact_stiffness
     e0 = model.reference()
     freqs, shapes, frac = [], [], []
@@ -270,7 +285,10 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
         K[:nr, nr:nr + nw] = -kc * S.T
         K[nr:nr + nw, :nr] = -kc * S
         K[nr:nr + nw, nr:nr + nw] += kc * np.eye(nw)
-        w2, vec = eigh(K, M0, subset_by_index=(0, n_modes - 1))
+        w2, reduced = eigh(K[np.ix_(free, free)], M0[np.ix_(free, free)],
+                           subset_by_index=(0, n_modes - 1))
+        vec = np.zeros((n, n_modes))
+        vec[free] = reduced
         freqs.append(np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi))
         kin = vec * (M0 @ vec)
         frac.append(kin[nr + nw:nr + nu].sum(axis=0) / kin.sum(axis=0))

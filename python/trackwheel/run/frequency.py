@@ -31,7 +31,7 @@ from .. import _core
 from ..base import validate as v
 from ..scene import Scene
 from . import kernel
-from .defaults import mesh
+from .defaults import frequency_mesh, mesh
 
 __all__ = ["EN15461_SPANS", "ISO3095_BANDS", "ISO3095_VERTICAL_LIMIT", "band_decay_rates",
            "decay_rate", "decay_rate_limit", "decay_rate_positions", "en15461_decay",
@@ -72,16 +72,31 @@ def _freqs(freqs) -> np.ndarray:
     return f
 
 
-def receptance(scene: Scene, x: float, freqs, x_response=None, *,
+def receptance(scene: Scene, x, freqs, x_response=None, *,
                n_elements: int | None = None) -> np.ndarray:
     """Receptance of the track [m/N]: rail displacement at ``x_response`` [m] per unit vertical
     force at ``x`` [m], at each of ``freqs`` [Hz] (>= 0).
 
-    ``x_response=None`` gives the point receptance at ``x``, shape ``(n_freq,)``; a number the
-    transfer receptance, ``(n_freq,)``; a sequence ``(n_freq, n_response)``. The track is the
-    linear track of the scene's beam theory with its support damping, meshed with
-    ``n_elements`` (default ``scene.rail.n_elements``; use enough elements per bending
-    wavelength at the highest frequency, about ten). At f = 0 it is the static flexibility.
+    ``x`` (the excitation) and ``x_response`` are each a number or a 1-D sequence of positions
+    in [0, L]; ``x_response=None`` is the point receptance at each ``x``. The result's axes
+    are the frequencies, then the responses if ``x_response`` is a sequence, then the
+    excitations if ``x`` is a sequence:
+
+    ==================  ==================  ==============================
+    ``x``               ``x_response``      shape
+    ==================  ==================  ==============================
+    number              None or number      ``(n_freq,)``
+    number              sequence            ``(n_freq, n_response)``
+    sequence            None                ``(n_freq, n_x)`` (point receptances)
+    sequence            number              ``(n_freq, n_x)``
+    sequence            sequence            ``(n_freq, n_response, n_x)``
+    ==================  ==================  ==============================
+
+    One factorisation of the dynamic stiffness per frequency serves every excitation. The
+    track is the linear track of the scene's beam theory with its support damping, meshed with
+    ``n_elements`` (default :func:`trackwheel.run.defaults.frequency_mesh` at the highest
+    frequency: whole elements per support bay, enough per bending wavelength to put the track's
+    resonances within 0.1 % of a refined mesh). At f = 0 it is the static flexibility.
 
     >>> a = receptance(Scene.kato2005(), 2.25, [0.0, 500.0])
     >>> a.shape
@@ -89,19 +104,28 @@ def receptance(scene: Scene, x: float, freqs, x_response=None, *,
     """
     scene = _check_scene(scene)
     L = scene.rail.length
-    x = v.number("x", x, low=0.0, high=L, unit="m")
     f = _freqs(freqs)
-    scalar = x_response is None or np.ndim(x_response) == 0
+    x_many = np.ndim(x) != 0
+    xe = v.positions("x", x, 0.0, L) if x_many else np.array(
+        [v.number("x", x, low=0.0, high=L, unit="m")])
+    r_many = x_response is not None and np.ndim(x_response) != 0
     if x_response is None:
-        xr = np.array([x])
-    elif scalar:
-        xr = np.array([v.number("x_response", x_response, low=0.0, high=L, unit="m")])
-    else:
+        xr = xe
+    elif r_many:
         xr = v.positions("x_response", x_response, 0.0, L)
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
-    a = np.asarray(_core.receptance(model, kernel.beam_params(scene), x, xr.tolist(),
-                                    f.tolist()))
-    return a[:, 0] if scalar else a
+    else:
+        xr = np.array([v.number("x_response", x_response, low=0.0, high=L, unit="m")])
+    ne = frequency_mesh(scene, float(f.max())) if n_elements is None else mesh(scene, n_elements)
+    model = kernel.rail_model(scene, ne)
+    a = np.asarray(_core.receptance(model, kernel.beam_params(scene), xe.tolist(), xr.tolist(),
+                                    f.tolist())).reshape(f.size, xe.size, xr.size)
+    if x_response is None:  # the point receptances: the diagonal
+        a = a[:, np.arange(xe.size), np.arange(xe.size)]
+        return a if x_many else a[:, 0]
+    a = np.transpose(a, (0, 2, 1))  # (n_freq, n_response, n_x)
+    if not r_many:
+        a = a[:, 0]
+    return a if x_many else a[..., 0]
 
 
 def receptance_points(scene: Scene) -> dict[str, float]:
@@ -152,7 +176,8 @@ def decay_rate(scene: Scene, freqs, *, x0: float | None = None,
                n_elements: int | None = None) -> np.ndarray:
     """Vertical track decay rate [dB/m] at each of ``freqs`` [Hz] by the EN 15461 method
     (module docstring) from the transfer receptances of :func:`receptance` at
-    :func:`decay_rate_positions` (d = ``Supports.spacing``). The rail must be longer than 66
+    :func:`decay_rate_positions` (d = ``Supports.spacing``), meshed with ``n_elements``
+    (default :func:`trackwheel.run.defaults.frequency_mesh` at the highest frequency). The rail must be longer than 66
     support spacings, and its ends far enough (or damped enough) that their reflections do not
     reach back to the positions; shape ``(n_freq,)``. As in the standard (Formula 2, clause
     7), a rate below 2 x 4.343 / x_max (x_max = 66 d, 0.22 dB/m for d = 0.6 m) is only an
@@ -187,9 +212,13 @@ def band_decay_rates(scene: Scene, per_band: int = 8, n_elements: int | None = N
     """Decay rate [dB/m] per ``ISO3095_BANDS`` one-third-octave band: the EN 15461 sum of the
     band averages of |A(x_n)|^2 over ``per_band`` log-spaced frequencies inside each band (the
     standard filters the measured transfer functions in bands, not at the centre frequency;
-    what ``trackwheel decay-rate`` prints)."""
+    what ``trackwheel decay-rate`` prints). ``n_elements`` defaults to
+    :func:`trackwheel.run.defaults.frequency_mesh` at the highest band's upper edge, the same
+    mesh for every band."""
     x = decay_rate_positions(scene)
     edges = iso3095_band_edges()
+    if n_elements is None:
+        n_elements = frequency_mesh(scene, float(edges[-1]))
     out = np.empty(edges.size - 1)
     for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
         f = np.geomspace(lo, hi, per_band + 2)[1:-1]

@@ -134,7 +134,10 @@ def vehicle_params(scene: Scene) -> _core.VehicleParams:
 
 def _body(mass, inertia, gravity, load):
     b = _core.BodyParams()
-    b.mass, b.inertia, b.gravity, b.load = mass, inertia, gravity, load
+    # a body that cannot pitch (inertia None: every spring under its centre) takes M x 1 m^2:
+    # no moment acts on it, so its pitch stays 0 whatever the value (the kernel needs one > 0)
+    b.mass, b.gravity, b.load = mass, gravity, load
+    b.inertia = mass * 1.0 if inertia is None else inertia
     return b
 
 

@@ -141,9 +141,11 @@ class _ResultMethods:
     def wheel(self, i: int):
         """Wheel ``i``'s view as a one-wheel run: every per-wheel array reduced to that wheel's
         (n_samples,) column, ``scene`` the single-wheel scene of that wheel under its static
-        load of the vehicle's weight distribution (so :func:`trackwheel.analyse` measures its
-        quasi-static line and force statistics against that wheel alone under that load), and
-        ``settings.x_start`` that wheel's start."""
+        load of the vehicle's weight distribution, and ``settings.x_start`` that wheel's start.
+        The view is a single wheel: :func:`trackwheel.analyse` of it measures against that
+        wheel alone on the track; ``analyse(result, wheel=i)`` measures the wheel against its
+        quasi-static line with the whole vehicle on the track (and the stretch the vehicle
+        runs clear of the rail's ends)."""
         n = self.n_wheels
         if not (isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 0 <= i < n):
             raise ValueError(f"wheel = {i!r} must be an integer in [0, {n - 1}]")

@@ -112,6 +112,10 @@ class Rail:
     #: kappa, shear coefficient of the section [-], in (0, 1] (about 0.4 for a rail's vertical
     #: bending; used with beam="timoshenko")
     shear_coefficient: float = 0.4
+    #: G, shear modulus [Pa] (used with beam="timoshenko"), or None: the isotropic
+    #: E / (2 (1 + nu)). Given, it is independent of ``poisson_ratio`` (which then enters only
+    #: the Hertz contact constant); :attr:`modulus_of_rigidity` is the value used
+    shear_modulus: float | None = None
 
     def __post_init__(self):
         v.positive("Rail.length", self.length, "m")
@@ -127,6 +131,8 @@ class Rail:
         v.choice("Rail.beam", self.beam, {"euler", "timoshenko"})
         v.number("Rail.shear_coefficient", self.shear_coefficient, low=0.0, high=1.0,
                  low_open=True)
+        if self.shear_modulus is not None:
+            v.positive("Rail.shear_modulus", self.shear_modulus, "Pa")
         z = self.absorbing_ends
         if z is not None:
             if not isinstance(z, AbsorbingEnds):
@@ -173,14 +179,16 @@ class Rail:
         return self.youngs_modulus * self.area
 
     @property
-    def shear_modulus(self) -> float:
-        """G = E / (2 (1 + nu)) [Pa]."""
+    def modulus_of_rigidity(self) -> float:
+        """G [Pa]: ``shear_modulus`` if given, else the isotropic E / (2 (1 + nu))."""
+        if self.shear_modulus is not None:
+            return self.shear_modulus
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
     @property
     def shear_stiffness(self) -> float:
-        """kappa G A [N] (Timoshenko beam)."""
-        return self.shear_coefficient * self.shear_modulus * self.area
+        """kappa G A [N] (Timoshenko beam), G = :attr:`modulus_of_rigidity`."""
+        return self.shear_coefficient * self.modulus_of_rigidity * self.area
 
     @property
     def rotary_inertia(self) -> float:

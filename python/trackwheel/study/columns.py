@@ -52,6 +52,10 @@ def _array(name: str, unit: str, doc: str) -> Quantity:
 ANALYSIS_FIELDS: tuple[Quantity, ...] = (
     _array("t", "s", "time"),
     _array("x_wheel", "m", "X_A, wheel-centre position"),
+    Quantity("x_range", "m", "(X_from, X_to): the wheel-centre positions measured, the "
+             "samples the other fields hold (by default away from the rail's rigid ends and "
+             "the start-up transient; the whole run where the rail is too short for that, as "
+             "the paper's: docs: Model § Outputs)", "tuple[float, float]"),
     _array("y_contact", "m", "y_B, rail displacement under the wheel"),
     _array("y_qs", "m", "quasi-static line y_qs(X_A(t))"),
     _array("dynamic", "m", "d = y_B - y_qs(X_A)"),

@@ -248,7 +248,7 @@ def pinned_pinned_frequencies(scene: Scene) -> tuple[float, float]:
     k = pi/d_s (docs: Model, section "Shear-deformable rail (Timoshenko)")."""
     r, d = scene.rail, scene.supports.spacing
     k = math.pi / d
-    kg = r.shear_coefficient * r.shear_modulus
+    kg = r.shear_coefficient * r.modulus_of_rigidity
     a = r.rotary_inertia * r.density / kg
     b = r.mass_per_length + r.rotary_inertia * k**2 + r.bending_stiffness * k**2 * r.density / kg
     c = r.bending_stiffness * k**4

@@ -63,7 +63,9 @@ def wheel_outputs(r, scene: Scene) -> list[dict]:
         x_d = defect_position(scene)
         if x_d is not None and not ri.x_wheel[0] <= x_d <= ri.x_wheel[-1]:
             x_d = None  # this wheel does not reach the joint: no P1/P2
-        out.append(analyse(ri, defect_at=x_d).outputs())
+        # analysed as a wheel of the vehicle (its quasi-static line with the whole vehicle)
+        wheel = i if r.n_wheels > 1 else None
+        out.append(analyse(r, wheel=wheel, defect_at=x_d).outputs())
     return out
 
 
