@@ -98,11 +98,11 @@ CON = "cpp/contact.cpp"
 ROLL = "cpp/rolling.cpp"
 RAIL = "cpp/rail.cpp"
 EIG = "cpp/eigen_analysis.cpp"
-ANA = "python/trackwheel/analysis.py"
+ANA = "python/trackwheel/study/analysis.py"
 SHEAR = "cpp/ancf_shear.cpp"
-SCENE = "python/trackwheel/scene.py"
+SCENE = "python/trackwheel/scene/window.py"
 VEH = "cpp/vehicle.cpp"
-VEHPY = "python/trackwheel/vehicle.py"
+VEHPY = "python/trackwheel/scene/vehicle.py"
 
 #: The mutations. Keep the old texts short and specific: they must be unique in their file. The
 #: kernel's shared pieces (contact law, generalized-alpha coefficients, time loop) are mutated
@@ -150,7 +150,9 @@ MUTANTS: list[Mutant] = [
       "Hertz law N ~ delta^(4/3) instead of delta^(3/2) (force only, both paths)"),
     M("contact-damping-sign", CON, "Ne + cp.damping * delta_dot", "Ne - cp.damping * delta_dot",
       "contact damper pushes the wrong way"),
-    M("contact-damping-jacobian", CON, "out.C = cp.damping *", "out.C = 0.5 * cp.damping *",
+    M("contact-damping-jacobian", CON,
+      "dNe * out.grad_rho * out.grad_rho.transpose();\n    out.C = cp.damping *",
+      "dNe * out.grad_rho * out.grad_rho.transpose();\n    out.C = 0.5 * cp.damping *",
       "contact damping matrix half the damping"),
     M("contact-hessian", CON, "+ (pt.rho / fs) * w * w.transpose()", "",
       "distance Hessian without the contact-point motion term"),
@@ -160,8 +162,8 @@ MUTANTS: list[Mutant] = [
       "-= 0.0 * pt.profile.rxx",
       "distance Hessian without the profile's curvature term r''(x) S_x S_x^T"),
     # --- rolling constraint and slip
-    M("rolling-radius", ROLL, "k.g = t.dot(u) - pt.rho * thetadot;",
-      "k.g = t.dot(u) - (pt.rho + 1e-4) * thetadot;",
+    M("rolling-radius", ROLL, "k.g = t.dot(u) - rho * thetadot;",
+      "k.g = t.dot(u) - (rho + 1e-4) * thetadot;",
       "rolling radius 0.1 mm too large in the constraint (undeformed instead of deformed)"),
     M("slide-force-sign", SLIP, "return ws.sigma * friction * ev.cf.N;",
       "return -ws.sigma * friction * ev.cf.N;",
@@ -217,8 +219,8 @@ MUTANTS: list[Mutant] = [
     # --- analysis
     M("main-frequency-window", ANA, "w = np.hanning(x.size)", "w = np.ones(x.size)",
       "spectrum without the Hann window"),
-    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x, linear)",
-      "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005, linear)",
+    M("quasi-static-line", ANA, "quasi_static_line(one.scene, int(s.n_elements), x, linear)",
+      "quasi_static_line(one.scene, int(s.n_elements), x + 0.005, linear)",
       "quasi-static line taken 5 mm ahead of the wheel"),
     M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(position);",
       "const MeshPoint mp = rail.locate(position + 0.05);",
