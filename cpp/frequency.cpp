@@ -89,36 +89,41 @@ void dynamic_stiffness(const LinearTrack& tr, const std::vector<Layer>& lay, dou
 
 }  // namespace
 
-Eigen::MatrixXcd receptance(const RailModel& rail, const BeamParams& beam, double x_force,
-                            const std::vector<double>& x_resp, const std::vector<double>& freqs) {
-  check_position(rail, "x", x_force);
+Eigen::MatrixXcd receptance(const RailModel& rail, const BeamParams& beam,
+                            const std::vector<double>& x_force, const std::vector<double>& x_resp,
+                            const std::vector<double>& freqs) {
+  for (double x : x_force) check_position(rail, "x", x);
   for (double x : x_resp) check_position(rail, "x_response", x);
   for (double f : freqs)
     require(std::isfinite(f) && f >= 0.0,
             "freqs must be finite and >= 0 Hz, got " + std::to_string(f) + " Hz");
   const LinearTrack tr(rail, 0, beam);
   const std::vector<Layer> lay = layers(rail, tr);
-  const Coupling fe = coupling(tr, x_force);
-  std::vector<Coupling> re;
+  std::vector<Coupling> fe, re;
+  for (double x : x_force) fe.push_back(coupling(tr, x));
   for (double x : x_resp) re.push_back(coupling(tr, x));
   BandLU<cd> Z;
   Z.resize(tr.nq, 3);
   Eigen::VectorXcd q(tr.nq);
-  Eigen::MatrixXcd out(freqs.size(), x_resp.size());
+  const auto n_resp = static_cast<Eigen::Index>(re.size());
+  Eigen::MatrixXcd out(freqs.size(), fe.size() * re.size());
   for (size_t k = 0; k < freqs.size(); ++k) {
     dynamic_stiffness(tr, lay, 2.0 * M_PI * freqs[k], Z);
     if (!Z.factorize())
       throw std::runtime_error("the dynamic stiffness is singular at " + std::to_string(freqs[k]) +
                                " Hz (an undamped resonance): shift the frequency or add damping");
-    q.setZero();
-    for (int a = 0; a < 4; ++a)
-      if (fe.idx[a] >= 0) q(fe.idx[a]) += fe.n[a];
-    Z.solve_in_place(q);
-    for (size_t r = 0; r < re.size(); ++r) {
-      cd y = 0.0;
+    for (size_t e = 0; e < fe.size(); ++e) {
+      q.setZero();
       for (int a = 0; a < 4; ++a)
-        if (re[r].idx[a] >= 0) y += re[r].n[a] * q(re[r].idx[a]);
-      out(k, r) = y;
+        if (fe[e].idx[a] >= 0) q(fe[e].idx[a]) += fe[e].n[a];
+      Z.solve_in_place(q);
+      for (size_t r = 0; r < re.size(); ++r) {
+        cd y = 0.0;
+        for (int a = 0; a < 4; ++a)
+          if (re[r].idx[a] >= 0) y += re[r].n[a] * q(re[r].idx[a]);
+        out(static_cast<Eigen::Index>(k),
+            static_cast<Eigen::Index>(e) * n_resp + static_cast<Eigen::Index>(r)) = y;
+      }
     }
   }
   return out;

@@ -19,12 +19,14 @@
 
 namespace trackwheel {
 
-// Receptances (n_freq, n_resp) [m/N] at x_resp [m] for a unit force at x_force [m], at each of
-// freqs [Hz] (>= 0). Throws std::invalid_argument on a position outside [0, L], a negative or
-// non-finite frequency, or inconsistent sleeper vectors; std::runtime_error where Z(w) is
-// singular (an undamped resonance hit exactly).
-Eigen::MatrixXcd receptance(const RailModel& rail, const BeamParams& beam, double x_force,
-                            const std::vector<double>& x_resp, const std::vector<double>& freqs);
+// Receptances (n_freq, n_force * n_resp) [m/N] at x_resp [m] for a unit force at each of
+// x_force [m] (column e * n_resp + r: response r to force e), at each of freqs [Hz] (>= 0): one
+// factorisation of Z per frequency, one solve per force. Throws std::invalid_argument on a
+// position outside [0, L], a negative or non-finite frequency, or inconsistent sleeper vectors;
+// std::runtime_error where Z(w) is singular (an undamped resonance hit exactly).
+Eigen::MatrixXcd receptance(const RailModel& rail, const BeamParams& beam,
+                            const std::vector<double>& x_force, const std::vector<double>& x_resp,
+                            const std::vector<double>& freqs);
 
 // Vertical natural frequencies (n_pos, n_modes) [Hz] of the linear track with the wheel (mass M
 // [kg] on the contact spring k [N/m], attached at each of positions [m] through the w shape

@@ -159,13 +159,15 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
 
 // Y_A of a wheel just touching the rail below, pressed in by its static load; the contact is
 // sought from a centre one radius above the rail (far above, a corrugated surface can curve
-// more than the distance: the foot of the normal is then a maximum of the distance).
+// more than the distance: the foot of the normal is then a maximum of the distance). The
+// radius is the contact's, rho0 + Delta rho at the start: a wheel flat in contact lowers the
+// centre by its depth (with rho0, a flat deeper than the static compression left a gap).
 double touching_height(const RailModel& rail, const Eigen::VectorXd& e, const WheelParams& wheel,
                        const ContactParams& contact, double x_wheel) {
-  const double y_above = rail.position(e, rail.locate(x_wheel)).y() + wheel.radius;
+  const double y_above = rail.position(e, rail.locate(x_wheel)).y() + contact.radius;
   const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x_wheel, y_above), x_wheel);
   const double delta = static_compression(contact.law, contact.stiffness, wheel.total_load());
-  return pt.p.y() + wheel.radius - delta;
+  return pt.p.y() + contact.radius - delta;
 }
 
 void check_on_rail(const RailModel& rail, double x_wheel) {

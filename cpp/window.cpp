@@ -22,7 +22,10 @@ int bays_of(const RailModel& rail, const WindowParams& p) {
     throw std::invalid_argument("window: n_elements = " + std::to_string(rail.params().n_elements) +
                                 " must be " + std::to_string(nb) +
                                 " bays x elements_per_bay (>= 1)");
-  if (!(p.hold >= p.bay && p.hold <= L - p.bay))
+  // hold = (bays behind + 1) bays may equal L - bay (one bay ahead): compared with a tolerance,
+  // since L = n_bays x bay and the hold are rounded differently
+  const double tol = 1e-9 * L;
+  if (!(p.hold >= p.bay - tol && p.hold <= L - p.bay + tol))
     throw std::invalid_argument("window: hold = " + format3(p.hold) + " m must be in [" +
                                 format3(p.bay) + ", " + format3(L - p.bay) + "] m");
   return nb;

@@ -219,8 +219,8 @@ MUTANTS: list[Mutant] = [
     # --- analysis
     M("main-frequency-window", ANA, "w = np.hanning(x.size)", "w = np.ones(x.size)",
       "spectrum without the Hann window"),
-    M("quasi-static-line", ANA, "_quasi_static_line(result.scene, int(s.n_elements), x, linear)",
-      "_quasi_static_line(result.scene, int(s.n_elements), x + 0.005, linear)",
+    M("quasi-static-line", ANA, "quasi_static_line(one.scene, int(s.n_elements), x, linear)",
+      "quasi_static_line(one.scene, int(s.n_elements), x + 0.005, linear)",
       "quasi-static line taken 5 mm ahead of the wheel"),
     M("eigen-wheel-position", EIG, "const MeshPoint mp = rail.locate(position);",
       "const MeshPoint mp = rail.locate(position + 0.05);",

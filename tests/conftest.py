@@ -120,7 +120,8 @@ VALIDATION_JSON = ROOT / "docs" / "validation.json"
 REFRESH_OPTION = "--refresh-validation"
 #: the model levels, in the page's order
 LEVELS = ("element", "rail", "statics", "eigen analysis", "contact", "time integration",
-          "paths agree", "frequency domain", "excitation", "vehicle", "long tracks")
+          "paths agree", "frequency domain", "periodic level", "excitation", "vehicle",
+          "long tracks")
 #: the kinds of independent reference
 KINDS = ("closed form", "published", "finite differences", "path agreement")
 #: a committed measured value stays current while the suite measures it within 5 % of itself
@@ -145,6 +146,17 @@ def pytest_addoption(parser):
     parser.addoption(REFRESH_OPTION, action="store_true", default=False,
                      help="write the validation records measured in this session into "
                           "docs/validation.json instead of comparing them with it")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Tests marked ``slow`` (the long property runs) run only when the marker expression
+    names them (``pytest -m slow``); the default suite skips them."""
+    if "slow" in (config.getoption("markexpr") or ""):
+        return
+    skip = pytest.mark.skip(reason="a long run: select it with -m slow")
+    for item in items:
+        if "slow" in item.keywords:
+            item.add_marker(skip)
 
 
 @pytest.hookimpl(hookwrapper=True)

@@ -159,7 +159,7 @@ def test_paper_scene_frequencies():
 def test_mode_shapes_are_mass_normalised():
     scene = KATO
     X = 1.6
-    res = tw.eigen(scene, [X], n_modes=6)
+    res = tw.eigen(scene, [X], n_modes=6, n_elements=scene.rail.n_elements)
     model = _kernel.rail_model(scene)
     M = np.array(model.mass_dense())
     K = np.array(model.tangent_dense(model.reference()))
@@ -228,3 +228,24 @@ def test_rail_mode_shape_is_normalised():
         assert s[0] == 0.0 and s[-1] == L
         assert max(np.abs(y).max(), abs(wheel)) == pytest.approx(1.0)
         assert y[0] == pytest.approx(0.0, abs=1e-12) and y[-1] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_repr_counts_positions_and_modes_in_words():
+    """One position: 'at one wheel position X = 2.5 m' and one frequency per mode (it said
+    '1 wheel positions' and '343.8-343.8'); several: the count and the bands."""
+    s = tw.Scene.kato2005()
+    one = repr(tw.eigen(s, [2.5], n_modes=2))
+    assert "2 vertical modes at one wheel position X = 2.5 m" in one
+    assert "wheel positions" not in one and "-" not in one.split("vertical [Hz]: ")[1].split()[0]
+    two = repr(tw.eigen(s, [2.5, 3.0], n_modes=1))
+    assert "1 vertical mode at 2 wheel positions X = 2.5..3 m" in two
+
+
+def test_pyproject_lists_each_dependency_once():
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).parents[1] / "pyproject.toml").read_text()
+    deps = text.split("dependencies = [")[1].split("]")[0]
+    names = re.findall(r'"([A-Za-z0-9_.\-]+)', deps)
+    assert len(names) == len(set(names)) and "scipy" in names, names

@@ -126,6 +126,9 @@ def test_sweep_auto_fidelity_chooses_and_reports():
     assert auto["chosen"] == "linear/sprung"
     assert auto["sample_speed"] == V and auto["sample_support_stiffness"] == 70e6
     assert set(df.fidelity) == {"linear/sprung"}
+    # the periodic level was measured too, and refused the paper's undamped track
+    (periodic,) = [r for r in auto["table"] if r["level"] == "periodic/linear"]
+    assert "damping" in periodic["error"]
     ref = tw.sweep(scene, speed=[tw.kmh(100), V], support_stiffness=[70e6, 140e6],
                    fidelity="linear/sprung", max_workers=1, progress=False, **kw)
     np.testing.assert_array_equal(df.amplitude_m.to_numpy(), ref.amplitude_m.to_numpy())

@@ -408,13 +408,13 @@ def test_filtered_table_is_the_sinc_scaled_profile():
 
     a = contact_half_width(trackwheel.Scene())
     assert 1e-3 < a < 1e-2  # millimetres, as for a 0.1 m wheel under 47 kN
-    lam, dx = 0.03, 1e-4
-    irr = Irregularity.sine(lam, 1.0)
+    lam, dx, amp = 0.03, 1e-4, 1e-4
+    irr = Irregularity.sine(lam, amp)
     x0, h, r = irr.table(0.0, 0.5, dx, half_width=a)
     x = x0 + h * np.arange(r.size)
     assert x[-1] == pytest.approx(0.5, rel=1e-12)
     expected = filter_attenuation(lam, a)[0] * irr(x)
-    assert np.max(np.abs(r - expected)) < (2 * math.pi / lam * dx) ** 2 / 12
+    assert np.max(np.abs(r - expected)) < amp * (2 * math.pi / lam * dx) ** 2 / 12
 
 
 def test_shortest_wavelength():
@@ -424,3 +424,82 @@ def test_shortest_wavelength():
     assert Irregularity.samples([0, 0.01, 0.03, 0.04], [0, 0, 0, 0]).shortest_wavelength() == \
         pytest.approx(0.02, rel=1e-12)
     assert Irregularity().shortest_wavelength() == math.inf
+
+
+# ---------------------------------------------------------------------------------------------
+# the extremes: a clean ValueError naming the parameter, or finite values
+@pytest.mark.parametrize("call, match", [
+    # NaN values (2.2e-308) and OverflowError in curvature (1e-300, 1e-200) before
+    (lambda: Irregularity.sine(2.2e-308, 0.0), r"Irregularity\.sine\.wavelength = 2\.2e-308"),
+    (lambda: Irregularity.sine(1e-300, 0.0), r"sine\.wavelength .*\[0\.0001, 10000\] m"),
+    (lambda: Irregularity.sine(1e-200, 1e-3), r"sine\.wavelength"),
+    (lambda: Irregularity.sine(1e5, 1e-3), r"sine\.wavelength"),
+    (lambda: Irregularity.sine(0.01, 1e-3), r"slope of 0\.628 \(2 pi a / lambda\)"),
+    # curvature -9.9e297 at 1e-150, OverflowError at 1e-300 before
+    (lambda: Irregularity.dipped_joint(1e-3, 1e-300, 2.0), r"dipped_joint\.length = 1e-300"),
+    (lambda: Irregularity.dipped_joint(1e-3, 1e-150, 2.0), r"dipped_joint\.length"),
+    (lambda: Irregularity.dipped_joint(0.5, 2.0, 2.0), r"dipped_joint\.depth = 0\.5"),
+    (lambda: Irregularity.dipped_joint(1e-3, 2e-2, 2.0), r"slope of 0\.157 \(pi d / l\)"),
+    (lambda: Irregularity.samples([0, 1, 2, 3], [0, 0, 1.0, 0]), r"samples\.r = 1\.0"),
+    (lambda: Irregularity.samples([0, 1e-9, 1, 2], [0, 0, 0, 0]), r"1e-09 m apart"),
+    # NaN Delta rho near psi = 0 before
+    (lambda: WheelFlat(5e-324, rounded=True), r"WheelFlat\.length = 5e-324"),
+    (lambda: WheelFlat(0.05, rounded=True, depth=1.0), r"WheelFlat\.depth = 1\.0"),
+    (lambda: Polygon(5, 1.0), r"Polygon\.amplitude = 1\.0"),
+])
+def test_extreme_profiles_and_defects_are_refused_by_name(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_a_run_names_the_sine_wavelength_not_an_internal_grid():
+    """sine(1e-6, 1e-3) in a run was refused by the profile table's 'dx = 2.5e-08 m gives
+    200000001 points' and, at 1e-300, a 300-digit count; now by the wavelength at
+    construction, before any run."""
+    with pytest.raises(ValueError, match=r"Irregularity\.sine\.wavelength = 1e-06"):
+        Irregularity.sine(1e-6, 1e-3)
+
+
+@pytest.mark.parametrize("part", [
+    Irregularity.sine(1e-4, 1.5e-6), Irregularity.sine(1e4, 0.1),
+    Irregularity.dipped_joint(3e-5, 1e-3, 0.0), Irregularity.dipped_joint(0.1, 1e3, 0.0),
+])
+def test_profiles_at_the_ends_of_their_ranges_are_finite(part):
+    """At the ends of the ranges (and the slope limit) r, r' and r'' are finite, and bounded
+    by the closed forms: |r| <= a, |r'| <= MAX_PROFILE_SLOPE, |r''| <= a (2 pi / lambda)^2 or
+    d (pi / l)^2."""
+    from trackwheel.base.limits import MAX_PROFILE_SLOPE
+
+    p = part.parts[0]
+    scale = p.length if hasattr(p, "length") else p.wavelength
+    x = np.linspace(-scale, 2.0 * scale, 3001)
+    for f in (part, part.slope, part.curvature):
+        assert np.all(np.isfinite(f(x)))
+    assert np.max(np.abs(part.slope(x))) <= MAX_PROFILE_SLOPE * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("flat", [WheelFlat(1e-4, rounded=True), WheelFlat(1e-4),
+                                  WheelFlat(0.9, rounded=True), Polygon(10_000, 0.1)])
+def test_defects_at_the_ends_of_their_ranges_are_finite(flat):
+    """The shortest flat (0.1 mm), one near the diameter, the finest polygon: Delta rho and
+    its derivatives finite around the wheel, psi = 0 included (a 5e-324 m rounded flat gave
+    NaN there)."""
+    psi = np.concatenate([np.linspace(-np.pi, np.pi, 20001), [0.0, 1e-12, -1e-12]])
+    for f in (flat.delta_rho, flat.delta_rho_dpsi, flat.delta_rho_dpsi2):
+        assert np.all(np.isfinite(f(psi, RHO0)))
+
+
+def test_the_finest_sine_on_a_long_rail_gets_the_curvature_message():
+    """A 0.1 mm sine (the shortest wavelength allowed) filtered over the patch on the 30 m
+    ballasted rail: the filter's grid of micron steps tens of metres from 0 has spacings equal
+    to a few eps |X| only, and was refused as 'x must be uniformly spaced'; it is taken, and
+    the run is refused by what matters, the filtered profile curving more than the wheel."""
+    import dataclasses as dc
+
+    import trackwheel as tw
+
+    s = tw.Scene.ballasted_track()
+    sc = dc.replace(s, irregularity=Irregularity.sine(1e-4, 1e-6),
+                    contact=dc.replace(s.contact, patch_filter=True))
+    with pytest.raises(ValueError, match="Scene.irregularity curves upwards by"):
+        tw.simulate(sc, 30.0, x_start=10.0, x_end=10.5, progress=False)

@@ -195,3 +195,21 @@ def test_a_wheel_flat_returns_with_the_rolling_angle_not_the_distance():
     psi, x = impacts(slid, 5)
     assert np.all((psi > 0.0) & (psi < phi_f + 0.2))
     assert np.all(np.diff(x) < 0.8 * 2 * math.pi * rho0)
+
+
+@pytest.mark.parametrize("rounded", [False, True])
+def test_a_wheel_flat_in_contact_at_the_start_is_in_static_equilibrium(rounded):
+    """A flat at the wheel angle 0 (WheelFlat's default) stands on the rail at the start. The
+    static start seeks the wheel centre from the radius at the contact, rho0 + Delta rho(0):
+    the centre is lower by the flat's depth (10 mm on the paper's 0.1 m wheel: 0.125 mm deep,
+    twice the static compression P / k, 67 um; from rho0 it started above the rail and the
+    static solve refused with "the wheel lost contact"). In equilibrium N = P = F + M g to the
+    static solve's tolerance; the wheel centre is the flat's depth below the round wheel's."""
+    base = tw.Scene.kato2005()
+    flat = tw.WheelFlat(0.01, rounded=rounded)
+    scene = dc.replace(base, wheel=dc.replace(base.wheel, defects=(flat,)))
+    r = tw.simulate(scene, 30.0, duration=2e-4, progress=False)
+    assert r.normal_force[0] == pytest.approx(scene.static_load, rel=1e-6)
+    round_start = tw.simulate(base, 30.0, duration=2e-4, progress=False)
+    depth = -float(flat.delta_rho(0.0, base.wheel.radius))
+    assert round_start.y_wheel[0] - r.y_wheel[0] == pytest.approx(depth, rel=1e-6)

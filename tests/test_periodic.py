@@ -62,7 +62,7 @@ def single_supports(**kw) -> tw.Scene:
 # --------------------------------------------------------------------------------------------
 # analytic pieces
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
-def test_lattice_sum_closed_form_equals_the_direct_sum(beam):
+def test_lattice_sum_closed_form_equals_the_direct_sum(beam, validation):
     """S(k, w) = (1/d) sum_q 1/D(k_q, w) by its cot closed form against the direct sum over
     |q| <= Q plus the tail of the leading term 1/(kappa G A k^2) (trigamma: the Timoshenko
     terms fall only like 1/q^2), and the sum without term q from cot z - 1/z against the
@@ -72,6 +72,7 @@ def test_lattice_sum_closed_form_equals_the_direct_sum(beam):
     d, Q = tr.bay, 200_000
     k = np.array([0.3, 2.0, 5.2359, 11.0, -7.0])
     q = np.arange(-Q, Q + 1)
+    worst = 0.0
     for w in (30.0, 2000.0, -7000.0, 3e4, 5e4):
         terms = tr.inverse_stiffness(k[:, None] + 2 * np.pi * q / d, w)
         tail = 0.0
@@ -79,12 +80,19 @@ def test_lattice_sum_closed_form_equals_the_direct_sum(beam):
             c = (d / (2 * np.pi)) ** 2 / tr.shear_stiffness
             tail = c * np.array([polygamma(1, Q + 1 + x * d / (2 * np.pi))
                                  + polygamma(1, Q + 1 - x * d / (2 * np.pi)) for x in k])
-        np.testing.assert_allclose(tr.lattice_sum(k, w), (terms.sum(axis=1) + tail) / d,
-                                   rtol=1e-9)
+        direct = (terms.sum(axis=1) + tail) / d
+        np.testing.assert_allclose(tr.lattice_sum(k, w), direct, rtol=1e-9)
+        worst = max(worst, float(np.max(np.abs(tr.lattice_sum(k, w) / direct - 1))))
         for shift in (0, 1, -2):
             others = np.delete(terms, Q + shift, axis=1).sum(axis=1)
             np.testing.assert_allclose(tr.lattice_sum_excluding(k, w, shift),
                                        (others + tail) / d, rtol=1e-9)
+    validation.record(
+        f"periodic.lattice_sum_{beam}", level="periodic level", kind="closed form",
+        quantity=f"{beam} rail: the lattice sum S(k, w) = (1/d) sum_q 1/D(k_q, w) by its cot "
+                 "closed form, five wavenumbers, five frequencies",
+        reference="the direct sum over |q| <= 200000 (plus its trigamma tail, Timoshenko)",
+        measured=worst, tolerance=1e-9)
 
 
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
@@ -153,7 +161,7 @@ def test_bloch_waves_of_a_finite_element_bay_are_zeros_of_the_dispersion_functio
 
 
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
-def test_pinned_pinned_frequency_is_where_two_free_waves_meet(beam):
+def test_pinned_pinned_frequency_is_where_two_free_waves_meet(beam, validation):
     """At the pinned-pinned frequency of the model's section "Shear-deformable rail" (Euler-Bernoulli:
     (pi / (2 d^2)) sqrt(EI/m); Timoshenko: the lower root of its frequency equation with
     k = pi/d) the free rail's waves k = pi/d and pi/d - 2 pi/d = -pi/d have D = 0, so the
@@ -171,17 +179,25 @@ def test_pinned_pinned_frequency_is_where_two_free_waves_meet(beam):
         a, b, c = rI * r.density / (G / r.area), -(m + rI * k * k + EI * k * k * r.density /
                                                      (G / r.area)), EI * k**4
         w_pp = math.sqrt((-b - math.sqrt(b * b - 4 * a * c)) / (2 * a))
-    assert abs(1.0 / tr.inverse_stiffness(k, w_pp)) < 1e-9 * EI * k**4
+    residual = abs(1.0 / tr.inverse_stiffness(k, w_pp)) / (EI * k**4)
+    assert residual < 1e-9
     for eps in (1e-3, 1e-5):
         # a double pole of S: S (w - w_pp) grows like 1/(w - w_pp)
         s1 = tr.lattice_sum(k, w_pp * (1 + eps)) * eps
         s2 = tr.lattice_sum(k, w_pp * (1 + 0.1 * eps)) * 0.1 * eps
         assert abs(s2 / s1) == pytest.approx(1.0, rel=1e-2)
+    validation.record(
+        f"periodic.pinned_pinned_{beam}", level="periodic level", kind="closed form",
+        quantity=f"{beam} rail: the free rail's dynamic stiffness D(pi/d, w_pp) at the "
+                 "pinned-pinned frequency (where S has its double pole)",
+        reference="the pinned-pinned frequency of one bay in closed form (docs: Model, "
+                  "Shear-deformable rail)",
+        measured=residual, tolerance=1e-9, metric="of EI (pi/d)^4")
 
 
 # --------------------------------------------------------------------------------------------
 # the moving-load receptance
-def test_receptance_matrix_quadrature_against_a_dense_midpoint_rule():
+def test_receptance_matrix_quadrature_against_a_dense_midpoint_rule(validation):
     """The kernel's pole-subtracted adaptive Gauss-Kronrod quadrature against the midpoint rule
     of the numpy integrand (``_moving._Line``) with
     dk = 2e-3 rad/m over [-K, K] (exponentially accurate for an integrand analytic in a strip:
@@ -209,7 +225,14 @@ def test_receptance_matrix_quadrature_against_a_dense_midpoint_rule():
         for ua, ub in ((0.0, 0.125), (0.125, 0.25), (0.25, 0.5), (0.5, 1.0)):
             u = 0.5 * (ua + ub) + 0.5 * (ub - ua) * x
             ref += add(sign * K / u, 0.5 * (ub - ua) * wg * K / u**2 / (2 * np.pi))
-    assert np.max(np.abs(A - ref)) < 1e-7 * np.max(np.abs(ref))
+    err = float(np.max(np.abs(A - ref)) / np.max(np.abs(ref)))
+    assert err < 1e-7
+    validation.record(
+        "periodic.receptance_matrix_quadrature", level="periodic level", kind="path agreement",
+        quantity="ballasted preset, 300 km/h, 170 Hz: the moving-load receptance matrix, 7 x 7 "
+                 "harmonics (the kernel's pole-subtracted Gauss-Kronrod quadrature)",
+        reference="a dense midpoint rule of the numpy integrand plus Gauss-Legendre tails",
+        measured=err, tolerance=1e-7, metric="of the largest entry")
 
 
 def _continuous_moving_receptance(EI, m, kf, cf, v, w):
@@ -222,7 +245,8 @@ def _continuous_moving_receptance(EI, m, kf, cf, v, w):
     return 1j * np.sum(1.0 / dp(r[r.imag > 0]))
 
 
-def test_closely_spaced_supports_give_the_continuous_foundations_moving_receptance():
+def test_closely_spaced_supports_give_the_continuous_foundations_moving_receptance(
+        validation):
     """Supports k_f d, c_f d every d: the bay-averaged moving receptance A_0 tends to the
     closed form of the continuous foundation like d^4 (measured 2e-6, 1.4e-7, 8.5e-9 for
     d = 0.1, 0.05, 0.025 m) and the side bands A_+-1 vanish likewise (the d^4 smearing error of
@@ -242,10 +266,17 @@ def test_closely_spaced_supports_give_the_continuous_foundations_moving_receptan
         errs.append(max(e))
     assert errs[0] < 1e-5 and errs[1] < 1e-6
     assert errs[0] / errs[1] > 12.0  # fourth order in d: 16
+    validation.record(
+        "periodic.continuous_foundation", level="periodic level", kind="closed form",
+        quantity="supports every 5 cm: the moving receptance A_0 and its side bands A_+-1, "
+                 "at rest and at 300 km/h, 0-500 Hz",
+        reference="the moving harmonic load on a beam on a continuous viscoelastic foundation, "
+                  "by residues",
+        measured=errs[1], tolerance=1e-6)
 
 
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
-def test_moving_receptance_at_rest_is_the_point_receptance(beam):
+def test_moving_receptance_at_rest_is_the_point_receptance(beam, validation):
     """At v = 0 the receptance the force sees at x in the bay, sum_n A_n e^{i 2 pi n x / d},
     is the point receptance: against ``receptance`` of a 120 m finite-element rail (16
     elements per bay, 20 m absorbing ends) at mid-rail, 50-800 Hz, to 1e-3 (measured: 2e-5
@@ -259,10 +290,18 @@ def test_moving_receptance_at_rest_is_the_point_receptance(beam):
     long = dc.replace(s, rail=dc.replace(s.rail, length=120.0, n_elements=3200,
                                          absorbing_ends=tw.AbsorbingEnds(20.0)))
     f = np.array([50.0, 300.0, 800.0])
+    worst = 0.0
     for x in ((0.0, 0.15, 0.3) if beam == "euler" else (0.15, 0.3)):
         a = moving_receptance(s, 0.0, f, n_harmonics=12, position=x)
         b = tw.receptance(long, 60.0 + x, f)
         np.testing.assert_allclose(a, b, rtol=1e-3)
+        worst = max(worst, float(np.max(np.abs(a / b - 1))))
+    validation.record(
+        f"periodic.receptance_at_rest_{beam}", level="periodic level", kind="path agreement",
+        quantity=f"ballasted preset, {beam} rail: the moving receptance at v = 0 at points in "
+                 "the bay, 50-800 Hz",
+        reference="receptance of a 120 m finite-element rail with absorbing ends",
+        measured=worst, tolerance=1e-3)
 
 
 # --------------------------------------------------------------------------------------------
@@ -286,7 +325,7 @@ def test_a_continuous_foundation_has_no_sleeper_passing():
     assert coarse.force_harmonics.amplitude_n.iloc[0] > 5e-3 * coarse.mean_force
 
 
-def test_sine_force_tends_to_the_receptance_formula_as_the_speed_vanishes():
+def test_sine_force_tends_to_the_receptance_formula_as_the_speed_vanishes(validation):
     """v -> 0 (0.02 m/s, f = 200 Hz, lambda = 0.1 mm): on closely spaced supports (5 cm) the
     force amplitude is a / |alpha_R + alpha_C + alpha_W| with alpha_R the infinite beam on the
     continuous foundation (Model § Irregularities), within 1e-4 (the d^4 smearing, v/c_phase
@@ -308,6 +347,12 @@ def test_sine_force_tends_to_the_receptance_formula_as_the_speed_vanishes():
     beta = ((kf + 1j * w * cf - m * w * w) / (4 * EI)) ** 0.25
     alpha = 1 / (8 * EI * beta**3) + 1 / r.contact_stiffness - 1 / (s.wheel.mass * w * w)
     assert main == pytest.approx(a / abs(alpha), rel=1e-4)
+    validation.record(
+        "periodic.sine_force_slow_wheel", level="periodic level", kind="closed form",
+        quantity="supports every 5 cm, 0.02 m/s, 200 Hz: the force amplitude under a sine",
+        reference="a / |alpha_R + alpha_C + alpha_W|, alpha_R of the infinite beam on the "
+                  "continuous foundation",
+        measured=abs(main * abs(alpha) / a - 1), tolerance=1e-4)
     bays = dc.replace(single_supports(), irregularity=tw.Irregularity.sine(lam, a))
     r = periodic_response(bays, v, fidelity="linear/sprung", n_harmonics=6)
     rows = r.force_harmonics.query("source == 'irregularity'")
@@ -332,7 +377,7 @@ def test_harmonics_do_not_feel_the_truncation(beam):
 
 
 @pytest.mark.parametrize("beam", ["euler", "timoshenko"])
-def test_slow_wheel_follows_the_quasi_static_line(beam):
+def test_slow_wheel_follows_the_quasi_static_line(beam, validation):
     """v -> 0 (0.5 m/s): the rail under the wheel, the own-weight sag between the sleepers
     included, is the linear track's static line under the static load
     (``linear_quasi_static``, a 30 m finite-element rail, 16 elements per bay, over one bay at
@@ -351,7 +396,14 @@ def test_slow_wheel_follows_the_quasi_static_line(beam):
     qs = tw.linear_quasi_static(fe, x)
     r = periodic_response(s, 0.5, n_harmonics=12 if beam == "euler" else 48)
     y = r.rail_displacement((x - 15.0) / 0.5)
-    assert np.max(np.abs(y - qs)) < 1e-4 * np.max(np.abs(qs))
+    err = float(np.max(np.abs(y - qs)) / np.max(np.abs(qs)))
+    assert err < 1e-4
+    validation.record(
+        f"periodic.slow_wheel_quasi_static_{beam}", level="periodic level",
+        kind="path agreement",
+        quantity=f"ballasted preset, {beam} rail, 0.5 m/s: the rail under the wheel over a bay",
+        reference="the linear track's static line (linear_quasi_static) of a 30 m rail",
+        measured=err, tolerance=1e-4, metric="of max |y_qs|")
     own = np.asarray(_core.linear_static_line(_kernel.rail_model(fe, 800),
                                               _kernel.beam_params(fe), 0.0, x.tolist(), 0))
     from trackwheel.run.periodic.response import own_weight_sag
@@ -393,7 +445,7 @@ def _compare(scene, speed, components, x_start=12.3, x_end=45.0, x_from=22.0, **
     return fh[sel], z[sel]
 
 
-def test_time_domain_steady_state_euler_bernoulli():
+def test_time_domain_steady_state_euler_bernoulli(validation):
     """The ballasted preset at 300 km/h over a sine (lambda = 0.5 m, a = 10 um) on a 60 m
     rail (8 elements per bay, absorbing ends; the linear/sprung level at its default step):
     the sleeper-passing harmonics 1-3, the sine's force (2.5 kN) and its first upper side band
@@ -408,9 +460,16 @@ def test_time_domain_steady_state_euler_bernoulli():
     assert len(rows) == 5
     np.testing.assert_allclose(np.abs(z), rows.amplitude_n, rtol=0.01)
     np.testing.assert_allclose(np.angle(z * np.exp(-1j * rows.phase_rad)), 0.0, atol=0.01)
+    validation.record(
+        "periodic.time_domain_euler_bernoulli", level="periodic level", kind="path agreement",
+        quantity="ballasted preset, 300 km/h, 0.5 m sine: sleeper-passing harmonics 1-3, the "
+                 "sine's force and its upper side band",
+        reference="the time domain's linear/sprung level on a 60 m rail, least squares over "
+                  "its steady part",
+        measured=float(np.max(np.abs(np.abs(z) / rows.amplitude_n - 1))), tolerance=0.01)
 
 
-def test_time_domain_steady_state_primary_suspended_wheel():
+def test_time_domain_steady_state_primary_suspended_wheel(validation):
     """A wheel (900 kg) on its primary suspension under a bogie frame (1750 kg, k_1 = 1.173 MN/m,
     c_1 = 19.6 kN s/m) carrying the rest of the 70 kN: sleeper passing and a 2 m sine (42 Hz,
     where the suspension still matters: the free wheel's force differs by 4 %) against the
@@ -425,13 +484,21 @@ def test_time_domain_steady_state_primary_suspended_wheel():
     rows, z = _compare(scene, V, lambda fh: (fh.source == "sleeper_passing") & (fh.order < 3)
                        | ((fh.source == "irregularity") & (fh.order == 0)))
     np.testing.assert_allclose(np.abs(z), rows.amplitude_n, rtol=0.01)
+    validation.record(
+        "periodic.time_domain_primary_suspension", level="periodic level",
+        kind="path agreement",
+        quantity="a wheel under a bogie frame on its primary suspension, 300 km/h, 2 m sine: "
+                 "sleeper-passing harmonics 1-2 and the sine's force",
+        reference="the time domain's linear/sprung level with the bogie, 60 m rail",
+        measured=float(np.max(np.abs(np.abs(z) / rows.amplitude_n - 1))), tolerance=0.01)
     free = periodic_response(dc.replace(scene, vehicle=None), V, fidelity="linear/sprung")
     f_free = free.force_harmonics.query("source == 'irregularity' and order == 0")
     main = rows[rows.source == "irregularity"].amplitude_n.iloc[0]
     assert abs(f_free.amplitude_n.iloc[0] / main - 1) > 0.03
 
 
-def test_wheel_receptance_of_the_primary_suspended_wheel_is_the_two_mass_closed_form():
+def test_wheel_receptance_of_the_primary_suspended_wheel_is_the_two_mass_closed_form(
+        validation):
     """alpha_W of the wheel under a free bogie mass: 1 / (-M w^2 + z_1 (-M_b w^2) /
     (z_1 - M_b w^2)), z_1 = k_1 + i w c_1 (the bogie's pitch is not coupled: the wheel sits
     under its centre)."""
@@ -446,6 +513,12 @@ def test_wheel_receptance_of_the_primary_suspended_wheel_is_the_two_mass_closed_
     ref = 1 / (-w.mass * om**2 + z1 * (-bogie.mass * om**2) / (z1 - bogie.mass * om**2))
     got = wheel_receptance(wheel_of(scene, "linear/sprung"), om)
     np.testing.assert_allclose(got, ref, rtol=1e-12)
+    validation.record(
+        "periodic.wheel_receptance_two_mass", level="periodic level", kind="closed form",
+        quantity="the receptance of a wheel under a bogie frame on its primary suspension "
+                 "(the kernel's vehicle matrices), 1-500 Hz",
+        reference="the two-mass chain in closed form",
+        measured=float(np.max(np.abs(got / ref - 1))), tolerance=1e-12)
 
 
 @pytest.mark.slow
@@ -556,7 +629,7 @@ def test_refusals_name_why():
 
 # --------------------------------------------------------------------------------------------
 # random profiles: spectra without realisations
-def test_narrow_band_spectrum_is_the_mean_of_its_sines():
+def test_narrow_band_spectrum_is_the_mean_of_its_sines(validation):
     """A one-third-octave spectrum with one band around lambda = 0.1 m (variance
     1e-12 x 10^(L/10) spread evenly over its Omega band): the force's variance is the band's
     variance times the mean over the band of a sine's force power per unit variance,
@@ -577,9 +650,16 @@ def test_narrow_band_spectrum_is_the_mean_of_its_sines():
             .force_harmonics.query("source == 'irregularity'")
         power.append(float(np.sum(rows.amplitude_n**2)) / a**2)
     assert rr.sigma**2 == pytest.approx(var * np.mean(power), rel=1e-2)
+    validation.record(
+        "periodic.random_narrow_band", level="periodic level", kind="path agreement",
+        quantity="the force variance under a one-third-octave band of roughness around 0.1 m "
+                 "(random_response, from the spectrum)",
+        reference="the band's variance times the mean force power of 16 sines across it "
+                  "(periodic_response)",
+        measured=abs(rr.sigma**2 / (var * np.mean(power)) - 1), tolerance=1e-2)
 
 
-def test_percentiles_of_a_gaussian_force_without_sleeper_passing():
+def test_percentiles_of_a_gaussian_force_without_sleeper_passing(validation):
     """On closely spaced supports (no sleeper passing) the force at a random instant is
     N(P, sigma^2): its percentiles are P + sigma Phi^-1(q) to 1e-6."""
     s = tw.Scene.ballasted_track()
@@ -591,10 +671,15 @@ def test_percentiles_of_a_gaussian_force_without_sleeper_passing():
     q = rr.percentiles.percentile.to_numpy() / 100
     expect = rr.static_load + rr.sigma * ndtri(q)
     np.testing.assert_allclose(rr.percentiles.force_n, expect, rtol=1e-6)
+    validation.record(
+        "periodic.gaussian_percentiles", level="periodic level", kind="closed form",
+        quantity="supports every 5 cm, FRA class 6: the contact force's percentiles 1-99.9 %",
+        reference="P + sigma Phi^-1(q) of the normal law",
+        measured=float(np.max(np.abs(rr.percentiles.force_n / expect - 1))), tolerance=1e-6)
     assert rr.loss_probability < 1e-12
 
 
-def test_band_rms_sums_to_the_variance():
+def test_band_rms_sums_to_the_variance(validation):
     """The bands' mean squares add up to sigma^2 plus the sleeper-passing lines' (Parseval),
     to 1e-3 (the bands' edges cut the piecewise-linear densities exactly; the lines at the
     edges of the covered range)."""
@@ -602,6 +687,12 @@ def test_band_rms_sums_to_the_variance():
                          wavelengths=(0.044, 0.44), per_decade=40)
     total = float(np.sum(rr.band_rms.rms_n**2))
     assert total == pytest.approx(rr.rms**2, rel=1e-3)
+    validation.record(
+        "periodic.band_rms_parseval", level="periodic level", kind="closed form",
+        quantity="ISO 3095 roughness at 100 km/h: the sum of the force's one-third-octave band "
+                 "mean squares",
+        reference="Parseval: the variance sigma^2 plus the sleeper-passing lines' mean square",
+        measured=abs(total / rr.rms**2 - 1), tolerance=1e-3)
 
 
 @pytest.mark.slow

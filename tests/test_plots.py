@@ -434,3 +434,88 @@ def test_legends_hide_no_data(runs, sweep):
                 assert not box.overlaps(ax.get_window_extent()), (name, leg.get_texts()[0])
             assert fig_box.x0 <= box.x0 + 0.5 and box.x1 <= fig_box.x1 + 0.5, name
             assert fig_box.y0 <= box.y0 + 0.5 and box.y1 <= fig_box.y1 + 0.5, name
+
+
+# ---- what a new user saw in the figures --------------------------------------------------------
+def test_decay_rate_figure_has_a_title_and_readable_ticks():
+    """decay.png: matplotlib labelled the minor ticks of the 250 Hz-5 kHz log axis and they ran
+    into one string ('2x10^2 3x10^2 ...'); no title. Now plain octave ticks (250, 500, ...),
+    unlabelled minor ticks, and a title naming the track."""
+    s = tw.Scene.ballasted_track(60.0, elements_per_bay=2)
+    fig = plots.decay_rate(s, np.geomspace(250.0, 5000.0, 12))
+    fig.draw_without_rendering()
+    ax = fig.axes[0]
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["250", "500", "1000", "2000",
+                                                            "4000"]
+    assert all(t.get_text() == "" for t in ax.get_xticklabels(minor=True))
+    assert "decay rate" in fig.get_suptitle() and "60 m rail" in fig.get_suptitle()
+
+
+def test_receptance_figure_has_a_title_and_its_legend_takes_no_width():
+    s = tw.Scene.kato2005()
+    fig = plots.receptance(s, np.geomspace(50.0, 3000.0, 20))
+    fig.draw_without_rendering()
+    assert "Point receptance" in fig.get_suptitle() and "5 m rail" in fig.get_suptitle()
+    assert _width_fraction(fig) > 0.8
+
+
+def _width_fraction(fig) -> float:
+    """The narrowest axes' width over the figure's (legends to the right squeezed it to 2/3)."""
+    return min(ax.get_window_extent().width for ax in fig.axes) / fig.bbox.width
+
+
+def test_run_figure_keeps_its_width_and_the_main_frequency_in_view(runs):
+    """run.png / fig7_dynamic: the legends stood to the right (a third of the width) and four
+    mode bands filled the spectrum around the main-frequency line. The legends stand above the
+    axes; the bands fill a strip at the top only, the main frequency is drawn over them, full
+    height, and the spectrum stays under the strip."""
+    eig = tw.eigen(tw.Scene.kato2005(), np.linspace(0.0, 5.0, 11), n_modes=4)
+    fig = plots.dynamic(runs[0], eigen=eig)
+    fig.draw_without_rendering()
+    assert _width_fraction(fig) > 0.8
+    ax_f = fig.axes[2]
+    (main,) = [ln for ln in ax_f.get_lines() if ln.get_gid() == "main frequency"]
+    bands = [ln for ln in ax_f.get_lines() if (ln.get_gid() or "").startswith("eigen")]
+    assert all(min(ln.get_ydata()) >= 0.85 for ln in bands)  # axes fraction: the top strip
+    assert main.get_ydata()[0] == 0.0 and main.get_ydata()[1] == 1.0
+    assert main.get_zorder() > max(p.get_zorder() for p in ax_f.patches)
+    spec = _labelled(ax_f, "|D(f)|")
+    assert np.max(spec.get_ydata()) < 0.85 * ax_f.get_ylim()[1]
+
+
+def test_acceleration_terms_figure_leaves_no_empty_strip(runs):
+    """fig8: the two legends to the right of the top row pushed the right column over and left
+    a wide empty strip between the columns; above the top row, each over its column's title,
+    they leave both columns their width (each over 40 % of the figure), and overlap no title."""
+    fig = plots.acceleration_terms([runs[0], runs[2]])
+    fig.draw_without_rendering()
+    widths = [ax.get_window_extent().width / fig.bbox.width for ax in fig.axes]
+    assert min(widths) > 0.4
+    for ax in fig.axes[:2]:
+        legend, title = ax.get_legend().get_window_extent(), ax.title.get_window_extent()
+        assert not legend.overlaps(title) and legend.y0 >= title.y1 - 0.5
+
+
+def test_convergence_figure_writes_the_v_e_scale_in_its_label(runs):
+    """fig4: the v_e axis's offset text ('1e-5') sat at the axes' top left, squeezed under the
+    subtitle; the scale is in the axis label and the offset text is empty."""
+    fig = plots.time_step_convergence(runs)
+    fig.draw_without_rendering()
+    ax_v = fig.axes[1]
+    assert ax_v.yaxis.get_offset_text().get_text() == ""
+    scale = max(np.max(np.abs(r.v_error)) for r in runs)
+    p = int(np.floor(np.log10(scale)))
+    assert ax_v.get_ylabel() == f"velocity error v_e [%] (× 1e{p})"
+
+
+def test_vehicle_run_figure_is_against_the_wheel_position_as_for_one_wheel():
+    """plots.dynamic drew one wheel against X and a vehicle's wheels against t; both against
+    the wheel position X now (each wheel its own: a track defect shows at one X)."""
+    s = tw.Scene(rail=tw.Rail(length=10.0, n_elements=40), vehicle=tw.Vehicle.bogie(
+        wheelbase=2.0))
+    r = tw.simulate(s, 20.0, fidelity="linear/hertz", x_start=0.5, x_end=1.5, dt=1e-4)
+    fig = plots.dynamic(r)
+    ax_n = fig.axes[0]
+    assert ax_n.get_xlabel().startswith("wheel position X [m]")
+    for i, line in enumerate(ax_n.get_lines()):
+        np.testing.assert_array_equal(line.get_xdata(), r.wheel(i).x_wheel)

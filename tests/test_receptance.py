@@ -71,7 +71,7 @@ def test_static_limit_equals_static(validation):
     s = dc.replace(tw.Scene.kato2005(), rail_gravity=False)
     gaps = []
     for x in (2.25, 2.5, 1.3):
-        a0 = tw.receptance(s, x, [0.0])[0]
+        a0 = tw.receptance(s, x, [0.0], n_elements=s.rail.n_elements)[0]  # static's mesh
         assert a0.imag == 0.0
         assert -s.static_load * a0.real == pytest.approx(tw.static(s, x).y_contact, rel=1e-6)
         gaps.append(abs(-s.static_load * a0.real / tw.static(s, x).y_contact - 1.0))
@@ -89,9 +89,10 @@ def test_undamped_receptance_has_its_poles_at_the_eigenfrequencies(validation):
     s = tw.Scene.kato2005()
     for beam in ("euler", "timoshenko"):
         sb = dc.replace(s, rail=dc.replace(s.rail, beam=beam))
-        fk = rail_frequencies(sb, 5)
-        near = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-7)))
-        far = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-5)))
+        ne = sb.rail.n_elements  # the same mesh for both
+        fk = rail_frequencies(sb, 5, n_elements=ne)
+        near = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-7), n_elements=ne))
+        far = np.abs(tw.receptance(sb, 1.3, fk * (1 + 1e-5), n_elements=ne))
         np.testing.assert_allclose(near / far, 100.0, rtol=0.02)
         if beam == "timoshenko":
             validation.record(
@@ -178,14 +179,15 @@ def test_layered_support_with_a_stiff_ballast_and_light_sleeper_is_the_single_sp
         sp.stiffness = [s.supports.stiffness] * n
         sp.damping = [s.supports.damping] * n
         sp.sleeper_mass, sp.ballast_stiffness, sp.ballast_damping = [ms] * n, [kb] * n, [cb] * n
-        return np.asarray(_core.receptance(_core.RailModel(p, sp), beam, 2.25, [2.25], f))[:, 0]
+        return np.asarray(_core.receptance(_core.RailModel(p, sp), beam, [2.25], [2.25], f))[:, 0]
 
-    single = tw.receptance(s, 2.25, f)
+    single = tw.receptance(s, 2.25, f, n_elements=s.rail.n_elements)
     np.testing.assert_allclose(layered(1e-9, 1e16, 0.0), single, rtol=1e-6)
     half = dc.replace(s, supports=dc.replace(s.supports, stiffness=s.supports.stiffness / 2,
                                              damping=0.0))
     np.testing.assert_allclose(layered(1e-9, s.supports.stiffness, 0.0)[:1],
-                               tw.receptance(half, 2.25, f)[:1], rtol=1e-9)
+                               tw.receptance(half, 2.25, f, n_elements=s.rail.n_elements)[:1],
+                               rtol=1e-9)
 
 
 def test_decay_rate_limit_is_the_iso3095_band_value():
@@ -221,9 +223,30 @@ def test_bad_input(kw, match):
         tw.receptance(tw.Scene.kato2005(), **kw)
 
 
-def test_decay_rate_needs_room_for_the_standard_positions():
-    with pytest.raises(ValueError, match="EN 15461 positions"):
-        tw.decay_rate(tw.Scene.kato2005(), [500.0])
+@pytest.mark.parametrize("scene, least", [(tw.Scene.kato2005(), 33.25),
+                                          (tw.Scene.ballasted_track(), 39.9),
+                                          (tw.Scene.ballasted_track(12.0), 39.9)])
+def test_decay_rate_needs_room_for_the_standard_positions(scene, least):
+    """A rail too short for the 66 spacings of EN 15461 is told the length it needs (66 d
+    beyond the first mid-span, d / 2 from the end), never an empty range of x0."""
+    with pytest.raises(ValueError, match="EN 15461 positions") as info:
+        tw.decay_rate(scene, [500.0])
+    msg = str(info.value)
+    assert "Rail.length" in msg and f"at least {least:g} m" in msg and "x0 in" not in msg
+
+
+def test_decay_rate_x0_is_inside_the_rail():
+    """x0 = 0 is the rigid end (zero response, so no ratio: NaN rates before) and the rail
+    hardly moves just beside it (1e-185 m: NaN too): x0 is at least a quarter bay from the end;
+    an x0 beyond L - 66 d gets its allowed range."""
+    s = tw.Scene.ballasted_track(60.0)
+    for x0 in (0.0, 1e-185):
+        with pytest.raises(ValueError, match=r"x0 = .* is outside the allowed range "
+                           r"\[0.15, 60.0\]"):
+            tw.decay_rate(s, [0.0, 500.0], x0=x0)
+    with pytest.raises(ValueError, match=r"x0 = 30 m .* allowed range \[0.15, 20.4\] m"):
+        tw.decay_rate(s, [500.0], x0=30.0)
+    assert np.isfinite(tw.decay_rate(s, [0.0, 500.0], x0=0.15)).all()
 
 
 def test_plots():
@@ -269,9 +292,9 @@ def test_pinned_pinned_peak_of_the_midspan_receptance(beam, validation):
 @pytest.mark.parametrize("f_max", [500.0, 2000.0, 5000.0])
 def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
     """The frequency-domain mesh (what `receptance` and `decay-rate` use): whole elements per
-    support bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
-    at f_max, and the fewest such (one element per bay less would miss it), never fewer than
-    the scene's own."""
+    quarter bay, at least ten per Euler-Bernoulli bending wavelength 2 pi (EI / (m w^2))^(1/4)
+    at f_max, and the fewest such (one element per quarter bay less would miss it), never fewer
+    than the scene's own."""
     from trackwheel.run.defaults import frequency_mesh
 
     scene = tw.Scene.ballasted_track()
@@ -280,9 +303,9 @@ def test_frequency_mesh_resolves_the_bending_wavelength(f_max):
     w = 2.0 * np.pi * f_max
     wavelength = 2.0 * np.pi * (r.bending_stiffness / (r.mass_per_length * w * w)) ** 0.25
     n = frequency_mesh(scene, f_max)
-    assert n % n_bays == 0 and n >= r.n_elements
+    assert n % (4 * n_bays) == 0 and n >= r.n_elements  # whole quarter bays
     assert r.length / n <= wavelength / 10.0
-    assert n == r.n_elements or r.length / (n - n_bays) > wavelength / 10.0
+    assert n == r.n_elements or r.length / (n - 4 * n_bays) > wavelength / 10.0
 
 
 def test_frequency_mesh_capped_by_the_element_limit_warns():
@@ -290,6 +313,19 @@ def test_frequency_mesh_capped_by_the_element_limit_warns():
     from trackwheel.run.defaults import frequency_mesh
 
     scene = tw.Scene.ballasted_track(3000.0, elements_per_bay=1)
-    with pytest.warns(tw.MeshWarning, match="fewer than ten per bending wavelength"):
+    with pytest.warns(tw.MeshWarning, match="per bay that resolve the bending wavelength"):
         n = frequency_mesh(scene, 5000.0)
     assert n == MAX_ELEMENTS  # 5000 bays, 4 elements each
+
+
+def test_frequencies_above_the_beam_models_range_are_refused_by_name():
+    """receptance(kato, 2.25, [1e155]) raised the kernel's 'singular at 1000...000 Hz' (a
+    155-digit number); the frequencies are bounded by MAX_FREQUENCY (100 kHz), named, and the
+    bound itself gives a finite receptance, below the mass line 1 / (m omega^2 L) of the
+    whole rail moving as one (the mesh cannot resolve 100 kHz, the magnitude still holds)."""
+    s = tw.Scene.kato2005()
+    with pytest.raises(ValueError, match=r"freqs = 1e\+155 Hz is outside the allowed range "
+                       r"\[0, 100000\] Hz"):
+        tw.receptance(s, 2.25, [1e155])
+    a = tw.receptance(s, 2.25, [1e5])
+    assert np.all(np.isfinite(a)) and 0.0 < abs(a[0])

@@ -255,8 +255,11 @@ def test_full_model_frequencies_equal_the_linear_timoshenko_track():
     lin = np.asarray(_core.testing.track_modes(model, _kernel.beam_params(s), 0.0, 0.0, [0.0],
                                        8)[0]).ravel()
     np.testing.assert_allclose(_dense_vertical_frequencies(s)[:8], lin, rtol=1e-9)
-    np.testing.assert_allclose(rail_frequencies(s, 8, method="dense"), lin, rtol=1e-9)
-    np.testing.assert_allclose(rail_frequencies(s, 8, method="sparse"), lin, rtol=1e-9)
+    ne = s.rail.n_elements  # the mesh of the model above
+    np.testing.assert_allclose(rail_frequencies(s, 8, method="dense", n_elements=ne), lin,
+                               rtol=1e-9)
+    np.testing.assert_allclose(rail_frequencies(s, 8, method="sparse", n_elements=ne), lin,
+                               rtol=1e-9)
     # with the wheel on its contact spring: the coupled modes of both methods agree as well
     d = tw.eigen(s, [2.25], 6, method="dense").frequencies
     sp = tw.eigen(s, [2.25], 6, method="sparse").frequencies
@@ -291,7 +294,9 @@ def test_linearised_full_rail_has_the_linear_tracks_receptance():
     w = 2 * np.pi * freqs
     full = np.array([[sr_ @ np.linalg.solve(K + 1j * wi * C - wi**2 * M, se)
                       for sr_ in (se, sr)] for wi in w])
-    lin = np.stack([tw.receptance(s, 2.1, freqs), tw.receptance(s, 2.1, freqs, 3.3)], axis=1)
+    ne = s.rail.n_elements  # the mesh of vertical_matrices
+    lin = np.stack([tw.receptance(s, 2.1, freqs, n_elements=ne),
+                    tw.receptance(s, 2.1, freqs, 3.3, n_elements=ne)], axis=1)
     np.testing.assert_allclose(full, lin, rtol=1e-9)
 
 

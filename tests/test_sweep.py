@@ -296,7 +296,9 @@ def test_diverging_and_rejected_cases_are_recorded(tmp_path):
     store = tmp_path / "s"
     kw = dict(KW, integrator="explicit", dt=5e-6)
     args = (SCENE, [tw.kmh(300), 400.0], [140e6, 1e13])
-    with pytest.warns(tw.StabilityWarning, match="above the predicted stability limit"):
+    with pytest.warns(tw.StabilityWarning, match="above the predicted stability limit"), \
+            pytest.warns(tw.PlausibilityWarning, match=r"speed = 400 m/s is 1440 km/h"), \
+            pytest.warns(tw.FailedCasesWarning, match="3 of 4 cases"):
         df = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)
     ok = df.error == ""
     assert ok.tolist() == [True, False, False, False]
@@ -306,37 +308,72 @@ def test_diverging_and_rejected_cases_are_recorded(tmp_path):
     assert df.loc[~ok, list(COLUMN.values())].isna().all().all()
     assert df.lost_contact[~ok].isna().all()
     assert (df.integrator == "explicit").all() and (df.dt_s == 5e-6).all()
-    again = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)
+    with pytest.warns(tw.PlausibilityWarning), pytest.warns(tw.FailedCasesWarning):
+        again = tw.sweep(*args, max_workers=1, store=store, progress=False, **kw)
     assert again.attrs == {"computed": 0, "from_store": 4}
     pd.testing.assert_frame_equal(again, df, check_exact=True)
-    with pytest.warns(tw.StabilityWarning):
+    with pytest.warns(tw.StabilityWarning), pytest.warns(tw.PlausibilityWarning), \
+            pytest.warns(tw.FailedCasesWarning):
         retried = tw.sweep(*args, max_workers=1, store=store, progress=False,
                            retry_errors=True, **kw)
     assert retried.attrs == {"computed": 3, "from_store": 1}
     pd.testing.assert_frame_equal(no_wall(retried), no_wall(df), check_exact=True)
 
 
-def test_a_failed_static_solve_is_a_failed_case(tmp_path):
-    """A wheel load of 2e7 N presses the rail through 1 MN/m supports until the wheel loses the
-    rail in the start's static solve (the kernel's RuntimeError); on 1000 MN/m supports the same
-    load has a static state wherever the run and its analysis need one. The failure is one row
-    of the table, not the end of the sweep, and is stored like a divergence."""
-    heavy = dc.replace(SCENE, wheel=dc.replace(SCENE.wheel, load=2e7))
+def test_a_failed_static_solve_is_a_failed_case(tmp_path, monkeypatch):
+    """The kernel's static solve failing at a case's start (forced for the 1e8 N/m case: the
+    loads that made it fail, 2e7 N on 1 MN/m supports, sag the track metres, and the scene,
+    hence the sweep, refuses them before anything runs: next test) is one row of the table,
+    not the end of the sweep, warned about with the first error, and stored like a
+    divergence."""
     kw = dict(KW, n_elements=20)
-    soft = dc.replace(heavy, supports=dc.replace(heavy.supports, stiffness=1e6))
-    with pytest.raises(RuntimeError, match="static solve"):
-        tw.simulate(soft, tw.kmh(200), **kw)
-    df = tw.sweep(heavy, tw.kmh(200), [1e6, 1e9], max_workers=1, store=tmp_path / "s",
-                  progress=False, **kw)
+    real = cases.simulate
+
+    def simulate(scene, *args, **kwargs):
+        if scene.supports.stiffness == 1e8:
+            raise RuntimeError("static solve: the wheel lost contact with the rail")
+        return real(scene, *args, **kwargs)
+
+    monkeypatch.setattr(cases, "simulate", simulate)
+    with pytest.warns(tw.FailedCasesWarning, match=r"1 of 2 cases .* the first \(v = 55.56 m/s, "
+                      r"k_s = 1e\+08 N/m\): RuntimeError: static solve"):
+        df = tw.sweep(SCENE, tw.kmh(200), [1e8, 1e9], max_workers=1, store=tmp_path / "s",
+                      progress=False, **kw)
     assert (df.error == "").tolist() == [False, True]
     assert df.error[0] == "RuntimeError: static solve: the wheel lost contact with the rail"
     assert df.loc[0, list(COLUMN.values())].isna().all() and np.isfinite(df.amplitude_m[1])
     # the case that ran is the single run, exactly
-    stiff = dc.replace(heavy, supports=dc.replace(heavy.supports, stiffness=1e9))
+    stiff = dc.replace(SCENE, supports=dc.replace(SCENE.supports, stiffness=1e9))
     assert df.amplitude_m[1] == tw.analyse(tw.simulate(stiff, tw.kmh(200), **kw)).amplitude
-    again = tw.sweep(heavy, tw.kmh(200), [1e6, 1e9], max_workers=1, store=tmp_path / "s",
-                     progress=False, **kw)
+    with pytest.warns(tw.FailedCasesWarning):
+        again = tw.sweep(SCENE, tw.kmh(200), [1e8, 1e9], max_workers=1, store=tmp_path / "s",
+                         progress=False, **kw)
     assert again.attrs == {"computed": 0, "from_store": 2}
+
+
+def test_a_support_stiffness_the_scene_refuses_is_refused_before_anything_runs(tmp_path):
+    """2e7 N on 1 MN/m supports sags the paper's track metres (Scene.static_sag): the sweep
+    refuses that stiffness by name, before running (or storing) any case."""
+    heavy = dc.replace(SCENE, wheel=dc.replace(SCENE.wheel, load=2e7))
+    with pytest.raises(ValueError, match=r"support_stiffness = 1e\+06 N/m: the track sags"):
+        tw.sweep(heavy, tw.kmh(200), [1e9, 1e6], max_workers=1, store=tmp_path / "s",
+                 progress=False, **KW)
+    assert not records(tmp_path / "s")
+
+
+def test_a_sweep_whose_every_case_fails_raises_with_the_first_error(tmp_path):
+    """Explicit RK4 at 1e-4 s, ten times its stability limit: every case diverges. The sweep
+    raises SweepFailedError naming the count and the first error, its table attached; the
+    failed cases are stored (a re-run with retry_errors=True recomputes them)."""
+    kw = dict(KW, integrator="explicit", dt=1e-4)
+    with pytest.warns(tw.StabilityWarning), pytest.raises(
+            tw.SweepFailedError, match=r"every case of the sweep failed \(2\); the first "
+            r"\(v = 55.56 m/s, k_s = 1.4e\+08 N/m, seed 0\): DivergenceError") as info:
+        tw.sweep(ROUGH, tw.kmh(200), seeds=range(2), max_workers=1, store=tmp_path / "s",
+                 progress=False, **kw)
+    table = info.value.table
+    assert len(table) == 2 and table.error.str.startswith("DivergenceError").all()
+    assert len(records(tmp_path / "s")) == 2
 
 
 @pytest.mark.parametrize("kwargs,exc,match", [

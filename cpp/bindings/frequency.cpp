@@ -39,13 +39,14 @@ py::object periodic_receptance(const PeriodicTrackParams& track, double speed, d
 void bind_frequency(py::module_& m) {
   m.def(
       "receptance",
-      [](const RailModel& rail, const BeamParams& beam, double x, const std::vector<double>& xr,
-         const std::vector<double>& freqs) {
+      [](const RailModel& rail, const BeamParams& beam, const std::vector<double>& x,
+         const std::vector<double>& xr, const std::vector<double>& freqs) {
         py::gil_scoped_release nogil;
         return receptance(rail, beam, x, xr, freqs);
       },
       py::arg("rail"), py::arg("beam"), py::arg("x"), py::arg("x_response"), py::arg("freqs"),
-      "Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x");
+      "Receptances (n_freq, n_force * n_resp) [m/N] of the linear track, a unit force at each "
+      "of x (column e * n_resp + r: response r to force e)");
   py::class_<PeriodicTrackParams>(m, "PeriodicTrackParams")
       .def(py::init<>())
       .def_readwrite("bay", &PeriodicTrackParams::bay, "d, support spacing [m]")

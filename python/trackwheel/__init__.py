@@ -14,7 +14,12 @@ import importlib as _importlib
 import sys as _sys
 
 from ._version import __version__
-from .base.errors import DivergenceError
+from .base.errors import (
+    DivergenceError,
+    FailedCasesWarning,
+    PlausibilityWarning,
+    SweepFailedError,
+)
 from .base.units import kmh
 from .excitation import Irregularity, Polygon, WheelFlat
 from .excitation import spectra as spectra  # the module (trackwheel.spectra.fra, ...)
@@ -29,7 +34,7 @@ from .run.periodic import (
     random_response,
 )
 from .run.results import Result, RunSettings
-from .run.simulate import FIDELITY_LEVELS, simulate
+from .run.simulate import FIDELITY_LEVELS, TIME_DOMAIN_LEVELS, simulate
 from .run.statics import QuasiStatic, StaticResult, linear_quasi_static, quasi_static, static
 from .scene import (
     AbsorbingEnds,
@@ -81,12 +86,16 @@ del _old, _new, _module
 
 __all__ = [
     "FIDELITY_LEVELS",
+    "TIME_DOMAIN_LEVELS",
     "AbsorbingEnds",
     "Analysis",
     "Contact",
     "Convergence",
     "ConvergenceWarning",
     "DivergenceError",
+    "FailedCasesWarning",
+    "PlausibilityWarning",
+    "SweepFailedError",
     "EigenResult",
     "MeshWarning",
     "QuasiStatic",

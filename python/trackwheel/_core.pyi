@@ -1024,9 +1024,9 @@ def rail_static(rail: RailModel) -> typing.Annotated[numpy.typing.NDArray[numpy.
     """
     The rail's coordinates e (n_dof,) at rest under its own weight, no wheel
     """
-def receptance(rail: RailModel, beam: BeamParams, x: typing.SupportsFloat | typing.SupportsIndex, x_response: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], freqs: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.complex128], "[m, n]"]:
+def receptance(rail: RailModel, beam: BeamParams, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], x_response: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], freqs: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.complex128], "[m, n]"]:
     """
-    Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x
+    Receptances (n_freq, n_force * n_resp) [m/N] of the linear track, a unit force at each of x (column e * n_resp + r: response r to force e)
     """
 def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """

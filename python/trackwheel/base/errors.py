@@ -19,3 +19,27 @@ class DivergenceError(RuntimeError):
 
     def __reduce__(self):  # picklable across process pools
         return (type(self), (str(self), self.time, self.step, self.cause))
+
+
+class PlausibilityWarning(UserWarning):
+    """A value inside its allowed range but outside what a railway has: most likely a slip of
+    units (a speed in km/h given as m/s, a stiffness in MN/m given as N/m). The message names
+    the parameter and the likely slip. Where the value is meant, silence it with
+    ``warnings.filterwarnings("ignore", category=trackwheel.PlausibilityWarning)``."""
+
+
+class FailedCasesWarning(UserWarning):
+    """Some cases of a sweep failed (each is a row of the table with its ``error``): the
+    message gives their number and the first error."""
+
+
+class SweepFailedError(RuntimeError):
+    """Every case of a sweep failed: the message gives the first error; ``table`` is the sweep
+    table with every case's error (the failed cases are in the store too)."""
+
+    def __init__(self, message: str, table=None):
+        super().__init__(message)
+        self.table = table
+
+    def __reduce__(self):  # picklable across process pools
+        return (type(self), (str(self), self.table))

@@ -7,7 +7,7 @@ import numbers
 
 import numpy as np
 
-from .limits import MAX_ELEMENTS
+from .limits import MAX_ELEMENTS, RANGES
 
 
 def number(name: str, value, *, low=None, high=None, low_open=False, high_open=False,
@@ -18,7 +18,8 @@ def number(name: str, value, *, low=None, high=None, low_open=False, high_open=F
     allowed range otherwise.
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number{_unit(unit)}, got {type(value).__name__}")
+        raise TypeError(f"{name} must be a real number{_bracketed(unit)}, "
+                        f"got {type(value).__name__}")
     v = float(value)
     lo = "(" if low_open else "["
     hi = ")" if high_open else "]"
@@ -30,6 +31,28 @@ def number(name: str, value, *, low=None, high=None, low_open=False, high_open=F
     if bad:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {rng}{_unit(unit)}")
     return v
+
+
+def field(name: str, value, *, unit: str | None = None, hint: str = "",
+          key: str | None = None) -> float:
+    """``value`` checked against the plausible range of the parameter ``name``
+    (:data:`trackwheel.base.limits.RANGES`, under ``key`` if given, e.g. a layered support's
+    pad; ``unit`` overrides the range's, e.g. for a contact stiffness whose unit depends on the
+    law; ``hint`` ends the message of a value above the range, e.g. the likely unit slip)."""
+    r = RANGES[name if key is None else key]
+    if unit is not None:
+        r = r._replace(unit=unit)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number{_bracketed(r.unit)}, "
+                        f"got {type(value).__name__}")
+    x = float(value)
+    if not math.isfinite(x):
+        raise ValueError(f"{name} = {value} is not finite; allowed range {r.text()}")
+    if x < r.low or x > r.high or (r.low_open and x == r.low) or (r.high_open and x == r.high):
+        shown = repr(x) if len(repr(x)) <= 12 else f"{x:.12g}"
+        tail = f" ({hint})" if hint and x > r.high else ""
+        raise ValueError(f"{name} = {shown} is outside the allowed range {r.text()}{tail}")
+    return x
 
 
 def positive(name: str, value, unit: str = "") -> float:
@@ -90,3 +113,7 @@ def n_elements(value, name: str = "n_elements", *, low: int = 1) -> int:
 
 def _unit(unit: str) -> str:
     return f" {unit}" if unit else ""
+
+
+def _bracketed(unit: str) -> str:
+    return f" [{unit}]" if unit and unit != "-" else ""

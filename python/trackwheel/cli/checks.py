@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
+import sys
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..base.limits import MAX_SPEED
+from ..base.limits import MAX_SPEED, RECORD_SPEED
 
 def writable_folder(path: Path, option: str, parser: argparse.ArgumentParser,
                      create: bool) -> None:
@@ -55,25 +57,36 @@ def figure_formats() -> list[str]:
 
 
 def speeds_kmh(values: Sequence[float], option: str, parser: argparse.ArgumentParser) -> None:
-    """Error, in km/h, for a speed outside (0, MAX_SPEED]."""
+    """Error, in km/h, for a speed outside (0, MAX_SPEED]; a warning line for one above the
+    wheel-on-rail record (the library's warning speaks of m/s)."""
     top = MAX_SPEED * 3.6
     for v in values:
         if not 0.0 < v <= top:
-            parser.error(f"{option}: speed {v:.4g} km/h is outside the allowed range "
-                         f"0–{top:.4g} km/h (a passage needs a positive speed)")
+            parser.error(f"{option} {v:g}: the speed must be above 0 and at most {top:.4g} "
+                         "km/h")
+        if v > RECORD_SPEED * 3.6:
+            print(f"{parser.prog}: warning: {option} {v:g} is faster than any train has run on "
+                  f"rails ({RECORD_SPEED * 3.6:g} km/h)", file=sys.stderr)
 
 
 def option_error(exc: Exception) -> str:
     """A library message with its parameter names spelled as the command's options."""
     text = str(exc)
     text = text.replace("Supports.stiffness", "--support-stiffness")
+    text = text.replace("Supports.damping", "--support-damping")
+    text = text.replace("Contact.damping", "--contact-damping")
     text = text.replace("Rail.shear_coefficient", "--shear-coefficient")
     text = text.replace("Wheel.brake_torque", "--brake-torque")
+    # the fields of --joint DEPTH,LENGTH,AT and --irregularity sine:WAVELENGTH,AMPLITUDE
+    text = re.sub(r"Irregularity\.(dipped_joint|sine)\.(\w+)", lambda m: m.group(2).upper(), text)
+    text = re.sub(r"Irregularity\.(dipped_joint|sine): ", "", text)
+    text = text.replace("WheelFlat.length", "--wheel-flat")
     if text.startswith("length = "):  # Scene.ballasted_track's length
         text = "--length " + text[len("length = "):]
     for name in ("n_elements", "x_start", "x_end", "speed_kmh", "support_stiffness"):
         text = text.replace(name, "--" + name.replace("_", "-"))
-    return text
+    # short names only where they stand as the parameter ("dt = -1e-05 ...")
+    return re.sub(r"(?<![\w-])(dt|integrator|fidelity)(?= = )", r"--\1", text)
 
 
 def output_options(args: argparse.Namespace, parser: argparse.ArgumentParser) -> None:

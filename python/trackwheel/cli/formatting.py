@@ -3,7 +3,9 @@ stderr), CSV tables and figures."""
 
 from __future__ import annotations
 
+import os
 import sys
+import time
 import warnings
 from pathlib import Path
 
@@ -61,3 +63,29 @@ def frequency_elements(scene: Scene, f_max: float, n_elements: int | None, comma
         n = frequency_mesh(scene, f_max)
     print_warnings(caught, command)
     return n
+
+
+def process_age() -> float | None:
+    """Seconds since this process started (Linux: /proc/self/stat's start time against
+    /proc/uptime, both in clock ticks since boot, 10 ms resolution), or None elsewhere."""
+    try:
+        with open("/proc/self/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        with open("/proc/uptime") as f:
+            uptime = float(f.read().split()[0])
+        return uptime - int(fields[19]) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError, AttributeError):
+        return None
+
+
+def wall_time_text(started: float | None, simulation: float, steps: int) -> str:
+    """The command's wall time: since the process started (Python's start-up and imports
+    included) where the system tells, else since the command's arguments were read
+    (``started``, a ``time.perf_counter()``), said which; and the simulation's share."""
+    age = process_age()
+    part = f"the simulation {simulation:.2f} s, {steps} steps"
+    if age is not None:
+        return f"{age:.2f} s for the whole command ({part})"
+    if started is not None:
+        return f"{time.perf_counter() - started:.2f} s since the arguments were read ({part})"
+    return part

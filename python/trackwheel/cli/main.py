@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import time
 from collections.abc import Sequence
 
 from .._version import __version__
@@ -27,14 +28,29 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _command(argv: Sequence[str] | None) -> str:
+    """" run" etc.: the sub-command named in ``argv`` (the process's arguments if None)."""
+    names = {c.__name__.rsplit(".", 1)[-1].replace("_", "-") for c in COMMANDS}
+    words = sys.argv[1:] if argv is None else argv
+    return next((f" {w}" for w in words if w in names), "")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``trackwheel`` console script; returns the exit code."""
+    started = time.perf_counter()
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
+        args.started = started
         return args.run(args, args.parser)
     except SystemExit as exc:  # argparse: --help/--version (0) and usage errors (2)
         return exc.code if isinstance(exc.code, int) else 1
+    except KeyboardInterrupt:  # Ctrl-C: one line, the shell's code for SIGINT (128 + 2)
+        sys.stdout.flush()
+        # at a terminal, end the line a progress bar may have left open
+        start = "\n" if sys.stderr.isatty() else ""
+        print(f"{start}trackwheel{_command(argv)}: interrupted (Ctrl-C)", file=sys.stderr)
+        return 130
     except BrokenPipeError:  # the reader left (`trackwheel run ... | head`): stop quietly
         # the interpreter flushes stdout again at exit: point it at devnull so that it can
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

@@ -9,7 +9,7 @@ import math
 import re
 
 from ..run.defaults import default_settings
-from ..run.simulate import FIDELITY_LEVELS
+from ..run.simulate import FIDELITY_LEVELS, TIME_DOMAIN_LEVELS
 from ..scene import Scene, Window
 
 #: the paper's scene, whose derived defaults the help texts quote
@@ -24,10 +24,12 @@ _NEGATIVE_NUMBER = re.compile(rf"^-{_NUMBER}(,\s*-?{_NUMBER})*$")
 
 
 class Parser(argparse.ArgumentParser):
-    """argparse with one-line errors ("trackwheel run: error: ...", exit code 2) and negative
-    numbers in exponent notation read as values."""
+    """argparse with one-line errors ("trackwheel run: error: ...", exit code 2), negative
+    numbers in exponent notation read as values, and no abbreviated options (``--speed 300``
+    is an error, not ``--speed-kmh 300``)."""
 
     def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = _NEGATIVE_NUMBER
 
@@ -143,7 +145,10 @@ def excitation_options(p: argparse.ArgumentParser, seeds: bool = False) -> None:
 TRACKS = {"kato2005": Scene.kato2005, "ballasted": Scene.ballasted_track}
 
 
-def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None:
+def track_option(p: argparse.ArgumentParser, length_default: str = "30",
+                 fidelity: bool = True) -> None:
+    """--track, --length, --beam and --shear-coefficient; ``fidelity``: the command has
+    --fidelity (its --beam help says every level takes the beam theory)."""
     g = p.add_argument_group("track (docs: Model § Layered supports and section "
                              "\"Shear-deformable rail (Timoshenko)\")")
     g.add_argument("--track", choices=tuple(TRACKS), default="kato2005",
@@ -155,12 +160,30 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30") -> None
                         f"{length_default})")
     g.add_argument("--beam", choices=("euler", "timoshenko"), default="euler",
                    help="rail beam theory (default euler: Euler-Bernoulli, the paper's); "
-                        "timoshenko adds shear deformation and rotary inertia, at every "
-                        "--fidelity level")
+                        "timoshenko adds shear deformation and rotary inertia"
+                        + (", at every --fidelity level" if fidelity else ""))
     g.add_argument("--shear-coefficient", type=positive_float, metavar="K",
                    help="shear coefficient kappa of the rail section, 0 < K <= 1 (default 0.4; "
                         "with --beam timoshenko)")
+    g.add_argument("--shear-modulus", type=positive_float, metavar="G",
+                   help="shear modulus G of the rail [Pa] (default E / (2 (1 + nu)); with "
+                        "--beam timoshenko)")
 
+
+
+def damping_options(p: argparse.ArgumentParser, contact: bool = True) -> None:
+    """--support-damping (and, with ``contact``, --contact-damping): viscous damping of the
+    supports (the rail pads of --track ballasted) and of the wheel/rail contact [N s/m]."""
+    g = p.add_argument_group("damping (default: the --track preset's; the paper's track is "
+                             "undamped)")
+    g.add_argument("--support-damping", type=finite_float, metavar="C",
+                   help="viscous damping of each support [N s/m], >= 0 (default 0 on "
+                        "kato2005; with --track ballasted the rail pad's, default 18e3); "
+                        "rail pads have about 1e4-5e4")
+    if contact:
+        g.add_argument("--contact-damping", type=finite_float, metavar="C",
+                       help="viscous damping of the wheel/rail contact [N s/m], >= 0 "
+                            "(default 0)")
 
 
 def simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
@@ -174,17 +197,25 @@ def simulate_options(p: argparse.ArgumentParser, auto: bool = False) -> None:
                    help=f"time step [s] (default: derived from the scene, {PAPER['dt']:.3g} s "
                         "for the paper's)")
     g.add_argument("--n-elements", type=positive_int, metavar="N",
-                   help=f"rail elements (default: 8 per support bay, {PAPER['n_elements']} for "
-                        "the paper's scene, when --dt is not given, else the scene's 20; fewer "
-                        "elements than support bays warn)")
+                   help=f"rail elements (default, when --dt is not given: derived from the "
+                        f"scene, whole elements per support bay, at least 8 and enough for the "
+                        f"pinned-pinned wavelength (12 with --beam timoshenko), "
+                        f"{PAPER['n_elements']} for the paper's scene; with --dt the scene's "
+                        "own; fewer elements than support bays warn)")
     g.add_argument("--x-start", type=finite_float, metavar="X",
-                   help="wheel start [m] (default: middle of the first support bay)")
+                   help="wheel start [m] (default: the middle of the first support bay clear "
+                        "of the rail's end, 5.1 m on --track ballasted; the first bay's on a "
+                        "rail too short for that, e.g. the paper's)")
     g.add_argument("--x-end", type=finite_float, metavar="X",
-                   help="wheel end [m] (default: middle of the last support bay)")
-    g.add_argument("--fidelity", choices=FIDELITY_LEVELS + (("auto",) if auto else ()),
+                   help="wheel end [m] (default: the middle of the last support bay clear of "
+                        "the rail's end, or of the last bay)")
+    g.add_argument("--fidelity", choices=(FIDELITY_LEVELS + ("auto",)) if auto
+                   else TIME_DOMAIN_LEVELS,
                    help="model level (default full: the paper's model)"
-                        + ("; auto: the cheapest level within --fidelity-tol of the full model "
-                           "on the highest speed and softest supports of the sweep"
+                        + ("; periodic/linear: each case's steady state in the frequency "
+                           "domain (trackwheel periodic), milliseconds a case; auto: the "
+                           "cheapest level within --fidelity-tol of the full model on the "
+                           "highest speed and softest supports of the sweep"
                            if auto else ""))
     if auto:
         g.add_argument("--fidelity-tol", type=positive_float, metavar="TOL",
@@ -210,7 +241,7 @@ def window_spec(text: str) -> Window:
 
 def mesh_option(p: argparse.ArgumentParser) -> None:
     p.add_argument("--n-elements", type=positive_int, metavar="N",
-                   help="rail elements (default: whole elements per support bay, at least ten "
-                        "per Euler-Bernoulli bending wavelength at the highest frequency, and "
-                        "no fewer than the preset's)")
+                   help="rail elements (default: whole elements per support bay, enough per "
+                        "bending wavelength of the --beam at the highest frequency to put the "
+                        "track's resonances within 0.1 %%, and no fewer than the preset's)")
 

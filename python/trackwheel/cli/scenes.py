@@ -1,5 +1,5 @@
 """The scene a command runs, from its options: the --track preset (with --length, --beam,
---shear-coefficient and a support stiffness), the --vehicle and the excitation (--irregularity,
+--shear-coefficient, --shear-modulus and a support stiffness), the --vehicle and the excitation (--irregularity,
 --seed, --wavelengths, --joint, --wheel-flat, --patch-filter)."""
 
 from __future__ import annotations
@@ -27,14 +27,25 @@ def track_scene(args: argparse.Namespace, stiffness: float | None = None,
     if args.length is not None and args.track != "ballasted":
         raise OptionError(f"--length is only for --track ballasted (--track {args.track} "
                            "has its fixed length)")
+    if getattr(args, "shear_modulus", None) is not None and args.beam != "timoshenko":
+        raise OptionError("--shear-modulus is only used with --beam timoshenko")
     try:
         scene = preset(args.track, stiffness, args.length or length)
         rail = dataclasses.replace(scene.rail, beam=args.beam)
         if args.shear_coefficient is not None:
             rail = dataclasses.replace(rail, shear_coefficient=args.shear_coefficient)
+        if getattr(args, "shear_modulus", None) is not None:
+            rail = dataclasses.replace(rail, shear_modulus=args.shear_modulus)
+        scene = dataclasses.replace(scene, rail=rail)
+        if getattr(args, "support_damping", None) is not None:
+            scene = dataclasses.replace(scene, supports=dataclasses.replace(
+                scene.supports, damping=args.support_damping))
+        if getattr(args, "contact_damping", None) is not None:
+            scene = dataclasses.replace(scene, contact=dataclasses.replace(
+                scene.contact, damping=args.contact_damping))
     except ValueError as exc:
         raise OptionError(option_error(exc)) from None
-    return dataclasses.replace(scene, rail=rail)
+    return scene
 
 
 def scene_name(scene: Scene, args: argparse.Namespace) -> str:
@@ -49,21 +60,31 @@ def scene_name(scene: Scene, args: argparse.Namespace) -> str:
 
 
 #: --vehicle choices of ``trackwheel run``
-VEHICLES = ("single", "bogie", "half-car")
-#: rail length for --vehicle half-car [m]: the half car's 20 m of wheels plus the paper's 5 m
-HALF_CAR_RAIL = 25.0
+VEHICLES = ("single", "quarter-car", "bogie", "half-car")
 
 
-def vehicle_scene(scene: Scene, vehicle: str) -> Scene:
-    """``scene`` carrying the --vehicle choice (the rail lengthened for a half car, the
-    paper's element length kept)."""
+def vehicle_scene(scene: Scene, vehicle: str) -> tuple[Scene, list[str]]:
+    """``scene`` carrying the --vehicle choice, and notes to print. For a half car the rail is
+    lengthened by the vehicle's span (20 m: 25 m for the paper's track, 50.4 m for the
+    ballasted one), in whole support bays with the preset's elements per bay, so that the car
+    runs on the stretch the one wheel has (clear of the rail's ends where the preset's rail
+    leaves one), and a note says so."""
     if vehicle == "single":
-        return scene
+        return scene, []
+    if vehicle == "quarter-car":
+        return dataclasses.replace(scene, vehicle=Vehicle.quarter_car()), []
     if vehicle == "bogie":
-        return dataclasses.replace(scene, vehicle=Vehicle.bogie())
-    ne = round(scene.rail.n_elements * HALF_CAR_RAIL / scene.rail.length)
-    rail = dataclasses.replace(scene.rail, length=HALF_CAR_RAIL, n_elements=ne)
-    return dataclasses.replace(scene, rail=rail, vehicle=Vehicle.half_car())
+        return dataclasses.replace(scene, vehicle=Vehicle.bogie()), []
+    veh = Vehicle.half_car()
+    d, old = scene.supports.spacing, scene.rail.length
+    bays = max(round(old / d), 1)
+    more = math.ceil((veh.span[1] - veh.span[0]) / d - 1e-9)
+    per_bay = max(1, round(scene.rail.n_elements / bays))
+    length = (bays + more) * d
+    rail = dataclasses.replace(scene.rail, length=length, n_elements=(bays + more) * per_bay)
+    note = (f"--vehicle half-car: the rail is lengthened from {old:g} m to {length:g} m for the "
+            f"half car's {veh.span[1] - veh.span[0]:g} m of wheels")
+    return dataclasses.replace(scene, rail=rail, vehicle=veh), [note]
 
 
 
@@ -94,6 +115,17 @@ def paper_scene(stiffness: float | None = None) -> Scene:
         scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
                                                                         stiffness=stiffness))
     return scene
+
+
+def seed_text(seeds) -> str:
+    """``seeds`` [0, 1, 2, 5] as "seeds 0-2, 5" (one realisation each)."""
+    seeds = sorted(seeds)
+    runs, start = [], seeds[0]
+    for a, b in zip(seeds, seeds[1:] + [None]):
+        if b != a + 1:
+            runs.append(f"{start}" if start == a else f"{start}-{a}")
+            start = b
+    return ("seed " if len(seeds) == 1 else "seeds ") + ", ".join(runs)
 
 
 class OptionError(ValueError):
@@ -129,7 +161,7 @@ def profile(args: argparse.Namespace) -> Irregularity | None:
         except OptionError:
             raise
         except (ValueError, argparse.ArgumentTypeError) as exc:
-            msg = str(exc).replace("wavelengths = ", "--wavelengths ")
+            msg = option_error(exc).replace("wavelengths = ", "--wavelengths ")
             raise OptionError(f"{text}: {msg}") from None
     irr = sum(parts) if parts else None
     n_random = 0 if irr is None else irr.n_random
@@ -148,7 +180,7 @@ def profile(args: argparse.Namespace) -> Irregularity | None:
         try:
             joint = Irregularity.dipped_joint(depth, length, at)
         except ValueError as exc:
-            raise OptionError(f"--joint: {exc}") from None
+            raise OptionError(f"--joint: {option_error(exc)}") from None
         irr = joint if irr is None else irr + joint
     return irr
 
@@ -160,6 +192,9 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
     irr = profile(args)
     if irr is not None:
         length = scene.rail.length
+        if args.joint is not None and args.joint[1] > length:
+            raise OptionError(f"--joint: the joint's LENGTH {args.joint[1]:g} m is longer than "
+                              f"the rail ({length:g} m)")
         if args.joint is not None and not 0.0 <= args.joint[2] <= length - args.joint[1]:
             raise OptionError(f"--joint: the joint from X = {args.joint[2]:g} m over "
                                f"{args.joint[1]:g} m leaves the rail; allowed AT range "
@@ -174,23 +209,35 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
             scene = dataclasses.replace(scene, wheel=dataclasses.replace(
                 scene.wheel, defects=(*scene.wheel.defects, flat)))
         except ValueError as exc:
-            raise OptionError(f"--wheel-flat: {exc}") from None
+            raise OptionError(option_error(exc)) from None
     if args.patch_filter or args.joint is not None:
         scene = dataclasses.replace(scene, contact=dataclasses.replace(scene.contact,
                                                                        patch_filter=True))
         if not args.patch_filter:
             notes.append("--joint turns the contact filter on (Contact.patch_filter = True: "
                          "the dip's cusp curves more sharply than the wheel)")
+    impact = [o for o, given in (("--wheel-flat", args.wheel_flat is not None),
+                                 ("--joint", args.joint is not None)) if given]
+    if impact and scene.supports.damping == 0.0 and scene.contact.damping == 0.0 and (
+            not scene.supports.layered or scene.supports.ballast_damping == 0.0):
+        notes.append(f"{' and '.join(impact)} on an undamped track (the paper's: supports and "
+                     "contact without damping): nothing dissipates the energy of each impact, "
+                     "so the wheel bounces off the rail and later impacts build up on the "
+                     "ringing track, to forces well above the first impact's; give "
+                     "--support-damping (rail pads: about 1e4-5e4 N s/m) for a damped track "
+                     "(docs: guide, Excitation)")
     return scene, notes
 
 
-def describe(scene: Scene) -> str:
-    """One line naming the excitation of ``scene``."""
+def describe(scene: Scene, seeds=None) -> str:
+    """One line naming the excitation of ``scene``; with ``seeds`` (a sweep's --seeds) the
+    random parts are named by those realisations, not by the scene's own seed."""
     words = []
+    drawn = None if not seeds else seed_text(seeds)
     for p in () if scene.irregularity is None else scene.irregularity.parts:
         if p.kind == "random":
-            words.append(f"{p.spectrum.name} (seed {p.seed}, {p.wavelengths[0]:g}-"
-                         f"{p.wavelengths[1]:g} m)")
+            words.append(f"{p.spectrum.name} ({drawn or f'seed {p.seed}'}, "
+                         f"{p.wavelengths[0]:g}-{p.wavelengths[1]:g} m)")
         elif p.kind == "sine":
             words.append(f"sine {p.wavelength:g} m x {p.amplitude:g} m")
         elif p.kind == "dipped_joint":

@@ -50,7 +50,10 @@ def contact_filter(x, r, half_width: float) -> tuple[np.ndarray, np.ndarray]:
     if xa.size != ra.size or xa.size < 2:
         raise ValueError("x and r must have the same length, at least 2")
     h = np.diff(xa)
-    if np.any(h <= 0.0) or np.ptp(h) > 1e-9 * h.mean():
+    # uniform to round-off: a grid x0 + i h far from 0 (tens of metres) in steps of microns
+    # carries spacing errors of a few eps |x|, more than 1e-9 h
+    if np.any(h <= 0.0) or np.ptp(h) > 1e-9 * h.mean() + 16.0 * np.finfo(float).eps * float(
+            np.max(np.abs(xa))):
         raise ValueError("x must be uniformly spaced and increasing [m]")
     if 2.0 * a > xa[-1] - xa[0]:
         raise ValueError(f"half_width = {a} m: the window 2a is longer than the samples "

@@ -78,7 +78,8 @@ class Irregularity:
             wavelengths = valid
         lam = v.positions("wavelengths", wavelengths, 0.0, math.inf)
         if lam.size != 2 or not 0.0 < lam[0] < lam[1]:
-            raise ValueError(f"wavelengths = {tuple(lam)} must be (lambda_min, lambda_max) "
+            shown = ", ".join(f"{x:g}" for x in lam)
+            raise ValueError(f"wavelengths = ({shown}) m must be (lambda_min, lambda_max) "
                              "with 0 < lambda_min < lambda_max [m]")
         tol = 1e-9 * valid[1]
         if lam[0] < valid[0] * (1 - 1e-9) or lam[1] > valid[1] + tol:
@@ -93,34 +94,25 @@ class Irregularity:
 
     @classmethod
     def sine(cls, wavelength: float, amplitude: float, phase: float = 0.0) -> Irregularity:
-        """Sine corrugation r = a sin(2 pi X / lambda + phase): ``wavelength`` [m] > 0,
-        ``amplitude`` a [m] >= 0, ``phase`` [rad]."""
-        return cls((SineProfile(v.positive("wavelength", wavelength, "m"),
-                                v.number("amplitude", amplitude, low=0.0, unit="m"),
-                                v.number("phase", phase, unit="rad")),))
+        """Sine corrugation r = a sin(2 pi X / lambda + phase): ``wavelength`` lambda [m],
+        ``amplitude`` a [m], ``phase`` [rad], in the ranges of :class:`SineProfile` (and a
+        slope 2 pi a / lambda of at most ``MAX_PROFILE_SLOPE``)."""
+        return cls((SineProfile(wavelength, amplitude, phase),))
 
     @classmethod
     def dipped_joint(cls, depth: float, length: float, at: float) -> Irregularity:
-        """Dipped joint (Kabo form, :class:`DippedJoint`): ``depth`` d > 0 [m] (the surface
-        goes to r = -d), ``length`` l > 0 [m], starting at X = ``at`` [m]."""
-        return cls((DippedJoint(v.positive("depth", depth, "m"),
-                                v.positive("length", length, "m"),
-                                v.number("at", at, unit="m")),))
+        """Dipped joint (Kabo form, :class:`DippedJoint`): ``depth`` d [m] (the surface goes to
+        r = -d), ``length`` l [m], starting at X = ``at`` [m], in the ranges of
+        :class:`DippedJoint` (and a slope pi d / l of at most ``MAX_PROFILE_SLOPE``)."""
+        return cls((DippedJoint(depth, length, at),))
 
     @classmethod
     def samples(cls, x, r, method: str = "cubic") -> Irregularity:
         """Measured profile: r [m] at strictly increasing x [m] (at least 4 points),
         interpolated by ``method`` "cubic" (CubicSpline) or "pchip"; X outside the samples
         raises a ValueError naming the covered range."""
-        xa = v.positions("x", x, -math.inf, math.inf)
-        ra = v.positions("r", r, -math.inf, math.inf)
-        if xa.size != ra.size:
-            raise ValueError(f"x ({xa.size}) and r ({ra.size}) must have the same length")
-        if xa.size < 4:
-            raise ValueError(f"x has {xa.size} samples; at least 4 are needed")
-        if np.any(np.diff(xa) <= 0.0):
-            raise ValueError("x must be strictly increasing [m]")
-        v.choice("method", method, {"cubic", "pchip"})
+        xa = v.positions("Irregularity.samples.x", x, -math.inf, math.inf)
+        ra = v.positions("Irregularity.samples.r", r, -math.inf, math.inf)
         return cls((SampledProfile(tuple(xa.tolist()), tuple(ra.tolist()), method),))
 
     # realisations ----------------------------------------------------------------------------

@@ -21,6 +21,12 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..base import validate as v
+from ..base.limits import MAX_PROFILE_SLOPE, MIN_SAMPLE_SPACING, ranges_doc
+
+#: the hint of a length given in mm where metres are meant
+_IN_METRES = "rail profiles are in m: 1 mm is 1e-3"
+
 _CHUNK = 2048  # X values evaluated at once (bounds the (chunk, n) work array)
 
 
@@ -121,6 +127,14 @@ class SineProfile:
     phase: float = 0.0  #: [rad]
     kind: str = field(default="sine", init=False)
 
+    def __post_init__(self):
+        lam = v.field("Irregularity.sine.wavelength", self.wavelength)
+        a = v.field("Irregularity.sine.amplitude", self.amplitude, hint=_IN_METRES)
+        v.number("Irregularity.sine.phase", self.phase, unit="rad")
+        check_slope("Irregularity.sine", 2.0 * math.pi * a / lam,
+                    f"amplitude {a:g} m on wavelength {lam:g} m", "2 pi a / lambda",
+                    "a longer wavelength or a smaller amplitude")
+
     def _arg(self, x):
         return 2.0 * math.pi * finite_x(x) / self.wavelength + self.phase
 
@@ -145,6 +159,14 @@ class DippedJoint:
     length: float  #: l [m]
     at: float  #: X_j, start of the joint [m]
     kind: str = field(default="dipped_joint", init=False)
+
+    def __post_init__(self):
+        d = v.field("Irregularity.dipped_joint.depth", self.depth, hint=_IN_METRES)
+        length = v.field("Irregularity.dipped_joint.length", self.length)
+        v.number("Irregularity.dipped_joint.at", self.at, unit="m")
+        check_slope("Irregularity.dipped_joint", math.pi * d / length,
+                    f"depth {d:g} m over length {length:g} m", "pi d / l",
+                    "a longer joint or a shallower dip")
 
     def _parts(self, x):
         xi = finite_x(x) - self.at
@@ -177,6 +199,27 @@ class SampledProfile:
     method: str = "cubic"
     kind: str = field(default="samples", init=False)
 
+    def __post_init__(self):
+        xa = v.positions("Irregularity.samples.x", self.x, -math.inf, math.inf)
+        ra = v.positions("Irregularity.samples.r", self.r, -math.inf, math.inf)
+        for value in (xa.min(), xa.max()):
+            v.field("Irregularity.samples.x", float(value))
+        for value in (ra.min(), ra.max()):
+            v.field("Irregularity.samples.r", float(value), hint=_IN_METRES)
+        if xa.size != ra.size:
+            raise ValueError(f"Irregularity.samples: x ({xa.size}) and r ({ra.size}) must have "
+                             "the same length")
+        if xa.size < 4:
+            raise ValueError(f"Irregularity.samples.x has {xa.size} samples; at least 4 are "
+                             "needed")
+        gaps = np.diff(xa)
+        if np.any(gaps <= 0.0):
+            raise ValueError("Irregularity.samples.x must be strictly increasing [m]")
+        if gaps.min() < MIN_SAMPLE_SPACING:
+            raise ValueError(f"Irregularity.samples.x: samples {gaps.min():.3g} m apart; "
+                             f"allowed at least {MIN_SAMPLE_SPACING:g} m apart")
+        v.choice("Irregularity.samples.method", self.method, {"cubic", "pchip"})
+
     def _spline(self, x, nu: int):
         xa = finite_x(x)
         lo, hi = self.x[0], self.x[-1]
@@ -207,6 +250,20 @@ def _interpolant(p: SampledProfile):
     cls = CubicSpline if p.method == "cubic" else PchipInterpolator
     return cls(np.asarray(p.x), np.asarray(p.r))
 
+
+def check_slope(name: str, slope: float, what: str, formula: str, advice: str) -> None:
+    """ValueError unless a profile's steepest slope ``slope`` [-] is at most
+    MAX_PROFILE_SLOPE."""
+    if slope > MAX_PROFILE_SLOPE:
+        raise ValueError(f"{name}: {what} rises at a slope of {slope:.3g} ({formula}); allowed "
+                         f"at most {MAX_PROFILE_SLOPE:g}: {advice} (amplitudes and depths are "
+                         "in m: 1 mm is 1e-3)")
+
+
+SineProfile.__doc__ += ranges_doc("Irregularity.sine")
+DippedJoint.__doc__ += ranges_doc("Irregularity.dipped_joint")
+SampledProfile.__doc__ += ranges_doc("Irregularity.samples") + (
+    f"    and the samples at least MIN_SAMPLE_SPACING = {MIN_SAMPLE_SPACING:g} m apart.\n")
 
 #: the rail-profile part types an Irregularity may hold
 PARTS = (RandomProfile, SineProfile, DippedJoint, SampledProfile)

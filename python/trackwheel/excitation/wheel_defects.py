@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..base import validate as v
+from ..base.limits import ranges_doc
 
 
 def _psi(psi, at: float) -> np.ndarray:
@@ -55,14 +56,14 @@ class WheelFlat:
     kind: str = field(default="wheel_flat", init=False)
 
     def __post_init__(self):
-        v.positive("WheelFlat.length", self.length, "m")
+        v.field("WheelFlat.length", self.length, hint="lengths are in m: 20 mm is 0.02")
         v.boolean("WheelFlat.rounded", self.rounded)
         v.number("WheelFlat.at_angle", self.at_angle, unit="rad")
         if self.depth is not None:
             if not self.rounded:
                 raise ValueError("WheelFlat.depth is only for a rounded flat (rounded=True); "
                                  "a new flat's depth follows from its length")
-            v.positive("WheelFlat.depth", self.depth, "m")
+            v.field("WheelFlat.depth", self.depth, hint="depths are in m: 1 mm is 1e-3")
 
     def check(self, radius: float) -> None:
         """Raise unless the flat fits a wheel of ``radius`` [m] (L_f < 2 rho0)."""
@@ -70,6 +71,9 @@ class WheelFlat:
         if self.length >= 2.0 * r:
             raise ValueError(f"WheelFlat.length = {self.length} m must be shorter than the "
                              f"wheel's diameter; allowed range (0, {2.0 * r}) m")
+        if self.depth is not None and self.depth >= r:
+            raise ValueError(f"WheelFlat.depth = {self.depth} m must be smaller than the "
+                             f"wheel's radius; allowed range (0, {r}) m")
 
     def _rounded(self, radius):
         d = self.depth if self.depth is not None else self.length**2 / (16.0 * radius)
@@ -122,7 +126,7 @@ class Polygon:
 
     def __post_init__(self):
         v.integer("Polygon.order", self.order, low=1, high=10_000)
-        v.number("Polygon.amplitude", self.amplitude, low=0.0, unit="m")
+        v.field("Polygon.amplitude", self.amplitude, hint="amplitudes are in m: 0.1 mm is 1e-4")
         v.number("Polygon.phase", self.phase, unit="rad")
 
     def check(self, radius: float) -> None:
@@ -157,5 +161,8 @@ class Polygon:
         """(0, 2 pi / n, Delta rho at i 2 pi / n, i < n) [rad, rad, m], periodic."""
         return _defect_table(self, radius, n)
 
+
+WheelFlat.__doc__ += ranges_doc("WheelFlat")
+Polygon.__doc__ += ranges_doc("Polygon")
 
 WHEEL_DEFECTS = (WheelFlat, Polygon)

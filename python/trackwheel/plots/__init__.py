@@ -17,6 +17,8 @@ Layer 5, one module per topic:
 - :mod:`.excitation` -- :func:`irregularity_profile`, :func:`contact_force`,
   :func:`force_bands`;
 - :mod:`.track` -- :func:`receptance`, :func:`decay_rate`;
+- :mod:`.periodic` -- :func:`periodic_force` (the steady force over the bay and its
+  harmonics), :func:`random_force_bands` (its band RMS under a random profile);
 - :mod:`.common` -- what they share, and :func:`run_label` / :func:`format_dt`, the names of
   runs in legends and tables.
 
@@ -29,6 +31,7 @@ from .convergence import element_convergence, time_step_convergence
 from .excitation import contact_force, force_bands, irregularity_profile
 from .modes import eigen, mode_shapes
 from .passage import acceleration_terms, dynamic
+from .periodic import periodic_force, random_force_bands
 from .sweeps import DODGE, speed, support_stiffness
 from .track import decay_rate, receptance
 
@@ -44,6 +47,8 @@ __all__ = [
     "format_dt",
     "irregularity_profile",
     "mode_shapes",
+    "periodic_force",
+    "random_force_bands",
     "receptance",
     "run_label",
     "speed",

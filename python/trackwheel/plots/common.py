@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
+from matplotlib.transforms import ScaledTranslation
 
 from ..base import validate as v
 from ..run.eigen import EigenResult
@@ -22,6 +23,20 @@ def legend_outside(ax: Axes, **kw) -> None:
     constrained layout makes room for it)."""
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
               fontsize="small", **kw)
+
+
+def legend_above(ax: Axes, ncols: int = 2, *, over_title: bool = False, **kw) -> None:
+    """The legend above the axes, outside them, in ``ncols`` columns from the axes' left edge:
+    it hides no data and takes height, not the width of the plot (the constrained layout
+    makes room for it). ``over_title``: above the axes' title (TITLE_ROOM points higher)."""
+    shift = ScaledTranslation(0.0, (TITLE_ROOM if over_title else 2.0) / 72.0,
+                              root_figure(ax).dpi_scale_trans)
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), borderaxespad=0.0,
+              bbox_transform=ax.transAxes + shift, fontsize="small", ncols=ncols, **kw)
+
+
+#: room for an axes title under a legend above it [points]: a medium title and its pad
+TITLE_ROOM = 22.0
 
 
 def root_figure(ax: Axes) -> Figure:
@@ -125,20 +140,35 @@ def run_label(r, *, dt: bool, n_elements: bool) -> str:
 
 
 
+#: height of the strip of eigenfrequency bands at the top of a spectrum, a fraction of the axes
+BAND_STRIP = 0.1
+
+
 def eigen_bands(ax: Axes, eigen: EigenResult, n_modes: int, *, horizontal: bool) -> None:
     """Each of the lowest ``n_modes`` modes as a band from its lowest to its highest frequency
     over the wheel positions of ``eigen``: two thin lines (gid "eigen mode k min/max") and a
-    faint fill between them, labelled "mode k: lo–hi Hz"."""
+    faint fill between them, labelled "mode k: lo–hi Hz". Horizontal bands (frequency on the
+    y axis) span the plot; vertical ones (a spectrum) fill only a strip at the top of the axes,
+    numbered, so that they do not hide the spectrum and its main-frequency line."""
     f = eigen.frequencies[:, :n_modes]
     for k in range(n_modes):
         lo, hi = float(f[:, k].min()), float(f[:, k].max())
         style = {"color": f"C{(k + 5) % 10}", "linewidth": 0.8, "linestyle": "--", "zorder": 0}
-        line = ax.axhline if horizontal else ax.axvline
-        span = ax.axhspan if horizontal else ax.axvspan
-        line(lo, gid=f"eigen mode {k + 1} min", **style)
-        line(hi, gid=f"eigen mode {k + 1} max", **style)
-        span(lo, hi, color=style["color"], alpha=0.15, zorder=0,
-             label=f"mode {k + 1}: {lo:.0f}–{hi:.0f} Hz")
+        label = f"mode {k + 1}: {lo:.0f}–{hi:.0f} Hz"
+        if horizontal:
+            ax.axhline(lo, gid=f"eigen mode {k + 1} min", **style)
+            ax.axhline(hi, gid=f"eigen mode {k + 1} max", **style)
+            ax.axhspan(lo, hi, color=style["color"], alpha=0.15, zorder=0, label=label)
+            continue
+        strip = {"ymin": 1.0 - BAND_STRIP, "ymax": 1.0}
+        style.update(linestyle="-", zorder=1)
+        ax.axvline(lo, gid=f"eigen mode {k + 1} min", **strip, **style)
+        ax.axvline(hi, gid=f"eigen mode {k + 1} max", **strip, **style)
+        ax.axvspan(lo, hi, color=style["color"], alpha=0.5, zorder=1, label=label, **strip)
+        # the mode's number under the strip (modes a few Hz apart: the legend tells them)
+        ax.annotate(f"{k + 1}", xy=(0.5 * (lo + hi), 1.0 - BAND_STRIP), xycoords=("data",
+                    "axes fraction"), xytext=(0, -2), textcoords="offset points",
+                    ha="center", va="top", fontsize="x-small", color=style["color"])
 
 
 def check_n_modes(eigen, n_modes) -> int:

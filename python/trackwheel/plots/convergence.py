@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
 
 from ..base import validate as v
 from .common import check_labels, check_results, run_label, same_setting, speed_kmh, stretch_text
@@ -19,6 +20,18 @@ def _difference(r, ref, field: str) -> np.ndarray:
     x, xr = r.x_wheel, ref.x_wheel
     diff = getattr(r, field) - np.interp(x, xr, getattr(ref, field))
     return np.where((x >= xr[0]) & (x <= xr[-1]), diff, np.nan)
+
+
+def _scale_in_label(ax, values: np.ndarray) -> str:
+    """Ticks of ``values`` far from 1 written as mantissas, their power of ten returned for the
+    axis label (" (x 1e-05)"), not shown at the axes' top left, where matplotlib's offset text
+    ran into the axes' title; "" for values between 1e-2 and 1e4 in magnitude (or none)."""
+    top = float(np.nanmax(np.abs(values))) if np.any(np.isfinite(values)) else 0.0
+    if top == 0.0 or 1e-2 <= top < 1e4:
+        return ""
+    p = int(np.floor(np.log10(top)))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda y, _pos: f"{y / 10.0**p:g}"))
+    return f" (× 1e{p})"
 
 
 def _convergence(results, labels, acceleration: bool, title: str, reference: int) -> Figure:
@@ -39,7 +52,8 @@ def _convergence(results, labels, acceleration: bool, title: str, reference: int
                 axes[3].plot(r.x_wheel, _difference(r, ref, "acc_contact"), gid="difference",
                              **kw)
     axes[0].set_ylabel("contact point y_B [mm]")
-    axes[1].set_ylabel("velocity error v_e [%]")
+    axes[1].set_ylabel("velocity error v_e [%]" + _scale_in_label(
+        axes[1], np.concatenate([r.v_error for r in results])))
     axes[1].set_title(_V_E_DEFINITION, loc="left", fontsize="small")
     if acceleration:
         axes[2].set_ylabel("d²y_B/dt² [m/s²]")

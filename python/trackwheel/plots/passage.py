@@ -14,7 +14,7 @@ from .common import (
     check_n_modes,
     check_results,
     eigen_bands,
-    legend_outside,
+    legend_above,
     run_label,
     speed_kmh,
 )
@@ -51,7 +51,7 @@ def acceleration_terms(results, *, against: str = "position", title: str | None 
     about 10⁻⁴ of A and B for the paper's scene, hence their own axes). Each column shares its
     y axis between the runs, so the growth with speed is seen directly. C and D are nearly equal
     (the deflection bowl travels with the wheel, so φ_t ≈ -v φ_s): C is drawn wide and pale
-    under a thin D. The legends stand to the right of the top row, outside the data.
+    under a thin D. The legends stand above the top row, one per column, outside the data.
 
     Parameters
     ----------
@@ -88,8 +88,9 @@ def acceleration_terms(results, *, against: str = "position", title: str | None 
     xlabel = "wheel position X [m]" if against == "position" else "time t [ms]"
     for ax in axes[-1]:
         ax.set_xlabel(xlabel)
-    legend_outside(axes[0, 0])
-    legend_outside(axes[0, 1])
+    # above the top row, one per column: the columns keep the figure's width
+    legend_above(axes[0, 0], ncols=1, over_title=True)
+    legend_above(axes[0, 1], ncols=1, over_title=True)
     fig.suptitle("Terms of the contact-point acceleration (Kato et al. 2005, Fig. 8)"
                  if title is None else title)
     return fig
@@ -135,7 +136,9 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
         raise TypeError(f"analysis must be a trackwheel.Analysis (from trackwheel.analyse), "
                         f"got {type(analysis).__name__}")
     a = analysis
-    if a.t.shape != result.t.shape or not np.array_equal(a.t, result.t):
+    i0 = int(np.searchsorted(result.t, a.t[0]))
+    if not np.array_equal(a.t, result.t[i0:i0 + a.t.size]):
+        # the analysis measures a stretch of the run (Analysis.x_range), its samples the run's
         raise ValueError("analysis does not belong to result (its times differ)")
     if eigen is not None:
         n_modes = check_n_modes(eigen, n_modes)
@@ -150,7 +153,7 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     ax_y.plot(a.x_wheel, a.y_qs * 1e3, color="C1", linestyle="--", label="y_qs")
     ax_y.set_ylabel("displacement [mm]")
     ax_y.set_xlabel("wheel position X [m]")
-    legend_outside(ax_y)
+    legend_above(ax_y)
 
     ax_d.plot(a.x_wheel, a.dynamic * 1e6, color="C2", linewidth=0.9, label="d")
     i_max = int(np.argmax(np.abs(a.dynamic)))
@@ -159,21 +162,23 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     ax_d.axhline(0.0, color="0.7", linewidth=0.8, zorder=0)
     ax_d.set_ylabel("dynamic part d = y_B - y_qs [µm]")
     ax_d.set_xlabel("wheel position X [m]")
-    legend_outside(ax_d)
+    legend_above(ax_d)
 
     freqs, amps = a.spectrum
     keep = freqs <= f_max
     if eigen is not None:
         eigen_bands(ax_f, eigen, n_modes, horizontal=False)
-    ax_f.plot(freqs[keep], amps[keep] * 1e6, color="C2", label="|D(f)|")
+    ax_f.plot(freqs[keep], amps[keep] * 1e6, color="C2", label="|D(f)|", zorder=2)
     if np.isfinite(fm):
-        ax_f.axvline(fm, color="C3", linewidth=1.2, gid="main frequency",
+        ax_f.axvline(fm, color="C3", linewidth=1.5, gid="main frequency", zorder=3,
                      label=f"main frequency {fm:.1f} Hz (resolution {a.frequency_resolution:.2g}"
                            " Hz)")
     ax_f.set_xlim(0.0, f_max)
+    if eigen is not None and keep.any():  # headroom: the spectrum stays below the mode strip
+        ax_f.set_ylim(0.0, float(np.max(amps[keep])) * 1e6 * 1.25)
     ax_f.set_xlabel("frequency [Hz]")
     ax_f.set_ylabel("amplitude spectrum of d [µm]")
-    legend_outside(ax_f)
+    legend_above(ax_f, ncols=2)
     for ax in (ax_y, ax_d, ax_f):
         ax.grid(True, alpha=0.3)
     fig.suptitle(f"{speed_kmh(result):g} km/h, k_s = {result.scene.supports.stiffness / 1e6:g}"
@@ -183,14 +188,17 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
 
 def _dynamic_wheels(result, f_max) -> Figure:
     """:func:`dynamic` for a vehicle: every wheel's contact force N and dynamic part d against
-    time, and the spectra of d, one colour per wheel (wheel i: ``analyse(result, wheel=i)``)."""
+    its position X on the track (as for one wheel: a defect of the track shows at the same X
+    under every wheel), and the spectra of d, one colour per wheel (wheel i:
+    ``analyse(result, wheel=i)``)."""
     fig = Figure(figsize=(8.0, 8.5), layout="constrained")
     ax_n, ax_d, ax_f = fig.subplots(3, 1)
     f_max = 1000.0 if f_max is None else v.positive("f_max", f_max, "Hz")
     for i in range(result.n_wheels):
         a = analyse(result, wheel=i)
-        ax_n.plot(a.t, a.normal_force * 1e-3, color=f"C{i}", linewidth=0.9, label=f"wheel {i}")
-        ax_d.plot(a.t, a.dynamic * 1e6, color=f"C{i}", linewidth=0.9,
+        ax_n.plot(a.x_wheel, a.normal_force * 1e-3, color=f"C{i}", linewidth=0.9,
+                  label=f"wheel {i}")
+        ax_d.plot(a.x_wheel, a.dynamic * 1e6, color=f"C{i}", linewidth=0.9,
                   label=f"wheel {i}: max|d| = {a.amplitude * 1e6:.3g} µm")
         freqs, amps = a.spectrum
         keep = freqs <= f_max
@@ -199,13 +207,13 @@ def _dynamic_wheels(result, f_max) -> Figure:
     ax_n.set_ylabel("contact force N [kN]")
     ax_d.set_ylabel("dynamic part d = y_B - y_qs [µm]")
     for ax in (ax_n, ax_d):
-        ax.set_xlabel("time t [s]")
+        ax.set_xlabel("wheel position X [m] (each wheel its own)")
     ax_f.set_xlim(0.0, f_max)
     ax_f.set_xlabel("frequency [Hz]")
     ax_f.set_ylabel("amplitude spectrum of d [µm]")
     for ax in (ax_n, ax_d, ax_f):
         ax.grid(True, alpha=0.3)
-        legend_outside(ax)
+        legend_above(ax, ncols=min(result.n_wheels, 4))
     fig.suptitle(f"{speed_kmh(result):g} km/h, {result.n_wheels} wheels, "
                  f"{run_label(result, dt=True, n_elements=True)}")
     return fig

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..base.units import kmh
-from ..run.defaults import default_start
+from ..run.stretch import default_start
 from ..run.simulate import simulate
 from ..study.analysis import analyse
 from ..base.fields import Quantity, by_name

@@ -32,7 +32,7 @@ from ..base import validate as v
 from ..base.limits import MAX_DENSE_EIGEN_DOF
 from ..scene import Scene
 from . import kernel
-from .defaults import mesh
+from .defaults import derived_mesh, mesh
 
 #: ``method="auto"`` solves problems with more coordinates than this by the sparse method [-]:
 #: below it the dense solve takes milliseconds and gives every mode.
@@ -69,11 +69,15 @@ class EigenResult:
         n_pos, n_modes = self.frequencies.shape
         lo, hi = self.frequencies.min(axis=0), self.frequencies.max(axis=0)
         shown = min(n_modes, 4)
-        bands = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in zip(lo[:shown], hi[:shown]))
+        bands = ", ".join(f"{a:.1f}" if n_pos == 1 else f"{a:.1f}-{b:.1f}"
+                          for a, b in zip(lo[:shown], hi[:shown]))
         more = f" (+{n_modes - shown} more)" if n_modes > shown else ""
         axial = ", ".join(f"{f:.1f}" for f in self.axial_frequencies[:3])
-        return (f"<trackwheel.EigenResult: {n_modes} vertical modes at {n_pos} wheel positions "
-                f"X = {self.positions.min():.4g}..{self.positions.max():.4g} m, "
+        where = (f"X = {self.positions[0]:.4g} m" if n_pos == 1 else
+                 f"{n_pos} wheel positions X = {self.positions.min():.4g}.."
+                 f"{self.positions.max():.4g} m")
+        return (f"<trackwheel.EigenResult: {n_modes} vertical mode{'s' * (n_modes != 1)} at "
+                f"{'one wheel position ' * (n_pos == 1)}{where}, "
                 f"{self.n_elements} elements>\n"
                 f"  vertical [Hz]: {bands}{more}\n"
                 f"  axial [Hz]: {axial or '-'}")
@@ -109,6 +113,10 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     lowest are the suspension's rigid-body modes (car body ~1 Hz, bogies 5-10 Hz),
     ``body_fraction`` tells them from the track modes.
 
+    ``n_elements`` defaults to the mesh a run of the scene takes
+    (:func:`trackwheel.default_settings`: 80 for the paper's scene), so that the modes are the
+    run's.
+
     >>> r = eigen(Scene.kato2005(), [2.5])
     >>> r.frequencies.shape
     (1, 6)
@@ -116,7 +124,7 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     x = v.positions("positions", positions, 0.0, scene.rail.length)
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    model = kernel.rail_model(scene, _mesh(scene, n_elements))
     if scene.vehicle is not None:
         _dense_only(method)
         return _vehicle_eigen(scene, x, n_modes, model.n_nodes - 1, n_axial)
@@ -152,10 +160,10 @@ def eigen(scene: Scene, positions, n_modes: int = 6, *, n_elements: int | None =
 def rail_frequencies(scene: Scene, n_modes: int = 6, *, n_elements: int | None = None,
                      method: str = "auto") -> np.ndarray:
     """Vertical natural frequencies of the rail on its supports without the wheel [Hz]
-    (``method`` as in :func:`eigen`)."""
+    (``method`` and the default mesh as in :func:`eigen`)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    model = kernel.rail_model(scene, _mesh(scene, n_elements))
     n_y = sum(1 for i in model.free_to_full if i % 2 == 1)
     n = n_y + (len(scene.support_positions) if scene.supports.layered else 0)
     sparse = _sparse(method, n)
@@ -178,6 +186,12 @@ def vertical_matrices(scene: Scene, *, n_elements: int | None = None):
     model = kernel.rail_model(scene, mesh(scene, n_elements))
     d = _core.direction_pencil(model, 1)
     return (*(_csr(d, key) for key in ("M", "C", "K")), np.asarray(d["dofs"]))
+
+
+def _mesh(scene: Scene, n_elements) -> int:
+    """``n_elements`` checked, or the mesh a run of the scene takes by default
+    (:func:`trackwheel.run.defaults.derived_mesh`), so that the modes are those of the run."""
+    return derived_mesh(scene) if n_elements is None else mesh(scene, n_elements)
 
 
 def _sparse(method: str, n: int) -> bool:
@@ -259,7 +273,12 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
                          f"reference must lie in [{-rear:.4g}, {scene.rail.length - front:.4g}] m")
     K0, M0, vert, nu = _vehicle_pencil(scene, model)
     nr, nw, n = vert.size, veh.n_wheels, K0.shape[0]
-    n_modes = v.integer("n_modes", n_modes, low=1, high=n)
+    # a body that cannot pitch (every spring under its centre) has a pitch coordinate that
+    # nothing couples: left out of the pencil (it would be a 0 Hz mode), zero in the shapes
+    free = np.ones(n, dtype=bool)
+    for j, unpitched in enumerate(veh.unpitched):
+        free[nr + nw + 2 * j + 1] = not unpitched
+    n_modes = v.integer("n_modes", n_modes, low=1, high=int(free.sum()))
     kc = scene.contact_stiffness
     e0 = model.reference()
     freqs, shapes, frac = [], [], []
@@ -270,7 +289,10 @@ def _vehicle_eigen(scene: Scene, x: np.ndarray, n_modes: int, ne: int, n_axial: 
         K[:nr, nr:nr + nw] = -kc * S.T
         K[nr:nr + nw, :nr] = -kc * S
         K[nr:nr + nw, nr:nr + nw] += kc * np.eye(nw)
-        w2, vec = eigh(K, M0, subset_by_index=(0, n_modes - 1))
+        w2, reduced = eigh(K[np.ix_(free, free)], M0[np.ix_(free, free)],
+                           subset_by_index=(0, n_modes - 1))
+        vec = np.zeros((n, n_modes))
+        vec[free] = reduced
         freqs.append(np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi))
         kin = vec * (M0 @ vec)
         frac.append(kin[nr + nw:nr + nu].sum(axis=0) / kin.sum(axis=0))
@@ -296,7 +318,7 @@ def _vehicle_pencil(scene: Scene, model) -> tuple[np.ndarray, np.ndarray, np.nda
     nr, nt = vert.size, d["n"]
     nu = veh.n_wheels + 2 * veh.n_bodies
     _check_dense(nt + nu)
-    Kv, mv = kernel.vehicle_matrices(scene)
+    Kv, _, mv = kernel.vehicle_matrices(scene)
     n = nt + nu
     track = np.r_[0:nr, nr + nu:n]  # the track's rows in the assembled order
     K, M = np.zeros((n, n)), np.zeros((n, n))

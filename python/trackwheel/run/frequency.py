@@ -29,9 +29,10 @@ import numpy as np
 
 from .. import _core
 from ..base import validate as v
+from ..base.limits import MAX_FREQUENCY
 from ..scene import Scene
 from . import kernel
-from .defaults import mesh
+from .defaults import frequency_mesh, mesh
 
 __all__ = ["EN15461_SPANS", "ISO3095_BANDS", "ISO3095_VERTICAL_LIMIT", "band_decay_rates",
            "decay_rate", "decay_rate_limit", "decay_rate_positions", "en15461_decay",
@@ -66,22 +67,38 @@ def _freqs(freqs) -> np.ndarray:
     f = np.atleast_1d(np.asarray(freqs, dtype=float))
     if f.ndim != 1 or f.size == 0:
         raise ValueError("freqs must be a non-empty 1-D sequence of frequencies [Hz]")
-    bad = ~np.isfinite(f) | (f < 0)
+    bad = ~np.isfinite(f) | (f < 0) | (f > MAX_FREQUENCY)
     if bad.any():
-        raise ValueError(f"freqs = {f[bad][0]} Hz is outside the allowed range [0, inf) Hz")
+        raise ValueError(f"freqs = {f[bad][0]:.6g} Hz is outside the allowed range "
+                         f"[0, {MAX_FREQUENCY:g}] Hz (the rail's beam models hold to a few kHz)")
     return f
 
 
-def receptance(scene: Scene, x: float, freqs, x_response=None, *,
+def receptance(scene: Scene, x, freqs, x_response=None, *,
                n_elements: int | None = None) -> np.ndarray:
     """Receptance of the track [m/N]: rail displacement at ``x_response`` [m] per unit vertical
-    force at ``x`` [m], at each of ``freqs`` [Hz] (>= 0).
+    force at ``x`` [m], at each of ``freqs`` [Hz] in [0, ``MAX_FREQUENCY``] (100 kHz).
 
-    ``x_response=None`` gives the point receptance at ``x``, shape ``(n_freq,)``; a number the
-    transfer receptance, ``(n_freq,)``; a sequence ``(n_freq, n_response)``. The track is the
-    linear track of the scene's beam theory with its support damping, meshed with
-    ``n_elements`` (default ``scene.rail.n_elements``; use enough elements per bending
-    wavelength at the highest frequency, about ten). At f = 0 it is the static flexibility.
+    ``x`` (the excitation) and ``x_response`` are each a number or a 1-D sequence of positions
+    in [0, L]; ``x_response=None`` is the point receptance at each ``x``. The result's axes
+    are the frequencies, then the responses if ``x_response`` is a sequence, then the
+    excitations if ``x`` is a sequence:
+
+    ==================  ==================  ==============================
+    ``x``               ``x_response``      shape
+    ==================  ==================  ==============================
+    number              None or number      ``(n_freq,)``
+    number              sequence            ``(n_freq, n_response)``
+    sequence            None                ``(n_freq, n_x)`` (point receptances)
+    sequence            number              ``(n_freq, n_x)``
+    sequence            sequence            ``(n_freq, n_response, n_x)``
+    ==================  ==================  ==============================
+
+    One factorisation of the dynamic stiffness per frequency serves every excitation. The
+    track is the linear track of the scene's beam theory with its support damping, meshed with
+    ``n_elements`` (default :func:`trackwheel.run.defaults.frequency_mesh` at the highest
+    frequency: whole elements per support bay, enough per bending wavelength to put the track's
+    resonances within 0.1 % of a refined mesh). At f = 0 it is the static flexibility.
 
     >>> a = receptance(Scene.kato2005(), 2.25, [0.0, 500.0])
     >>> a.shape
@@ -89,19 +106,28 @@ def receptance(scene: Scene, x: float, freqs, x_response=None, *,
     """
     scene = _check_scene(scene)
     L = scene.rail.length
-    x = v.number("x", x, low=0.0, high=L, unit="m")
     f = _freqs(freqs)
-    scalar = x_response is None or np.ndim(x_response) == 0
+    x_many = np.ndim(x) != 0
+    xe = v.positions("x", x, 0.0, L) if x_many else np.array(
+        [v.number("x", x, low=0.0, high=L, unit="m")])
+    r_many = x_response is not None and np.ndim(x_response) != 0
     if x_response is None:
-        xr = np.array([x])
-    elif scalar:
-        xr = np.array([v.number("x_response", x_response, low=0.0, high=L, unit="m")])
-    else:
+        xr = xe
+    elif r_many:
         xr = v.positions("x_response", x_response, 0.0, L)
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
-    a = np.asarray(_core.receptance(model, kernel.beam_params(scene), x, xr.tolist(),
-                                    f.tolist()))
-    return a[:, 0] if scalar else a
+    else:
+        xr = np.array([v.number("x_response", x_response, low=0.0, high=L, unit="m")])
+    ne = frequency_mesh(scene, float(f.max())) if n_elements is None else mesh(scene, n_elements)
+    model = kernel.rail_model(scene, ne)
+    a = np.asarray(_core.receptance(model, kernel.beam_params(scene), xe.tolist(), xr.tolist(),
+                                    f.tolist())).reshape(f.size, xe.size, xr.size)
+    if x_response is None:  # the point receptances: the diagonal
+        a = a[:, np.arange(xe.size), np.arange(xe.size)]
+        return a if x_many else a[:, 0]
+    a = np.transpose(a, (0, 2, 1))  # (n_freq, n_response, n_x)
+    if not r_many:
+        a = a[:, 0]
+    return a if x_many else a[..., 0]
 
 
 def receptance_points(scene: Scene) -> dict[str, float]:
@@ -118,20 +144,30 @@ def receptance_points(scene: Scene) -> dict[str, float]:
 
 def decay_rate_positions(scene: Scene, x0: float | None = None) -> np.ndarray:
     """The EN 15461 response positions x_0 + n_k d [m] (``EN15461_SPANS``, d the support
-    spacing). ``x0`` [m], the excitation point, defaults to the mid-span that centres the
-    66-spacing line on the rail. Raises ValueError if the line does not fit on the rail."""
+    spacing). ``x0`` [m], the excitation point, at least d / 4 from the rigid end at 0,
+    defaults to the mid-span that centres the 66-spacing line on the rail. Raises ValueError if
+    the line does not fit on the rail."""
     scene = _check_scene(scene)
     d, L = scene.supports.spacing, scene.rail.length
     span = EN15461_SPANS[-1] * d
+    given = x0 is not None
     if x0 is None:
         x0 = (max(math.floor((L - span) / 2.0 / d), 0) + 0.5) * d
-    x0 = v.number("x0", x0, low=0.0, high=L, unit="m")
-    if x0 + span > L:
+    if span > L or (not given and x0 + span > L):
+        # no (default) excitation point fits: say what the rail needs, not an empty range
         raise ValueError(
             f"the EN 15461 positions reach {EN15461_SPANS[-1]:g} support spacings "
-            f"({span:.4g} m) beyond x0 = {x0:.4g} m, past the rail end at {L:.4g} m; allowed: "
-            f"a rail longer than {span + d:.4g} m (plus room for its end reflections) and "
-            f"x0 in [0, {L - span:.4g}] m")
+            f"({span:.4g} m) beyond the excitation point at mid-span; the rail (Rail.length) "
+            f"is {L:.4g} m: allowed a rail of at least {span + 0.5 * d:.4g} m (plus room for "
+            "its end reflections)")
+    # at least a quarter bay from the rigid end support at 0, where the rail does not move (no
+    # response there to divide by)
+    x0 = v.number("x0", x0, low=0.25 * d, high=L, unit="m")
+    if x0 + span > L:
+        raise ValueError(
+            f"x0 = {x0:.4g} m puts the last EN 15461 position ({EN15461_SPANS[-1]:g} support "
+            f"spacings, {span:.4g} m, beyond it) past the rail end at {L:.4g} m; allowed "
+            f"range [{0.25 * d:.4g}, {L - span:.4g}] m")
     return x0 + d * np.asarray(EN15461_SPANS)
 
 
@@ -152,7 +188,8 @@ def decay_rate(scene: Scene, freqs, *, x0: float | None = None,
                n_elements: int | None = None) -> np.ndarray:
     """Vertical track decay rate [dB/m] at each of ``freqs`` [Hz] by the EN 15461 method
     (module docstring) from the transfer receptances of :func:`receptance` at
-    :func:`decay_rate_positions` (d = ``Supports.spacing``). The rail must be longer than 66
+    :func:`decay_rate_positions` (d = ``Supports.spacing``), meshed with ``n_elements``
+    (default :func:`trackwheel.run.defaults.frequency_mesh` at the highest frequency). The rail must be longer than 66
     support spacings, and its ends far enough (or damped enough) that their reflections do not
     reach back to the positions; shape ``(n_freq,)``. As in the standard (Formula 2, clause
     7), a rate below 2 x 4.343 / x_max (x_max = 66 d, 0.22 dB/m for d = 0.6 m) is only an
@@ -187,9 +224,13 @@ def band_decay_rates(scene: Scene, per_band: int = 8, n_elements: int | None = N
     """Decay rate [dB/m] per ``ISO3095_BANDS`` one-third-octave band: the EN 15461 sum of the
     band averages of |A(x_n)|^2 over ``per_band`` log-spaced frequencies inside each band (the
     standard filters the measured transfer functions in bands, not at the centre frequency;
-    what ``trackwheel decay-rate`` prints)."""
+    what ``trackwheel decay-rate`` prints). ``n_elements`` defaults to
+    :func:`trackwheel.run.defaults.frequency_mesh` at the highest band's upper edge, the same
+    mesh for every band."""
     x = decay_rate_positions(scene)
     edges = iso3095_band_edges()
+    if n_elements is None:
+        n_elements = frequency_mesh(scene, float(edges[-1]))
     out = np.empty(edges.size - 1)
     for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
         f = np.geomspace(lo, hi, per_band + 2)[1:-1]

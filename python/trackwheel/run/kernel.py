@@ -11,6 +11,7 @@ A documented internal module: tests and benchmarks build kernel objects through 
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
@@ -133,7 +134,10 @@ def vehicle_params(scene: Scene) -> _core.VehicleParams:
 
 def _body(mass, inertia, gravity, load):
     b = _core.BodyParams()
-    b.mass, b.inertia, b.gravity, b.load = mass, inertia, gravity, load
+    # a body that cannot pitch (inertia None: every spring under its centre) takes M x 1 m^2:
+    # no moment acts on it, so its pitch stays 0 whatever the value (the kernel needs one > 0)
+    b.mass, b.gravity, b.load = mass, gravity, load
+    b.inertia = mass * 1.0 if inertia is None else inertia
     return b
 
 
@@ -168,16 +172,25 @@ def element_compliance(scene: Scene) -> bool:
     return scene.rail.beam == "timoshenko" if c is None else bool(c)
 
 
-def vehicle_matrices(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
-    """(K_v [N/m], mass diagonal over u) of the scene's vehicle, u = [Y per wheel, (z, phi)
-    per body], from the kernel (``vehicle.hpp``: K_v = sum k g g^T over the suspensions, the
-    bodies' masses and pitch inertias), with the wheels' masses on the wheels' entries (the
-    kernel keeps those with the wheels)."""
+class VehicleMatrices(NamedTuple):
+    """The vehicle's constant matrices over u = [Y per wheel, (z, phi) per body]."""
+
+    K: np.ndarray  #: K_v = sum k g g^T over the suspensions [N/m, N, N m]
+    C: np.ndarray  #: C_v = sum c g g^T [N s/m, ...]
+    mass: np.ndarray  #: the mass matrix's diagonal: wheels', bodies' masses [kg], inertias [kg m^2]
+
+
+def vehicle_matrices(scene: Scene) -> VehicleMatrices:
+    """(K_v, C_v, mass diagonal) of the scene's vehicle over u = [Y per wheel, (z, phi) per
+    body], from the kernel (``vehicle.hpp``: K_v = sum k g g^T and C_v = sum c g g^T over the
+    suspensions, g the gradient of a suspension's extension; the bodies' masses and pitch
+    inertias), with the wheels' masses on the wheels' entries (the kernel keeps those with the
+    wheels)."""
     veh = scene.active_vehicle
     vm = _core.vehicle_matrices(vehicle_params(scene), veh.n_wheels)
     mass = np.asarray(vm["mass"], dtype=float).copy()
     mass[:veh.n_wheels] = [w.mass for w in veh.wheels]
-    return np.asarray(vm["K"]), mass
+    return VehicleMatrices(np.asarray(vm["K"]), np.asarray(vm["C"]), mass)
 
 
 def static_bodies(scene: Scene, y_wheels, gravity: float | None = None) -> np.ndarray:

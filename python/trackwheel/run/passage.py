@@ -11,7 +11,7 @@ import math
 from .. import _core
 from ..base import validate as v
 from ..scene import Scene
-from .defaults import default_end, default_start, start_position
+from .stretch import default_end, default_start, start_position
 
 
 def _end_of(x0: float, x_end, distance):

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from ..base import validate as v
 from ..base.limits import MAX_OUTPUT_BYTES, MAX_STEPS
+from ..base.units import check_speed_units
 from ..scene import Scene
 from . import kernel
 from .defaults import (
@@ -26,7 +27,7 @@ from .passage import passage, window_params
 from .results import RunSettings, sample_bytes
 from .start import initial_state
 
-#: Model fidelity levels, most to least detailed. "full" is the paper's model: the
+#: The time-domain levels, most to least detailed. "full" is the paper's model: the
 #: nonlinear ANCF rail, the scene's contact law, contact-point search with obliquity, the rolling
 #: constraint with slip. "ancf/sprung" and "ancf/hertz" force the contact law. The "linear/..."
 #: levels use the linear rail with constant matrices (factorised once, or modal with ``n_modes``)
@@ -34,8 +35,15 @@ from .start import initial_state
 #: (linear bilateral contact spring k) or a Hertzian wheel (unilateral). Every level takes the
 #: scene's beam theory: ``Rail(beam="timoshenko")`` is the shear-deformable ANCF rail on the
 #: "full" and "ancf/..." levels and the linear Timoshenko beam on the "linear/..." ones.
-FIDELITY_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
-                   "linear/moving_mass", "linear/moving_force")
+TIME_DOMAIN_LEVELS = ("full", "ancf/sprung", "ancf/hertz", "linear/hertz", "linear/sprung",
+                      "linear/moving_mass", "linear/moving_force")
+#: The least detailed level: the steady state of the linear levels' model on the infinite track
+#: periodic in its bay, in the frequency domain (``trackwheel.periodic_response``, the scene's
+#: contact law linearised: "linear/hertz" for a Hertzian contact, else "linear/sprung"). No
+#: time history: ``simulate`` refuses it; ``adequacy`` and ``sweep`` run it.
+PERIODIC_LEVEL = "periodic/linear"
+#: Model fidelity levels, most to least detailed (docs: Model § The periodic level for the last)
+FIDELITY_LEVELS = TIME_DOMAIN_LEVELS + (PERIODIC_LEVEL,)
 
 #: Default number of kept samples: output_every is chosen so that at most this many are kept.
 DEFAULT_MAX_SAMPLES = 100_000
@@ -71,7 +79,13 @@ def _with_law(scene: Scene, law: str) -> Scene:
     if law == "hertz" and scene.contact.stiffness is not None:
         # a given linear k becomes the Hertz constant with the same stiffness at the static load
         k = (scene.contact.stiffness / (1.5 * scene.static_load ** (1 / 3))) ** 1.5
-    return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+    try:
+        return dc.replace(scene, contact=dc.replace(scene.contact, law=law, stiffness=k))
+    except ValueError as exc:  # e.g. a stiff linear contact under a tiny load: a huge C_H
+        raise ValueError(f"the fidelity level's {law} contact law from Contact(law="
+                         f"{scene.contact.law!r}, stiffness={scene.contact.stiffness:g}) at the "
+                         f"static load P = {scene.static_load:.4g} N: {exc}; give the scene a "
+                         f"{law} Contact, or a fidelity level of its own law") from None
 
 
 def _scene_for(scene: Scene, fidelity: str) -> Scene:
@@ -84,7 +98,13 @@ def _scene_for(scene: Scene, fidelity: str) -> Scene:
 
 def _check_fidelity(fidelity, integrator: str, n_modes, ne: int):
     """(fidelity, n_modes) checked against each other, the integrator and the mesh."""
-    v.choice("fidelity", fidelity, set(FIDELITY_LEVELS))
+    if fidelity == PERIODIC_LEVEL:
+        raise ValueError(
+            f"fidelity = {PERIODIC_LEVEL!r} is the periodic level, a steady state in the "
+            "frequency domain with no time history to simulate: use "
+            "trackwheel.periodic_response(scene, speed) (or sweep/adequacy, which run it); "
+            f"simulate's levels: {', '.join(TIME_DOMAIN_LEVELS)}")
+    v.choice("fidelity", fidelity, set(TIME_DOMAIN_LEVELS))
     linear = fidelity.startswith("linear/")
     if linear and integrator != "generalized_alpha":
         raise ValueError(f"integrator = {integrator!r} is not available with fidelity = "
@@ -115,15 +135,30 @@ def _time_step(scene: Scene, dt, integrator: str, linear: bool, model, init, x0:
     return dt
 
 
-def _steps(dt: float, t_end: float, dt_default: bool) -> int:
+def _steps(dt: float, t_end: float, dt_default: bool, speed: float, length: dict) -> int:
+    """Steps of ``dt`` [s] over ``t_end`` [s]; ``length`` names the input that set the run's
+    length ({"distance": m}, {"duration": s} or {"x_end": m}), which a too long run names when
+    ``dt`` is the derived default."""
     n_steps = round(t_end / dt)
     if n_steps < 1:
         raise ValueError(f"dt = {dt} s ({'default' if dt_default else 'given'}) is longer than "
                          f"the simulated time {t_end:.6g} s; allowed range (0, {t_end:.6g}] s")
     if n_steps > MAX_STEPS:
-        raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s, above "
-                         f"the limit of {MAX_STEPS:.0e} steps; allowed range "
-                         f"[{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s")
+        (name, value), = length.items()
+        unit = "s" if name == "duration" else "m"
+        # the run's length in the input's own terms at the step dt: time, or distance
+        most = MAX_STEPS * dt * (1.0 if name == "duration" else speed)
+        if name == "x_end":
+            most += value - speed * t_end  # x_end - (run distance) is x_start
+        if dt_default:
+            raise ValueError(f"{name} = {value:.6g} {unit} takes {n_steps:.3g} steps of the "
+                             f"derived dt = {dt:.3g} s ({t_end:.6g} s at {speed:g} m/s), above "
+                             f"the limit of {MAX_STEPS:.0e} steps; allowed: {name} up to "
+                             f"{most:.6g} {unit}")
+        raise ValueError(f"dt = {dt} s takes {n_steps:.3g} steps to cover {t_end:.6g} s "
+                         f"({name} = {value:.6g} {unit}), above the limit of {MAX_STEPS:.0e} "
+                         f"steps; allowed range [{t_end / MAX_STEPS:.3g}, {t_end:.6g}] s (or "
+                         f"{name} up to {most:.6g} {unit})")
     return n_steps
 
 
@@ -152,6 +187,7 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     speed = check_speed(speed)
+    check_speed_units(speed, stacklevel=4)  # here, resolve, simulate, the caller
     v.choice("integrator", integrator, set(INTEGRATORS))
     v.choice("start", start, {"static", "sudden"})
     ne = (derived_mesh(scene) if dt is None else scene.rail.n_elements) if n_elements is None \
@@ -191,7 +227,9 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     model = kernel.rail_model(scene, ne, profile_end, s0)
     init = None if linear else initial_state(scene, model, speed, x0 - s0, start, drop_height)
     h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
-    n_steps = _steps(h, t_end, dt is None)
+    length = ({"duration": duration} if duration is not None else
+              {"distance": distance} if distance is not None else {"x_end": x0 + speed * t_end})
+    n_steps = _steps(h, t_end, dt is None, speed, length)
     output_every = _output_every(output_every, n_steps, energy)
     settings = RunSettings(
         integrator=integrator, dt=h, n_elements=ne, speed=speed, x_start=x0,

@@ -129,9 +129,30 @@ class _ResultMethods:
 
     def contact_free_intervals(self) -> list[tuple[float, float]]:
         """[(t_lift, t_land), ...] of the kept samples without contact [s]."""
-        free = np.concatenate(([False], ~self.in_contact, [False]))
-        edges = np.flatnonzero(np.diff(free.astype(np.int8)))
-        return [(float(self.t[i]), float(self.t[j - 1])) for i, j in zip(edges[::2], edges[1::2])]
+        return _intervals(self.t, ~self.in_contact)
+
+    @property
+    def sliding(self) -> np.ndarray:
+        """Boolean mask of samples where the wheel slides on the rail, |lambda| = mu N
+        (``slip_state`` 2): a brake or torque beyond adhesion, or a violent impact."""
+        return self.slip_state == 2
+
+    @property
+    def locked(self) -> np.ndarray:
+        """Boolean mask of samples where the wheel touches the rail and does not turn: a brake
+        beyond adhesion (``Wheel.brake_torque`` > mu P rho0) has locked it, and it slides. Not
+        turning is a rim speed |theta'| rho0 below LOCKED_RIM_SPEED (the kernel's lock leaves
+        denormal spins, ~1e-323 rad/s, for a few steps)."""
+        rim = np.abs(self.thetadot) * self.scene.wheel.radius
+        return self.in_contact & (rim < LOCKED_RIM_SPEED)
+
+    def sliding_intervals(self) -> list[tuple[float, float]]:
+        """[(t_start, t_end), ...] of the kept samples where the wheel slides [s]."""
+        return _intervals(self.t, self.sliding)
+
+    def locked_intervals(self) -> list[tuple[float, float]]:
+        """[(t_start, t_end), ...] of the kept samples where the wheel is locked [s]."""
+        return _intervals(self.t, self.locked)
 
     @property
     def n_wheels(self) -> int:
@@ -141,9 +162,11 @@ class _ResultMethods:
     def wheel(self, i: int):
         """Wheel ``i``'s view as a one-wheel run: every per-wheel array reduced to that wheel's
         (n_samples,) column, ``scene`` the single-wheel scene of that wheel under its static
-        load of the vehicle's weight distribution (so :func:`trackwheel.analyse` measures its
-        quasi-static line and force statistics against that wheel alone under that load), and
-        ``settings.x_start`` that wheel's start."""
+        load of the vehicle's weight distribution, and ``settings.x_start`` that wheel's start.
+        The view is a single wheel: :func:`trackwheel.analyse` of it measures against that
+        wheel alone on the track; ``analyse(result, wheel=i)`` measures the wheel against its
+        quasi-static line with the whole vehicle on the track (and the stretch the vehicle
+        runs clear of the rail's ends)."""
         n = self.n_wheels
         if not (isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 0 <= i < n):
             raise ValueError(f"wheel = {i!r} must be an integer in [0, {n - 1}]")
@@ -172,7 +195,31 @@ class _ResultMethods:
             f"  y_contact: {self.y_contact.min():.4g} .. {self.y_contact.max():.4g} m",
             (f"  normal force: {self.normal_force.min():.4g} .. {self.normal_force.max():.4g} N, "
              f"lost contact: {'yes' if lost else 'no'}"),
-        ])
+        ] + _slide_lines(self))
+
+
+#: Rim speed |theta'| rho0 [m/s] below which a wheel counts as locked (Result.locked): a
+#: nanometre per second, far below any rolling or braking wheel's.
+LOCKED_RIM_SPEED = 1e-9
+
+
+def _intervals(t: np.ndarray, mask: np.ndarray) -> list[tuple[float, float]]:
+    """[(first, last), ...] times [s] of the runs of True in ``mask`` (one wheel's)."""
+    on = np.concatenate(([False], mask, [False]))
+    edges = np.flatnonzero(np.diff(on.astype(np.int8)))
+    return [(float(t[i]), float(t[j - 1])) for i, j in zip(edges[::2], edges[1::2])]
+
+
+def _slide_lines(r) -> list[str]:
+    """The repr's line on sliding and locking, if the wheel slid (sample counts x the sample
+    spacing; every wheel of a vehicle together)."""
+    if r.t.size < 2 or not np.any(r.sliding):
+        return []
+    dt = float(r.t[1] - r.t[0])
+    lock = np.any(r.locked, axis=-1) if r.locked.ndim > 1 else r.locked
+    slide = np.any(r.sliding, axis=-1) if r.sliding.ndim > 1 else r.sliding
+    return [f"  slid: {slide.sum() * dt * 1e3:.4g} ms (|lambda| = mu N), locked "
+            f"(theta' = 0): {lock.sum() * dt * 1e3:.4g} ms"]
 
 
 def _result_doc() -> str:

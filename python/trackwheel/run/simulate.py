@@ -24,7 +24,14 @@ from ..base.errors import DivergenceError
 from ..base.limits import MAX_OUTPUT_BYTES, MAX_STEPS
 from ..scene import Scene
 from . import kernel
-from .plan import DEFAULT_MAX_SAMPLES, FIDELITY_LEVELS, RunPlan, resolve
+from .plan import (
+    DEFAULT_MAX_SAMPLES,
+    FIDELITY_LEVELS,
+    PERIODIC_LEVEL,
+    TIME_DOMAIN_LEVELS,
+    RunPlan,
+    resolve,
+)
 from .results import Result, RunSettings, result_from_kernel
 
 __all__ = [
@@ -32,6 +39,8 @@ __all__ = [
     "FIDELITY_LEVELS",
     "MAX_OUTPUT_BYTES",
     "MAX_STEPS",
+    "PERIODIC_LEVEL",
+    "TIME_DOMAIN_LEVELS",
     "DivergenceError",
     "Result",
     "RunPlan",
@@ -108,7 +117,9 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         own weight, wheel just touching: a sudden load).
     drop_height : lift the wheel this much above its start height [m] (it falls and lands).
     progress : show a progress bar (None: for runs estimated to take more than a few seconds).
-    fidelity : model level, one of ``FIDELITY_LEVELS`` (default "full": the paper's model).
+    fidelity : model level, one of ``TIME_DOMAIN_LEVELS`` (default "full": the paper's model;
+        ``FIDELITY_LEVELS``' last, "periodic/linear", has no time history and is refused:
+        ``trackwheel.periodic_response``).
         The "linear/..." levels run the constant-matrix fast path (generalized-alpha only; no
         rolling constraint: ``tangential_force``, ``slip``, ``v_error`` are zero and
         ``contact_s = x_wheel``).

@@ -174,3 +174,31 @@ def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = Non
     return np.asarray(_core.linear_static_line(model, kernel.beam_params(scene),
                                                scene.static_load, x.tolist(), modes,
                                                kernel.element_compliance(scene)))
+
+
+def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -> np.ndarray:
+    """(n, n_wheels) [m]: each wheel's static rail displacement under it on the linear track
+    (the ``linear/*`` levels' statics, :func:`linear_quasi_static`) with the vehicle's reference
+    point at each of ``x_ref`` [m], every wheel under its lever-rule load: the linear track's
+    statics superpose, so it is the wheel's own line under its load P_i minus
+    sum_j P_j alpha_0(X_i, X_j) over the other wheels, alpha_0 the track's static flexibility
+    (the receptance at 0 Hz of the same linear track)."""
+    _check_scene(scene)
+    veh = scene.active_vehicle
+    rear, front = veh.span
+    x_ref = v.positions("x_ref", x_ref, -rear, scene.rail.length - front)
+    loads = veh.static_loads(scene.gravity)
+    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    beam = kernel.beam_params(scene)
+    X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
+    y = np.empty_like(X)
+    for i in range(veh.n_wheels):
+        y[:, i] = _core.linear_static_line(model, beam, loads[i], X[:, i].tolist(), 0,
+                                                  kernel.element_compliance(scene))
+    for k in range(X.shape[0]):
+        alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
+                                            [0.0])).real.reshape(veh.n_wheels, veh.n_wheels)
+        # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
+        for i in range(veh.n_wheels):
+            y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(veh.n_wheels) if j != i)
+    return y

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..base import validate as v
+from ..base.limits import ranges_doc
 
 
 @dataclass(frozen=True)
@@ -38,8 +39,11 @@ class Contact:
         if self.element_compliance is not None:
             v.boolean("Contact.element_compliance", self.element_compliance)
         if self.stiffness is not None:
-            v.positive("Contact.stiffness", self.stiffness,
-                       "N/m" if self.law == "linear" else "N/m^1.5")
-        v.number("Contact.damping", self.damping, low=0.0, unit="N s/m")
-        v.number("Contact.friction", self.friction, low=0.0, unit="-")
+            v.field("Contact.stiffness", self.stiffness,
+                    key="Contact.stiffness" if self.law == "linear" else "Contact.stiffness.hertz")
+        v.field("Contact.damping", self.damping)
+        v.field("Contact.friction", self.friction)
 
+
+
+Contact.__doc__ += ranges_doc("Contact")

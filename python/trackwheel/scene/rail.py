@@ -9,7 +9,7 @@ import math
 from dataclasses import dataclass
 
 from ..base import validate as v
-from ..base.limits import GAUSS_RANGE
+from ..base.limits import GAUSS_RANGE, ranges_doc
 
 #: Design of the default absorbing end zones (:attr:`Rail.absorbing_damping`): bending waves up
 #: to ABSORBING_MAX_FREQUENCY [Hz] lose at least ABSORBING_ATTENUATION [dB] over the zone and
@@ -56,12 +56,11 @@ class AbsorbingEnds:
     axial_damping: float | None = None
 
     def __post_init__(self):
-        v.positive("AbsorbingEnds.length", self.length, "m")
+        v.field("AbsorbingEnds.length", self.length)
         if self.damping is not None:
-            v.number("AbsorbingEnds.damping", self.damping, low=0.0, unit="N s/m^2")
+            v.field("AbsorbingEnds.damping", self.damping)
         if self.axial_damping is not None:
-            v.number("AbsorbingEnds.axial_damping", self.axial_damping, low=0.0,
-                     unit="N s/m^2")
+            v.field("AbsorbingEnds.axial_damping", self.axial_damping)
 
     def axial_c_max(self, axial_stiffness: float) -> float:
         """c_max,x [N s/m^2]: ``axial_damping``, or the damping that attenuates axial waves
@@ -112,21 +111,23 @@ class Rail:
     #: kappa, shear coefficient of the section [-], in (0, 1] (about 0.4 for a rail's vertical
     #: bending; used with beam="timoshenko")
     shear_coefficient: float = 0.4
+    #: G, shear modulus [Pa] (used with beam="timoshenko"), or None: the isotropic
+    #: E / (2 (1 + nu)). Given, it is independent of ``poisson_ratio`` (which then enters only
+    #: the Hertz contact constant); :attr:`modulus_of_rigidity` is the value used
+    shear_modulus: float | None = None
 
     def __post_init__(self):
-        v.positive("Rail.length", self.length, "m")
-        v.positive("Rail.youngs_modulus", self.youngs_modulus, "Pa")
-        v.number("Rail.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
-        v.positive("Rail.density", self.density, "kg/m^3")
-        v.positive("Rail.area", self.area, "m^2")
-        v.positive("Rail.second_moment", self.second_moment, "m^4")
+        for name in ("length", "youngs_modulus", "poisson_ratio", "density", "area",
+                     "second_moment"):
+            v.field(f"Rail.{name}", getattr(self, name))
         v.n_elements(self.n_elements, "Rail.n_elements")
         v.choice("Rail.curvature", self.curvature, {"exact", "simplified"})
         v.choice("Rail.far_end", self.far_end, {"roller", "pinned"})
         v.integer("Rail.n_gauss", self.n_gauss, low=GAUSS_RANGE[0], high=GAUSS_RANGE[1])
         v.choice("Rail.beam", self.beam, {"euler", "timoshenko"})
-        v.number("Rail.shear_coefficient", self.shear_coefficient, low=0.0, high=1.0,
-                 low_open=True)
+        v.field("Rail.shear_coefficient", self.shear_coefficient)
+        if self.shear_modulus is not None:
+            v.field("Rail.shear_modulus", self.shear_modulus)
         z = self.absorbing_ends
         if z is not None:
             if not isinstance(z, AbsorbingEnds):
@@ -173,17 +174,23 @@ class Rail:
         return self.youngs_modulus * self.area
 
     @property
-    def shear_modulus(self) -> float:
-        """G = E / (2 (1 + nu)) [Pa]."""
+    def modulus_of_rigidity(self) -> float:
+        """G [Pa]: ``shear_modulus`` if given, else the isotropic E / (2 (1 + nu))."""
+        if self.shear_modulus is not None:
+            return self.shear_modulus
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
     @property
     def shear_stiffness(self) -> float:
-        """kappa G A [N] (Timoshenko beam)."""
-        return self.shear_coefficient * self.shear_modulus * self.area
+        """kappa G A [N] (Timoshenko beam), G = :attr:`modulus_of_rigidity`."""
+        return self.shear_coefficient * self.modulus_of_rigidity * self.area
 
     @property
     def rotary_inertia(self) -> float:
         """rho I, mass moment of inertia per length [kg m] (Timoshenko beam)."""
         return self.density * self.second_moment
 
+
+
+Rail.__doc__ += ranges_doc("Rail")
+AbsorbingEnds.__doc__ += ranges_doc("AbsorbingEnds")

@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass, field, fields, replace
 
 from ..base import validate as v
-from ..base.limits import MAX_ELEMENTS
+from ..base.limits import MAX_ELEMENTS, MAX_STATIC_SAG, ranges_doc
 from ..excitation.irregularity import Irregularity
 from .contact import Contact
 from .rail import AbsorbingEnds, Rail
@@ -38,6 +38,12 @@ class Scene:
     ``dataclasses.replace(scene, vehicle=other)`` works, and ``vehicle=None`` turns the scene
     back into the single (derived) wheel. All wheels of a vehicle share one contact law, so they
     need the same radius and elastic constants.
+
+    Every parameter of every part is checked against its plausible range when the part is
+    built (:data:`trackwheel.base.limits.RANGES`, listed with each part), and the scene checks
+    that the track can carry its weight and the wheel load: :attr:`static_sag` at most
+    ``MAX_STATIC_SAG`` (1 m), so that a soft support, a weak rail or a huge load is a
+    ValueError naming them here rather than a failed static solve in the kernel.
     """
 
     rail: Rail = field(default_factory=Rail)
@@ -60,7 +66,7 @@ class Scene:
             if not isinstance(value, f.default_factory):
                 raise TypeError(f"Scene.{f.name} must be a {f.default_factory.__name__}, "
                                 f"got {type(value).__name__}")
-        v.number("Scene.gravity", self.gravity, low=0.0, unit="m/s^2")
+        v.field("Scene.gravity", self.gravity)
         v.boolean("Scene.rail_gravity", self.rail_gravity)
         if self.irregularity is not None and not isinstance(self.irregularity, Irregularity):
             raise TypeError(f"Scene.irregularity must be a trackwheel.Irregularity or None, "
@@ -74,6 +80,24 @@ class Scene:
         self.supports.resolve(self.rail.length)  # supports must lie on the rail
         if self.window is not None:
             self._check_window()
+        self._check_sag()
+
+    def _check_sag(self):
+        sag = self.static_sag
+        if sag > MAX_STATIC_SAG:
+            s = self.supports
+            what = (f"Supports.sleeper_mass = {s.sleeper_mass:g} kg on "
+                    f"Supports.ballast_stiffness = {s.ballast_stiffness:g} N/m" if s.layered
+                    and s.sleeper_mass * self.gravity / s.ballast_stiffness > MAX_STATIC_SAG
+                    else f"Supports.stiffness = {s.stiffness:g} N/m every {s.spacing:g} m"
+                    if s.positions is None or s.positions else "no supports")
+            raise ValueError(
+                f"the track sags about {sag:.3g} m under its own weight and the wheel load "
+                f"({what}, Rail.length = {self.rail.length:g} m, EI = "
+                f"{self.rail.bending_stiffness:.3g} N m^2, static wheel load "
+                f"{max(self.active_vehicle.static_loads(self.gravity)):.4g} N); allowed at "
+                f"most {MAX_STATIC_SAG:g} m (a real track sags a few mm): stiffer supports, a "
+                f"shorter rail or a lighter load")
 
     def _check_window(self):
         w = self.window
@@ -233,7 +257,36 @@ class Scene:
         return 1.5 * ch ** (2.0 / 3.0) * max(self.static_load, 1e-300) ** (1.0 / 3.0)
 
     @property
+    def static_sag(self) -> float:
+        """Estimate of the track's static sag [m] under the rail's weight q = rho A g and the
+        heaviest static wheel load P (docs: Model § Validation): the smaller of the beam on a
+        Winkler foundation of the supports, q / k_f + P beta / (2 k_f) with
+        beta = (k_f / (4 EI))^(1/4) (plus a sleeper's sag under its own weight,
+        m_s g / k_b), and the rail bridging its rigid ends, 5 q L^4 / (384 EI) +
+        P L^3 / (48 EI) (q with the sleepers' weight, which then hangs from the pads).
+        Checked at construction against MAX_STATIC_SAG."""
+        r, s, g = self.rail, self.supports, self.gravity
+        q = r.mass_per_length * g if self.rail_gravity else 0.0
+        P = max(self.active_vehicle.static_loads(g))
+        EI, L = r.bending_stiffness, r.length
+        n = len(self.support_positions)
+        # bridging, the rail carries the sleepers too (they hang from the pads)
+        q_s = n * s.sleeper_mass * g / L if s.layered else 0.0
+        bridge = 5.0 * (q + q_s) * L**4 / (384.0 * EI) + P * L**3 / (48.0 * EI)
+        if n == 0:
+            return bridge
+        kf = s.static_stiffness * n / L
+        beta = (kf / (4.0 * EI)) ** 0.25
+        winkler = q / kf + P * beta / (2.0 * kf)
+        if s.layered:
+            winkler += s.sleeper_mass * g / s.ballast_stiffness
+        return min(winkler, bridge)
+
+    @property
     def winkler_modulus(self) -> float:
         """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (docs: Model § Validation);
         layered supports: their static series stiffness per spacing."""
         return self.supports.static_stiffness / self.supports.spacing
+
+
+Scene.__doc__ += ranges_doc("Scene")

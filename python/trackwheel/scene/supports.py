@@ -7,7 +7,8 @@ import math
 from dataclasses import dataclass
 
 from ..base import validate as v
-from ..base.limits import MAX_SUPPORTS
+from ..base.units import check_stiffness_units
+from ..base.limits import MAX_SUPPORTS, ranges_doc
 
 
 @dataclass(frozen=True)
@@ -36,10 +37,14 @@ class Supports:
     ballast_damping: float = 0.0  #: c_b, ballast damping under each sleeper [N s/m]
 
     def __post_init__(self):
-        v.positive("Supports.stiffness", self.stiffness, "N/m")
+        v.field("Supports.stiffness", self.stiffness)
         v.positive("Supports.spacing", self.spacing, "m")
-        v.number("Supports.damping", self.damping, low=0.0, unit="N s/m")
+        v.field("Supports.damping", self.damping)
         self._check_layers()
+        check_stiffness_units("Supports.stiffness", self.stiffness, stacklevel=4)
+        if self.layered:
+            check_stiffness_units("Supports.ballast_stiffness", self.ballast_stiffness,
+                                  stacklevel=4)
         if self.positions is not None:
             empty = isinstance(self.positions, (tuple, list)) and len(self.positions) == 0
             pos = () if empty else tuple(
@@ -58,9 +63,11 @@ class Supports:
                              "together (layered supports) or both be None (single springs); "
                              f"got sleeper_mass = {self.sleeper_mass}, ballast_stiffness = "
                              f"{self.ballast_stiffness}")
-        v.positive("Supports.sleeper_mass", self.sleeper_mass, "kg")
-        v.positive("Supports.ballast_stiffness", self.ballast_stiffness, "N/m")
-        v.number("Supports.ballast_damping", self.ballast_damping, low=0.0, unit="N s/m")
+        v.field("Supports.stiffness", self.stiffness, key="Supports.stiffness.layered",
+                hint="the pad of layered supports")
+        v.field("Supports.sleeper_mass", self.sleeper_mass)
+        v.field("Supports.ballast_stiffness", self.ballast_stiffness)
+        v.field("Supports.ballast_damping", self.ballast_damping)
 
     @property
     def layered(self) -> bool:
@@ -98,3 +105,6 @@ class Supports:
                     f"allowed range (0, {length}) m")
         return pos
 
+
+
+Supports.__doc__ += ranges_doc("Supports")

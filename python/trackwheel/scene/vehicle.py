@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..base import validate as v
+from ..base.limits import RANGES, ranges_doc
 from .wheel import Wheel
 
 
@@ -32,7 +33,9 @@ class Bogie:
     wheels: tuple[int, ...]  #: indices into ``Vehicle.wheels`` (one or two)
     centre: float  #: x of the frame's centre of mass and pivot along the vehicle [m]
     mass: float = 1750.0  #: M_b [kg]
-    pitch_inertia: float = 861.0  #: J_b about the centre [kg m^2]
+    #: J_b about the centre [kg m^2]; None for a frame on one wheel under its centre, which
+    #: no moment can pitch
+    pitch_inertia: float | None = 861.0
     primary_stiffness: float = 1.173e6  #: k_1 per wheel [N/m]
     primary_damping: float = 19.6e3  #: c_1 per wheel [N s/m]
     #: constant vertical force on the pivot when no car body rests on it (its share of the car
@@ -45,31 +48,37 @@ class Bogie:
                              f"{self.wheels!r}")
         object.__setattr__(self, "wheels", tuple(
             v.integer("Bogie.wheels", w, low=0) for w in self.wheels))
-        v.number("Bogie.centre", self.centre, unit="m")
-        v.positive("Bogie.mass", self.mass, "kg")
-        v.positive("Bogie.pitch_inertia", self.pitch_inertia, "kg m^2")
-        v.positive("Bogie.primary_stiffness", self.primary_stiffness, "N/m")
-        v.number("Bogie.primary_damping", self.primary_damping, low=0.0, unit="N s/m")
-        v.number("Bogie.load", self.load, low=0.0, unit="N")
+        for name in ("centre", "mass", "primary_stiffness", "primary_damping", "load"):
+            v.field(f"Bogie.{name}", getattr(self, name))
+        if self.pitch_inertia is None:
+            if len(self.wheels) != 1:
+                raise ValueError("Bogie.pitch_inertia = None is only for a frame on one "
+                                 "wheel (under its centre, nothing pitches it); a frame on "
+                                 "two wheels needs its pitch inertia > 0 kg m^2")
+        else:
+            v.field("Bogie.pitch_inertia", self.pitch_inertia)
 
 
 @dataclass(frozen=True)
 class CarBody:
     """Half a car body on one rail, resting on the pivots of two bogies through secondary
-    suspensions."""
+    suspensions (or, for a quarter car, a share of it on the pivot of one bogie)."""
 
-    centre: float  #: x of the centre of mass along the vehicle [m], between the pivots
+    #: x of the centre of mass along the vehicle [m], between the pivots (on one bogie: at
+    #: its pivot)
+    centre: float
     mass: float = 17250.0  #: M_c [kg]
-    pitch_inertia: float = 7.802e5  #: J_c about the centre [kg m^2]
+    #: J_c about the centre [kg m^2]; None for a body on one bogie (the quarter car), which no
+    #: moment can pitch
+    pitch_inertia: float | None = 7.802e5
     secondary_stiffness: float = 0.61e6  #: k_2 per bogie [N/m]
     secondary_damping: float = 9.8e3  #: c_2 per bogie [N s/m]
 
     def __post_init__(self):
-        v.number("CarBody.centre", self.centre, unit="m")
-        v.positive("CarBody.mass", self.mass, "kg")
-        v.positive("CarBody.pitch_inertia", self.pitch_inertia, "kg m^2")
-        v.positive("CarBody.secondary_stiffness", self.secondary_stiffness, "N/m")
-        v.number("CarBody.secondary_damping", self.secondary_damping, low=0.0, unit="N s/m")
+        for name in ("centre", "mass", "secondary_stiffness", "secondary_damping"):
+            v.field(f"CarBody.{name}", getattr(self, name))
+        if self.pitch_inertia is not None:
+            v.field("CarBody.pitch_inertia", self.pitch_inertia)
 
 
 #: Huo & Dai (2019), "Formulation of a linearized model for vehicle-track interactions", Shock
@@ -108,7 +117,7 @@ class Vehicle:
                 raise TypeError(f"Vehicle.wheels must hold trackwheel.Wheel values, got "
                                 f"{type(w).__name__}")
         object.__setattr__(self, "wheels", tuple(self.wheels))
-        pos = tuple(v.number("Vehicle.positions", x, unit="m") for x in self.positions)
+        pos = tuple(v.field("Vehicle.positions", x) for x in self.positions)
         object.__setattr__(self, "positions", pos)
         if len(pos) != len(self.wheels):
             raise ValueError(f"Vehicle.positions has {len(pos)} entries for "
@@ -155,13 +164,25 @@ class Vehicle:
         if not isinstance(self.car, CarBody):
             raise TypeError(f"Vehicle.car must be a CarBody or None, got "
                             f"{type(self.car).__name__}")
-        if len(self.bogies) != 2:
-            raise ValueError(f"Vehicle.car rests on two bogies; the vehicle has "
-                             f"{len(self.bogies)}")
-        a, b = sorted(bg.centre for bg in self.bogies)
-        if not a < self.car.centre < b:
-            raise ValueError(f"CarBody.centre = {self.car.centre} m must lie between the bogie "
-                             f"pivots; allowed range ({a}, {b}) m")
+        if len(self.bogies) not in (1, 2):
+            raise ValueError(f"Vehicle.car rests on two bogies (a quarter car: on one); the "
+                             f"vehicle has {len(self.bogies)}")
+        if len(self.bogies) == 1:
+            x = self.bogies[0].centre
+            if self.car.centre != x:
+                raise ValueError(f"CarBody.centre = {self.car.centre} m: a car body on one "
+                                 f"bogie rests on its pivot; allowed: {x} m")
+            if self.car.pitch_inertia is not None:
+                raise ValueError("CarBody.pitch_inertia must be None for a car body on one "
+                                 "bogie (the pivot under its centre cannot pitch it)")
+        else:
+            a, b = sorted(bg.centre for bg in self.bogies)
+            if not a < self.car.centre < b:
+                raise ValueError(f"CarBody.centre = {self.car.centre} m must lie between the "
+                                 f"bogie pivots; allowed range ({a}, {b}) m")
+            if self.car.pitch_inertia is None:
+                raise ValueError("CarBody.pitch_inertia = None is only for a car body on one "
+                                 "bogie; on two it needs its pitch inertia > 0 kg m^2")
         for j, bg in enumerate(self.bogies):
             if bg.load != 0.0:
                 raise ValueError(f"Vehicle.bogies[{j}].load must be 0 N under a car body "
@@ -177,11 +198,16 @@ class Vehicle:
     def bogie(cls, wheelbase: float = 2.5, wheel: Wheel | None = None,
               load: float | None = None) -> "Vehicle":
         """Half a bogie of the Huo & Dai (2019) high-speed car (``HUO_DAI_2019``) on two wheels
-        ``wheelbase`` [m] apart (rear wheel at x = 0), carrying ``load`` [N] on its pivot
-        (default: its share of the half car body's weight, M_c g / 4 with g = 9.8 m/s^2)."""
+        ``wheelbase`` [m] apart (rear wheel at x = 0; at least the wheels' diameter, at most
+        1000 m), carrying ``load`` [N] on its pivot (default: its share of the half car body's
+        weight, M_c g / 4 with g = 9.8 m/s^2)."""
         p = HUO_DAI_2019
-        wb = v.positive("wheelbase", wheelbase, "m")
         w = _high_speed_wheel() if wheel is None else wheel
+        if not isinstance(w, Wheel):
+            raise TypeError(f"wheel must be a trackwheel.Wheel or None, got {type(w).__name__}")
+        # the two wheels must not overlap; beyond 1000 m they leave Vehicle.positions' range
+        wb = v.number("wheelbase", wheelbase, low=2.0 * w.radius, high=RANGES[
+            "Vehicle.positions"].high, unit="m")
         share = 0.25 * p["car_mass"] * 9.8 if load is None else v.number(
             "load", load, low=0.0, unit="N")
         return cls(wheels=(w, w), positions=(0.0, wb),
@@ -206,6 +232,42 @@ class Vehicle:
                    bogies=(_huo_dai_bogie((0, 1), rear, 0.0), _huo_dai_bogie((2, 3), front, 0.0)),
                    car=car)
 
+    @classmethod
+    def quarter_car(cls, wheel: Wheel | None = None, *, bogie_mass: float | None = None,
+                    body_mass: float | None = None, primary_stiffness: float | None = None,
+                    primary_damping: float | None = None,
+                    secondary_stiffness: float | None = None,
+                    secondary_damping: float | None = None) -> "Vehicle":
+        """A quarter car: one wheel, its share of a bogie frame on the primary suspension and
+        its share of the car body on the secondary suspension, stacked above the wheel (x = 0):
+        wheel - k_1, c_1 - bogie M_b - k_2, c_2 - body M_c.
+
+        The static wheel load is the weight of all three, P = (M_w + M_b + M_c) g: set it
+        through the masses (for a load P at gravity g, ``body_mass = P / g - M_b - M_w``). No
+        moment acts on the bodies (every spring is under their centres), so they do not pitch
+        and need no pitch inertia. Defaults: one wheel's share of the Huo & Dai (2019) car
+        (``HUO_DAI_2019``): wheel 1100 kg (half a wheelset), M_b = 875 kg (a quarter of the
+        bogie frame), M_c = 4312.5 kg (an eighth of the car body), k_1 = 1.173 MN/m and
+        c_1 = 19.6 kN s/m (the half car's per wheel), k_2 = 0.305 MN/m and c_2 = 4.9 kN s/m
+        (the half car's per bogie side, shared by its two wheels): P = 61.6 kN at 9.8 m/s^2,
+        the load of each wheel of :meth:`bogie` and :meth:`half_car`. Masses [kg],
+        stiffnesses [N/m], dampings [N s/m]; each None takes its default."""
+        p = HUO_DAI_2019
+        w = _high_speed_wheel() if wheel is None else wheel
+
+        def value(x, default):
+            return default if x is None else x
+
+        bogie = Bogie(wheels=(0,), centre=0.0, mass=value(bogie_mass, 0.25 * p["bogie_mass"]),
+                      pitch_inertia=None,
+                      primary_stiffness=value(primary_stiffness, p["k1"]),
+                      primary_damping=value(primary_damping, p["c1"]))
+        car = CarBody(centre=0.0, mass=value(body_mass, p["car_mass"] / 8.0),
+                      pitch_inertia=None,
+                      secondary_stiffness=value(secondary_stiffness, 0.5 * p["k2"]),
+                      secondary_damping=value(secondary_damping, 0.5 * p["c2"]))
+        return cls(wheels=(w,), positions=(0.0,), bogies=(bogie,), car=car)
+
     # derived ------------------------------------------------------------------------------
     @property
     def n_wheels(self) -> int:
@@ -215,6 +277,13 @@ class Vehicle:
     def n_bodies(self) -> int:
         """Bodies with (z, phi): the bogies, then the car body."""
         return len(self.bogies) + (self.car is not None)
+
+    @property
+    def unpitched(self) -> tuple[bool, ...]:
+        """For each body (the bogies, then the car body): True if it cannot pitch (its pitch
+        inertia None: every spring acts under its centre, so no moment reaches it)."""
+        bodies = [*self.bogies, *(() if self.car is None else (self.car,))]
+        return tuple(b.pitch_inertia is None for b in bodies)
 
     @property
     def span(self) -> tuple[float, float]:
@@ -233,6 +302,8 @@ class Vehicle:
         or the bogie's constant ``load``."""
         if self.car is None:
             return tuple(b.load for b in self.bogies)
+        if len(self.bogies) == 1:
+            return (self.car.mass * gravity,)
         x1, x2 = (b.centre for b in self.bogies)
         W = self.car.mass * gravity
         return (W * (x2 - self.car.centre) / (x2 - x1), W * (self.car.centre - x1) / (x2 - x1))
@@ -264,19 +335,28 @@ def rigid_track_frequencies(vehicle: Vehicle) -> dict[str, float]:
     """Closed-form bounce and pitch frequencies [Hz] of the bodies on rigidly held wheels,
     undamped: a bogie bounces at sqrt(sum k_1 / M_b) / 2 pi and pitches at
     sqrt(sum k_1 a_i^2 / J_b) / 2 pi; the car body on its secondary springs (the bogies held)
-    at sqrt(2 k_2 / M_c) and sqrt(k_2 (a_1^2 + a_2^2) / J_c). Keys 'bogie{j}_bounce',
-    'bogie{j}_pitch', 'car_bounce', 'car_pitch'."""
+    at sqrt(n k_2 / M_c) (n its bogies) and sqrt(k_2 (a_1^2 + a_2^2) / J_c). Keys
+    'bogie{j}_bounce', 'bogie{j}_pitch', 'car_bounce', 'car_pitch' (no pitch key for a body
+    that cannot pitch: one on a single support under its centre)."""
     out = {}
     for j, b in enumerate(vehicle.bogies):
         arms = [vehicle.positions[w] - b.centre for w in b.wheels]
         k = b.primary_stiffness
         out[f"bogie{j}_bounce"] = math.sqrt(k * len(arms) / b.mass) / (2 * math.pi)
-        out[f"bogie{j}_pitch"] = math.sqrt(k * sum(a * a for a in arms)
-                                           / b.pitch_inertia) / (2 * math.pi)
+        if b.pitch_inertia is not None:
+            out[f"bogie{j}_pitch"] = math.sqrt(k * sum(a * a for a in arms)
+                                               / b.pitch_inertia) / (2 * math.pi)
     if vehicle.car is not None:
         c = vehicle.car
         arms = [b.centre - c.centre for b in vehicle.bogies]
         k = c.secondary_stiffness
-        out["car_bounce"] = math.sqrt(2 * k / c.mass) / (2 * math.pi)
-        out["car_pitch"] = math.sqrt(k * sum(a * a for a in arms) / c.pitch_inertia) / (2 * math.pi)
+        out["car_bounce"] = math.sqrt(len(arms) * k / c.mass) / (2 * math.pi)
+        if c.pitch_inertia is not None:
+            out["car_pitch"] = math.sqrt(k * sum(a * a for a in arms)
+                                         / c.pitch_inertia) / (2 * math.pi)
     return out
+
+
+Vehicle.__doc__ += ranges_doc("Vehicle")
+Bogie.__doc__ += ranges_doc("Bogie")
+CarBody.__doc__ += ranges_doc("CarBody")

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..base import validate as v
+from ..base.limits import ranges_doc
 from ..excitation.wheel_defects import WHEEL_DEFECTS
 
 
@@ -29,15 +30,11 @@ class Wheel:
     defects: tuple = ()
 
     def __post_init__(self):
-        v.positive("Wheel.mass", self.mass, "kg")
-        v.positive("Wheel.radius", self.radius, "m")
-        v.number("Wheel.load", self.load, low=0.0, unit="N")
+        for name in ("mass", "radius", "load", "youngs_modulus", "poisson_ratio", "torque",
+                     "brake_torque"):
+            v.field(f"Wheel.{name}", getattr(self, name))
         if self.inertia is not None:
-            v.positive("Wheel.inertia", self.inertia, "kg m^2")
-        v.positive("Wheel.youngs_modulus", self.youngs_modulus, "Pa")
-        v.number("Wheel.poisson_ratio", self.poisson_ratio, low=0.0, high=0.5, high_open=True)
-        v.number("Wheel.torque", self.torque, unit="N m")
-        v.number("Wheel.brake_torque", self.brake_torque, low=0.0, unit="N m")
+            v.field("Wheel.inertia", self.inertia)
         if not isinstance(self.defects, (tuple, list)):
             raise TypeError(f"Wheel.defects must be a tuple of WheelFlat/Polygon, "
                             f"got {type(self.defects).__name__}")
@@ -53,3 +50,6 @@ class Wheel:
         """J [kg m^2]: the given value, or a uniform disc M rho0^2 / 2."""
         return self.inertia if self.inertia is not None else 0.5 * self.mass * self.radius**2
 
+
+
+Wheel.__doc__ += ranges_doc("Wheel")

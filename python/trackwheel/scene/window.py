@@ -7,7 +7,7 @@ import math
 from dataclasses import dataclass
 
 from ..base import validate as v
-from ..base.limits import MAX_WINDOW_BAYS
+from ..base.limits import MAX_WINDOW_BAYS, ranges_doc
 
 
 @dataclass(frozen=True)
@@ -41,7 +41,7 @@ class Window:
     def __post_init__(self):
         v.integer("Window.bays_behind", self.bays_behind, low=1, high=MAX_WINDOW_BAYS)
         v.integer("Window.bays_ahead", self.bays_ahead, low=1, high=MAX_WINDOW_BAYS)
-        v.number("Window.absorbing_length", self.absorbing_length, low=0.0, unit="m")
+        v.field("Window.absorbing_length", self.absorbing_length)
 
     def zone_bays(self, spacing: float) -> int:
         """Whole bays of ``spacing`` [m] in each absorbing end zone: ``absorbing_length``
@@ -58,3 +58,6 @@ class Window:
         """The window's rail length [m]: :meth:`n_bays` x ``spacing``."""
         return self.n_bays(span, spacing) * spacing
 
+
+
+Window.__doc__ += ranges_doc("Window")

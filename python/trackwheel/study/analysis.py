@@ -23,10 +23,8 @@ from __future__ import annotations
 
 import math
 import dataclasses
-from functools import lru_cache
 
 import numpy as np
-from numpy.polynomial import chebyshev
 
 from ..base import validate as v
 from ..base.fields import dataclass_fields, generated_doc
@@ -37,10 +35,10 @@ from .force_statistics import (  # ForceStatistics: the annotation of Analysis.f
     ForceStatistics,  # noqa: F401
     result_statistics,
 )
+from ..run.stretch import measured_stretch
 from ..run.results import Result
-from ..scene import Scene
-from ..run.statics import linear_quasi_static, quasi_static
-from .steady import from_time, steady_state
+from .static_line import QS_DEGREE, quasi_static_line, vehicle_quasi_static_line
+from .steady import from_time, samples, steady_state
 
 __all__ = [
     "QS_DEGREE",
@@ -51,19 +49,6 @@ __all__ = [
     "main_frequency",
 ]
 
-#: Degree of the polynomial that represents the quasi-static line inside each rail element.
-#: With the wheel at X, the static contact-point displacement is, to within the geometric
-#: nonlinearity, N(X)^T K^-1 N(X) P with cubic Hermite shape functions N: a polynomial of degree
-#: 6 in X inside an element, with kinks in its derivatives only at the nodes (the support springs
-#: enter K, not N). So y_qs is solved at the QS_DEGREE + 1 Chebyshev-Lobatto points of each
-#: element the run crosses (the end points shared with the neighbours: QS_DEGREE static solves
-#: per element) and interpolated by the element's Chebyshev series. Measured against direct
-#: static solves: < 2e-13 m for the paper's scene with 20 elements and < 1e-15 m with 80, i.e.
-#: below 1e-8 of the static deflection (7e-5 m) and 1e-7 of the smallest dynamic amplitude of
-#: Fig. 7 (1.2e-6 m at 50 km/h); a cubic on a 5 mm grid costs 7 (20 elements) or 1.5 (80) times
-#: as many solves for an error of 2e-11 m. Each analysis reports an estimate of its own error,
-#: |c_7| + |c_8| of the Chebyshev coefficients (``Analysis.y_qs_error``, ~1e-12 m here).
-QS_DEGREE = 8
 #: The FFT length is the smallest power of two >= ZERO_PADDING x the record length.
 ZERO_PADDING = 8
 
@@ -156,53 +141,30 @@ def main_frequency(signal, dt: float, *, n_fft: int | None = None, f_min: float 
     return _peak(freqs, amps, fmin, fmax)
 
 
-# --------------------------------------------------------------------------------------------
-# quasi-static line
-@lru_cache(maxsize=128)
-def _qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
-    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh: of the ANCF model or
-    (``linear``) of the linear track in all its coordinates.
-
-    Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
-    mesh, element range): the same range is always solved the same way (one warm-started
-    sweep), so the line is bit-identical whichever process or earlier analysis computed it.
-    """
-    n = QS_DEGREE
-    le = scene.rail.length / n_elements
-    t = -np.cos(np.pi * np.arange(n + 1) / n)  # Chebyshev-Lobatto points on [-1, 1]
-    n_el = e1 - e0
-    x = ((np.arange(e0, e1)[:, None] + 0.5 * (t[None, :-1] + 1.0)) * le).ravel()
-    x = np.minimum(np.append(x, e1 * le), scene.rail.length)
-    if linear:
-        y = linear_quasi_static(scene, x, n_elements=n_elements)
-    else:
-        y = quasi_static(scene, x, n_elements=n_elements).y_contact
-    values = y[np.arange(n_el)[:, None] * n + np.arange(n + 1)[None, :]]  # (n_el, n + 1)
-    coef = np.linalg.solve(chebyshev.chebvander(t, n), values.T)  # (n + 1, n_el)
-    coef.setflags(write=False)
-    return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
-
-
-def _in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
-    """X [m] as the rail coordinate of a fixed rail, or on a travelling window the same place
-    in its bay in the window's middle bay (the quasi-static line of the periodic track)."""
-    if scene.window is None:
-        return x
-    d = scene.supports.spacing
-    middle = round(scene.rail.length / d) // 2
-    return middle * d + np.mod(x, d)
-
-
-def _quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
-    """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
-    x = _in_window(scene, x)
-    le = scene.rail.length / n_elements
-    e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
-    e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
-    coef, err = _qs_series(scene, n_elements, e0, e1, linear)
-    k = np.clip(np.floor(x / le).astype(np.int64) - e0, 0, e1 - e0 - 1)
-    t = np.clip(2.0 * (x / le - (k + e0)) - 1.0, -1.0, 1.0)
-    return chebyshev.chebval(t, coef[:, k], tensor=False), err
+def _measured(result: Result, wheel: int, measure, defect_at) -> tuple[float, float] | None:
+    """The X range [m] of wheel ``wheel``'s centre to measure, or None for every sample."""
+    if isinstance(measure, str):
+        v.choice("measure", measure, {"default", "run"})
+        if measure == "run":
+            return None
+        s = result.settings
+        stretch = measured_stretch(result.scene, float(s.speed), float(s.x_start),
+                                   float(s.x_end))
+        if stretch is None:
+            return None
+        offset = result.scene.active_vehicle.positions[wheel] if result.n_wheels > 1 else 0.0
+        lo, hi = stretch[0] + offset, stretch[1] + offset
+        if defect_at is not None and not lo <= defect_at <= hi:
+            return None  # the defect's P1/P2 need the run around it
+        return lo, hi
+    try:
+        lo, hi = (float(x) for x in measure)
+    except (TypeError, ValueError):
+        raise ValueError(f"measure = {measure!r}: allowed 'default', 'run' or (x_from, x_to) "
+                         "[m]") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"measure = ({lo}, {hi}) m: allowed x_from < x_to, both finite")
+    return lo, hi
 
 
 # --------------------------------------------------------------------------------------------
@@ -218,7 +180,9 @@ class _AnalysisMethods:
                 f"  contact force {self.min_contact_force:.6g}..{self.max_contact_force:.6g} N, "
                 f"lost contact: {'yes' if self.lost_contact else 'no'}\n"
                 f"  dynamic factor {self.dynamic_factor:.4g}, contact loss "
-                f"{self.loss_duration * 1e3:.3g} ms" + self._peaks_text())
+                f"{self.loss_duration * 1e3:.3g} ms" + self._peaks_text()
+                + (f"\n  slid {self.slide_duration * 1e3:.4g} ms (|lambda| = mu N), locked "
+                   f"{self.locked_duration * 1e3:.4g} ms" if self.slide_duration > 0 else ""))
 
     def _peaks_text(self) -> str:
         f = self.forces
@@ -285,9 +249,20 @@ Analysis = dataclasses.make_dataclass(
 def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None = None,
             p1_period: float = P1_PERIOD, p2_period: float = P2_PERIOD,
             wheel: int | None = None, t_from: float | None = None,
-            steady: bool = False) -> Analysis:
+            steady: bool = False, measure="default") -> Analysis:
     """Measure the contact-point vibration of a :func:`trackwheel.simulate` run (docs: Model §
     Outputs).
+
+    **What is measured** (``measure``; ``Analysis.x_range`` says which X range it was):
+    ``"default"`` the part of the run that neither the rail's rigid ends nor the start-up
+    transient dominate (:func:`trackwheel.run.defaults.measured_stretch`: from one decay
+    length of the wheel's bounce on the track after the start, while every wheel is at least
+    :func:`~trackwheel.run.defaults.end_clearance` from both rail ends), or the whole run where
+    the rail is too short for such a stretch -- the paper's 5 m rail, measured whole as the
+    paper does -- or where it would leave out the ``defect_at`` given; ``"run"`` every sample;
+    ``(x_from, x_to)`` [m] the samples with the wheel's centre in that range. ``t_from`` [s]
+    measures the samples from that time on instead, ``steady=True`` from the start of the
+    steady state in the sleeper bay (:func:`trackwheel.steady_state` of the contact force).
 
     The quasi-static line is solved with the run's scene and mesh (``result.settings
     .n_elements``) and the run's model: the ANCF statics (:func:`trackwheel.quasi_static`) for
@@ -295,11 +270,11 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     (:func:`trackwheel.linear_quasi_static`) for the ``linear/*`` levels, so that every
     run starts at d = 0 (a modal run with its truncation error of the static deflection: that
     error is the modal level's, and d shows it). It is solved at 8 Chebyshev points
-    per element crossed (cached per scene, mesh, model and range) and interpolated by each element's degree-8 Chebyshev series (see
-    :data:`QS_DEGREE`): the error (< 2e-13 m for the paper's scene, ``Analysis.y_qs_error``
-    estimates it for any scene) is negligible against the dynamic part. The spectrum and main
-    frequency are those of :func:`main_frequency` on d(t) (``n_fft`` as there); the sampling
-    interval is ``dt x output_every``.
+    per element crossed (cached per scene, mesh, model and range) and interpolated by each
+    element's degree-8 Chebyshev series (see :data:`QS_DEGREE`): the error (< 2e-13 m for the
+    paper's scene, ``Analysis.y_qs_error`` estimates it for any scene) is negligible against
+    the dynamic part. The spectrum and main frequency are those of :func:`main_frequency` on
+    d(t) (``n_fft`` as there); the sampling interval is ``dt x output_every``.
 
     The contact-force statistics (``Analysis.forces``, see
     :mod:`trackwheel.force_statistics`) are taken against the static load P0 = F + M g [N]:
@@ -310,56 +285,76 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     t_d the time the wheel centre reaches X_d and T_1 = ``p1_period``, T_2 = ``p2_period`` [s].
 
     A vehicle with several wheels is measured one wheel at a time: ``wheel`` = i analyses
-    ``result.wheel(i)``, wheel i alone under its static load of the weight distribution
-    (its quasi-static line is that wheel's alone; the neighbours' static deflection is part
-    of its dynamic part d).
+    wheel i under its static load of the weight distribution. Its quasi-static line is its own
+    static displacement with the whole vehicle resting on the track (every wheel under its
+    lever-rule load, solved where any wheel crosses a node and interpolated between), so its
+    d starts at 0 as a single wheel's does, and the neighbours' static deflection is not
+    counted as dynamic.
 
-    ``t_from`` [s] measures only the samples from that time on; ``steady=True`` from the start
-    of the steady state in the sleeper bay (:func:`trackwheel.steady_state` of the contact
-    force: the start-up transient left out). On a travelling window (``scene.window``) the
-    quasi-static line is the periodic track's: solved in the window's middle bay at the wheel's
-    position in its bay.
+    On a travelling window (``scene.window``) the quasi-static line is the periodic track's:
+    solved in the window's middle bay at the wheel's (the vehicle's) position in its bay.
 
-    Raises ValueError if the run kept fewer than 4 samples, if ``defect_at`` is not passed
-    in the run, or if the run has several wheels and ``wheel`` is not given.
+    Raises ValueError if fewer than 4 samples are measured, if ``defect_at`` is not passed
+    in them, if the run has several wheels and ``wheel`` is not given, or for a bad
+    ``measure`` (or one given with ``t_from`` / ``steady``).
     """
     if not isinstance(result, Result):
         raise TypeError(f"result must be a trackwheel.Result, got {type(result).__name__}")
     if wheel is not None:
-        result = result.wheel(wheel)
+        one = result.wheel(wheel)
     elif result.n_wheels > 1:
         raise ValueError(f"result has {result.n_wheels} wheels: give wheel = 0 .. "
                          f"{result.n_wheels - 1} (one Analysis per wheel)")
+    else:
+        one = result
+    i = 0 if wheel is None else int(wheel)
+    if steady and t_from is not None:
+        raise ValueError("give t_from or steady=True, not both")
+    if (steady or t_from is not None) and not (isinstance(measure, str)
+                                              and measure == "default"):
+        raise ValueError("give measure or t_from / steady=True, not both")
     if steady:
-        if t_from is not None:
-            raise ValueError("give t_from or steady=True, not both")
-        t_from = steady_state(result).t_from
+        t_from = steady_state(one).t_from
     if t_from is not None:
-        result = from_time(result, t_from)
-    n = result.t.size
+        one = from_time(one, t_from)
+    else:
+        stretch = _measured(result, i, measure, defect_at)
+        if stretch is not None:
+            x = np.asarray(one.x_wheel, dtype=float)
+            tiny = 1e-9 * max(1.0, abs(stretch[1]))
+            one = samples(one, (x >= stretch[0] - tiny) & (x <= stretch[1] + tiny))
+    n = one.t.size
     if n < 4:
-        raise ValueError(f"result has {n} samples; the analysis needs at least 4 "
-                         "(lower output_every or run longer)")
-    s = result.settings
+        raise ValueError(f"result has {n} samples in the measured part; the analysis needs at "
+                         "least 4 (lower output_every, run longer, or widen measure)")
+    s = one.settings
     dt = float(s.dt) * int(s.output_every)
-    x = np.asarray(result.x_wheel, dtype=float)
+    x = np.asarray(one.x_wheel, dtype=float)
     linear = s.fidelity.startswith("linear/")
-    y_qs, qs_err = _quasi_static_line(result.scene, int(s.n_elements), x, linear)
-    d = result.y_contact - y_qs
+    if result.n_wheels > 1:
+        offset = result.scene.active_vehicle.positions[i]
+        y_qs, qs_err = vehicle_quasi_static_line(result.scene, int(s.n_elements), x - offset,
+                                                 i, linear)
+    else:
+        y_qs, qs_err = quasi_static_line(one.scene, int(s.n_elements), x, linear)
+    d = one.y_contact - y_qs
     i_max = int(np.argmax(np.abs(d)))
     nf = _n_fft(n_fft, n)
     freqs, amps = amplitude_spectrum(d, dt, n_fft=nf)
     resolution = 1.0 / (n * dt)
     f_main = _peak(freqs, amps, resolution, 0.5 / dt)
-    N = result.normal_force
-    forces = result_statistics(result, defect_at=defect_at, p1_period=p1_period,
+    N = one.normal_force
+    forces = result_statistics(one, defect_at=defect_at, p1_period=p1_period,
                                p2_period=p2_period)
     return Analysis(
-        t=result.t, x_wheel=x, y_contact=result.y_contact, y_qs=y_qs, dynamic=d,
-        amplitude=float(abs(d[i_max])), amplitude_time=float(result.t[i_max]),
+        t=one.t, x_wheel=x, x_range=(float(x[0]), float(x[-1])), y_contact=one.y_contact,
+        y_qs=y_qs, dynamic=d,
+        amplitude=float(abs(d[i_max])), amplitude_time=float(one.t[i_max]),
         main_frequency=f_main, frequency_resolution=resolution, spectrum=(freqs, amps),
         n_fft=nf,
         y_qs_error=qs_err, normal_force=N, min_contact_force=float(N.min()),
-        max_contact_force=float(N.max()), lost_contact=result.lost_contact,
-        acc_contact=result.acc_contact, acc_A=result.acc_A, acc_B=result.acc_B,
-        acc_C=result.acc_C, acc_D=result.acc_D, acc_E=result.acc_E, forces=forces)
+        max_contact_force=float(N.max()), lost_contact=one.lost_contact,
+        acc_contact=one.acc_contact, acc_A=one.acc_A, acc_B=one.acc_B,
+        acc_C=one.acc_C, acc_D=one.acc_D, acc_E=one.acc_E,
+        slide_duration=float(np.sum(one.sliding)) * dt,
+        locked_duration=float(np.sum(one.locked)) * dt, forces=forces)

@@ -52,6 +52,10 @@ def _array(name: str, unit: str, doc: str) -> Quantity:
 ANALYSIS_FIELDS: tuple[Quantity, ...] = (
     _array("t", "s", "time"),
     _array("x_wheel", "m", "X_A, wheel-centre position"),
+    Quantity("x_range", "m", "(X_from, X_to): the wheel-centre positions measured, the "
+             "samples the other fields hold (by default away from the rail's rigid ends and "
+             "the start-up transient; the whole run where the rail is too short for that, as "
+             "the paper's: docs: Model § Outputs)", "tuple[float, float]"),
     _array("y_contact", "m", "y_B, rail displacement under the wheel"),
     _array("y_qs", "m", "quasi-static line y_qs(X_A(t))"),
     _array("dynamic", "m", "d = y_B - y_qs(X_A)"),
@@ -73,6 +77,10 @@ ANALYSIS_FIELDS: tuple[Quantity, ...] = (
     _array("acc_C", "m/s^2", "rho cos(phi) v^2 phi_s^2"),
     _array("acc_D", "m/s^2", "rho cos(phi) phi_t^2"),
     _array("acc_E", "m/s^2", "2 rho cos(phi) phi_t v phi_s"),
+    Quantity("slide_duration", "s", "total time the wheel slid, |lambda| = mu N (a brake or "
+             "torque beyond adhesion, a violent impact; 0 if it rolled throughout)"),
+    Quantity("locked_duration", "s", "total time the wheel was locked, theta' = 0 in contact (a "
+             "brake beyond adhesion; it slides meanwhile)"),
     Quantity("forces", "", "the contact-force statistics of N "
              "(trackwheel.force_statistics.force_statistics)", "ForceStatistics"),
 )
@@ -117,8 +125,8 @@ SWEEP_COLUMNS: tuple[Column, ...] = (
     *(Column(q, "boolean" if q.kind == "bool" else "float64") for q in OUTPUTS),
     Column(Quantity("error", "", '"" if the case ran, else "DivergenceError: ..." / '
                     '"ValueError: ..."', "str"), "str"),
-    _float(Quantity("wall_time", "s", "simulate's wall time (time to failure for failed "
-                    "cases)")),
+    _float(Quantity("wall_time", "s", "simulate's wall time, or periodic_response's at the "
+                    "periodic level (time to failure for failed cases)")),
     # the settings used (from Result.settings; for failed cases the requested or default ones)
     Column(_SETTINGS["integrator"]),
     _float(_SETTINGS["dt"]),
@@ -140,6 +148,26 @@ SWEEP_COLUMNS: tuple[Column, ...] = (
 )
 #: the sweep table's column names, in order
 COLUMNS: tuple[str, ...] = tuple(c.label for c in SWEEP_COLUMNS)
+#: What the periodic level (``fidelity="periodic/linear"``, the steady state in the frequency
+#: domain) puts in each output column of the sweep table, by quantity name: the steady
+#: state's counterpart of the time-domain measure, or None where it has none (the column is
+#: then NaN). Its settings columns are empty (NaN, <NA>, None) but ``fidelity``.
+PERIODIC_OUTPUTS: dict[str, str | None] = {
+    "amplitude": "max |d| over the steady state, d = y_B - y_qs on the infinite track (exact "
+                 "for sines incommensurate with the bay, else an upper bound)",
+    "main_frequency": "the frequency of d's largest line (exact: no record)",
+    "frequency_resolution": None,  # no record
+    "min_contact_force": "the least N over all phases of the steady state",
+    "max_contact_force": "the largest N over all phases of the steady state",
+    "lost_contact": "False (a steady state that would lose contact is refused)",
+    "dynamic_factor": "max N / P",
+    "loss_duration": "0 (as lost_contact)",
+    "force_rms": "RMS of N - P over a long run, from the lines' amplitudes",
+    "p1": None,  # joints are refused: no P1/P2
+    "p1_time": None,
+    "p2": None,
+    "p2_time": None,
+}
 #: the columns of the sweep table that hold floats (NaN where a case failed)
 FLOAT_COLUMNS: tuple[str, ...] = tuple(c.label for c in SWEEP_COLUMNS if c.dtype == "float64")
 #: the output columns of one wheel (a vehicle's case has one row per wheel)
@@ -171,6 +199,12 @@ def old_name(column: Column) -> str:
     return q.label if q.unit == "km/h" else q.name
 
 
+def periodic_doc_table() -> str:
+    """Docstring lines saying what the periodic level puts in each output column."""
+    return "\n".join(f"- ``{_OUT[name].label}``: {what or 'NaN'}"
+                     for name, what in PERIODIC_OUTPUTS.items())
+
+
 def doc_table(columns) -> str:
     """Docstring lines listing ``columns`` (Column or Quantity): label, unit, description."""
     lines = []
@@ -195,7 +229,7 @@ ADEQUACY_COLUMNS: tuple[Quantity, ...] = (
     Quantity("error", "", "the message if the level failed, else \"\"", "str"),
     *HEADLINE,
     _OUT["lost_contact"],
-    Quantity("wall_time", "s", "simulate's wall time"),
+    Quantity("wall_time", "s", "simulate's wall time (the periodic level: its call's)"),
     *(Quantity(f"d_{q.name}", "-", f"relative difference of {q.name} from the reference level")
       for q in HEADLINE),
     Quantity("adequate", "", "every relative difference <= tol and no error", "bool"),

@@ -1,15 +1,17 @@
 """Model no more than a scene needs: fidelity levels side by side.
 
 :func:`adequacy` runs each level of :data:`trackwheel.simulate.FIDELITY_LEVELS` on the same scene
-and speeds, compares its headline outputs with the full model (nonlinear ANCF rail, the scene's
-contact law, contact-point search with obliquity, rolling constraint with slip) and recommends
-the cheapest level whose outputs stay within ``tol`` of it at every speed.
+and speeds -- the time-domain levels through ``simulate``, the periodic level through
+``periodic_response`` -- compares its headline outputs with the full model (nonlinear ANCF
+rail, the scene's contact law, contact-point search with obliquity, rolling constraint with
+slip) and recommends the cheapest level whose outputs stay within ``tol`` of it at every speed.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+import time
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -20,7 +22,8 @@ from .columns import ADEQUACY_COLUMNS, HEADLINE, SPEED, SPEED_KMH
 from ..run.defaults import MAX_SPEED, default_settings
 from ..excitation import contact_half_width, filter_attenuation, filter_matters
 from ..scene import Scene, Vehicle
-from ..run.simulate import FIDELITY_LEVELS, simulate
+from ..run.periodic import PeriodicResponse, periodic_response
+from ..run.simulate import FIDELITY_LEVELS, PERIODIC_LEVEL, TIME_DOMAIN_LEVELS, simulate
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
     import pandas as pd
@@ -36,7 +39,7 @@ _WALL, _LOST = ({q.name: q.label for q in ADEQUACY_COLUMNS}[n] for n in ("wall_t
 
 def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
              levels=FIDELITY_LEVELS, reference: str = "full", n_modes: int | None = None,
-             shear: bool = True, **simulate_kwargs) -> pd.DataFrame:
+             shear: bool = True, steady: bool = False, **simulate_kwargs) -> pd.DataFrame:
     """Run the fidelity ``levels`` side by side at each of ``speeds`` [m/s].
 
     Returns a DataFrame, one row per (speed, level), with the headline outputs ``amplitude_m``
@@ -52,6 +55,20 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
 
     The main frequency is compared relative to itself; the frequency resolution of a run is
     1/T (T the run's duration), so frequency differences below it are not meaningful.
+
+    The periodic level ("periodic/linear", :func:`trackwheel.periodic_response`) is the steady
+    state of the linear levels' model on the infinite periodic track: its row holds the steady
+    state's max |d|, the frequency of d's largest line and the largest contact force over all
+    phases, and its ``wall_time_s`` that of the periodic call. Against a passage of the time
+    domain (default) it is adequate where the passage is its steady state: the start-up and the
+    rail's ends do not reach the headline outputs. With ``steady=True`` every time-domain run is
+    measured over its steady part only (``analyse(..., steady=True)``: from the bay where its
+    contact force has settled, :func:`trackwheel.steady_state`), which compares the periodic
+    level like for like; a run that never settles (an irregularity that is not bay-periodic, a
+    short rail) is then an error row. Where the periodic level does not apply (contact loss, a
+    non-periodic or undamped track, several wheels, a profile that is not a sum of sines, the
+    Hertz law beyond its linearisation) its row holds the reason in ``error``. The reference
+    must be a time-domain level.
 
     With a rail profile, ``df.attrs["contact_filter"]`` says whether the contact filter
     (``Contact(patch_filter=True)``, the profile averaged over the static Hertz patch of
@@ -81,8 +98,9 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
         raise ValueError("levels must name at least one of " + ", ".join(FIDELITY_LEVELS))
     for lv in levels:
         v.choice("levels", lv, set(FIDELITY_LEVELS))
-    v.choice("reference", reference, set(FIDELITY_LEVELS))
+    v.choice("reference", reference, set(TIME_DOMAIN_LEVELS))
     v.boolean("shear", shear)
+    v.boolean("steady", steady)
     run_levels = (reference,) + tuple(lv for lv in levels if lv != reference)
     # every level on the same mesh and step: the derived defaults unless given
     defaults = default_settings(scene)
@@ -96,8 +114,11 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
             kw = dict(simulate_kwargs)
             if lv.startswith("linear/") and n_modes is not None:
                 kw["n_modes"] = n_modes
-            row = _row(speed, "level", lv, lambda: simulate(scene, float(speed), fidelity=lv,
-                                                            **kw))
+            if lv == PERIODIC_LEVEL:
+                row = _row(speed, "level", lv, lambda: periodic_response(scene, float(speed)))
+            else:
+                row = _row(speed, "level", lv, lambda: simulate(
+                    scene, float(speed), fidelity=lv, **kw), steady=steady)
             ref = row if lv == reference else ref
             rows.append(_with_differences(row, ref))
     df = _table(rows, tol, "level")
@@ -115,24 +136,31 @@ def adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float = 0.005,
     return df
 
 
-def _headline(r) -> dict:
+def _headline(r, steady: bool = False) -> dict:
     """Headline outputs of a run by column; with several wheels those of the worst wheel
-    (largest amplitude max|d|; the peak force is the largest of any wheel)."""
-    analyses = [analyse(r, wheel=i) for i in range(r.n_wheels)]
+    (largest amplitude max|d|; the peak force is the largest of any wheel); ``steady``: over
+    the run's steady part. A periodic response: those of its steady state."""
+    if isinstance(r, PeriodicResponse):
+        return {_HEAD["amplitude"]: r.amplitude, _HEAD["main_frequency"]: r.main_frequency,
+                _HEAD["peak_contact_force"]: r.max_force, _LOST: False}
+    analyses = [analyse(r, wheel=i, steady=steady) for i in range(r.n_wheels)]
     worst = max(analyses, key=lambda a: a.amplitude)
     return {_HEAD["amplitude"]: worst.amplitude, _HEAD["main_frequency"]: worst.main_frequency,
             _HEAD["peak_contact_force"]: max(a.max_contact_force for a in analyses),
             _LOST: any(a.lost_contact for a in analyses)}
 
 
-def _row(speed: float, key: str, value: str, run) -> dict:
+def _row(speed: float, key: str, value: str, run, steady: bool = False) -> dict:
     """One row of a fidelity table: the speed [m/s], ``key`` = ``value`` (the level), the
-    headline outputs of ``run()`` and its wall time, or NaN and the error if it failed."""
+    headline outputs of ``run()`` (a Result, or a PeriodicResponse) and its wall time, or NaN
+    and the error if it failed."""
     row = {_SPEED: float(speed), _SPEED_KMH: float(speed) * 3.6, key: value, "error": ""}
     try:
+        t0 = time.perf_counter()
         r = run()
-        row.update(_headline(r))
-        row[_WALL] = r.wall_time
+        wall = time.perf_counter() - t0
+        row.update(_headline(r, steady))
+        row[_WALL] = getattr(r, "wall_time", wall)
     except (ValueError, RuntimeError) as exc:  # DivergenceError is a RuntimeError
         row.update({c: np.nan for c in _HEAD.values()})
         row.update({_LOST: False, _WALL: np.nan, "error": str(exc)})
@@ -220,7 +248,7 @@ def pinned_pinned_frequencies(scene: Scene) -> tuple[float, float]:
     k = pi/d_s (docs: Model, section "Shear-deformable rail (Timoshenko)")."""
     r, d = scene.rail, scene.supports.spacing
     k = math.pi / d
-    kg = r.shear_coefficient * r.shear_modulus
+    kg = r.shear_coefficient * r.modulus_of_rigidity
     a = r.rotary_inertia * r.density / kg
     b = r.mass_per_length + r.rotary_inertia * k**2 + r.bending_stiffness * k**2 * r.density / kg
     c = r.bending_stiffness * k**4

@@ -11,7 +11,7 @@ import numpy as np
 from ...run import frequency
 from ..checks import output_options
 from ..formatting import frequency_elements, save_figure, write_csv
-from ..options import mesh_option, positive_int, track_option
+from ..options import damping_options, mesh_option, positive_int, track_option
 from ..scenes import OptionError, scene_name, track_scene
 
 #: rail length [m] of ``decay-rate --track ballasted``: the EN 15461 line (66 bays, 39.6 m)
@@ -31,7 +31,8 @@ def add(sub) -> None:
     p.add_argument("--per-band", type=positive_int, default=8, metavar="N",
                    help="frequencies per band, log-spaced inside it (default 8)")
     mesh_option(p)
-    track_option(p, length_default=f"{DECAY_LENGTH:g} here")
+    damping_options(p, contact=False)
+    track_option(p, length_default=f"{DECAY_LENGTH:g} here", fidelity=False)
     p.add_argument("--out", type=Path, metavar="CSV",
                    help="write band_hz, decay_rate_db_per_m, iso3095_limit_db_per_m to this file")
     p.add_argument("--plot", type=Path, metavar="PNG",
@@ -48,9 +49,13 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error(str(exc))
     span = (frequency.EN15461_SPANS[-1] + 1.0) * scene.supports.spacing
     if scene.rail.length <= span:
+        advice = (f"give a --length of at least {span:g} m (a multiple of "
+                  f"{scene.supports.spacing:g} m; default {DECAY_LENGTH:g} m)"
+                  if args.track == "ballasted" else
+                  f"use --track ballasted (default length {DECAY_LENGTH:g} m)")
         parser.error(f"the EN 15461 positions need a rail longer than {span:g} m (67 support "
-                     f"spacings); {scene_name(scene, args)} is {scene.rail.length:g} m: use "
-                     f"--track ballasted (default {DECAY_LENGTH:g} m)")
+                     f"spacings); {scene_name(scene, args)} is {scene.rail.length:g} m: "
+                     f"{advice}")
     edges = frequency.iso3095_band_edges()
     n_el = frequency_elements(scene, edges[-1], args.n_elements, "decay-rate")
     dr = frequency.band_decay_rates(scene, args.per_band, n_el)

@@ -13,7 +13,7 @@ from ...scene import Scene
 from ...study.fidelity import pinned_pinned_frequencies
 from ..checks import option_error, output_options
 from ..formatting import frequency_elements, save_figure, write_csv
-from ..options import finite_float, mesh_option, positive_int, track_option
+from ..options import damping_options, finite_float, mesh_option, positive_int, track_option
 from ..scenes import OptionError, scene_name, track_scene
 
 
@@ -36,7 +36,8 @@ def add(sub) -> None:
     p.add_argument("--n", type=positive_int, default=400, metavar="N",
                    help="frequencies, log-spaced (linear from 0 Hz; default 400)")
     mesh_option(p)
-    track_option(p)
+    damping_options(p, contact=False)
+    track_option(p, fidelity=False)
     p.add_argument("--out", type=Path, metavar="CSV",
                    help="write f_hz, re_m_per_n, im_m_per_n, abs_m_per_n, phase_deg to this file")
     p.add_argument("--plot", type=Path, metavar="PNG",

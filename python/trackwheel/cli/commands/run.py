@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...base.errors import DivergenceError
+from ...base.errors import DivergenceError, PlausibilityWarning
 from ...base.limits import MAX_SPEED
 from ...base.units import kmh
 from ...run.eigen import eigen
@@ -21,8 +21,9 @@ from ...scene import Scene, Window
 from ...study.analysis import analyse
 from ...study.force_statistics import defect_position
 from ..checks import option_error, output_options, speeds_kmh
-from ..formatting import print_notes, print_warnings
+from ..formatting import print_notes, print_warnings, wall_time_text
 from ..options import (
+    damping_options,
     excitation_options,
     finite_float,
     positive_float,
@@ -45,10 +46,15 @@ from ..scenes import (
 def add(sub) -> None:
     p = sub.add_parser(
         "run", help="simulate one passage and print the headline outputs",
-        description="Simulate the wheel passing over the rail of Scene.kato2005() at one speed "
+        description="Simulate the wheel passing over the rail of the --track scene (default "
+                    "Scene.kato2005()) at one speed "
                     "and print the amplitude max|d| of the contact-point vibration "
                     "(d = y_B - y_qs, docs: Model § Outputs), its main frequency and resolution, the "
-                    "contact-force range, whether the wheel lost contact, and the wall time.")
+                    "contact-force range, whether the wheel lost contact (and slid), and the "
+                    "wall time of the whole command (the simulation's share beside it); "
+                    "measured, as tw.analyse does, on the part of the run clear of the rail's "
+                    "ends and the start-up transient (the X range run and measured are "
+                    "printed; the paper's 5 m rail is measured whole).")
     p.add_argument("--speed-kmh", type=finite_float, required=True, metavar="V",
                    help=f"forward speed [km/h], 0 < V <= {MAX_SPEED * 3.6:.4g}")
     p.add_argument("--support-stiffness", type=finite_float, metavar="K",
@@ -56,9 +62,12 @@ def add(sub) -> None:
                         "the rail pad's, default 180e6)")
     track_option(p)
     p.add_argument("--vehicle", choices=VEHICLES, default="single",
-                   help="single: the paper's wheel under its constant load; bogie: "
-                        "Vehicle.bogie() on the --track rail; half-car: Vehicle.half_car() on "
-                        "the --track rail lengthened to 25 m (docs: Model § The vehicle)")
+                   help="single: the paper's wheel under its constant load; quarter-car: "
+                        "Vehicle.quarter_car() (wheel, primary, bogie, secondary, body); "
+                        "bogie: Vehicle.bogie() on the --track rail; half-car: "
+                        "Vehicle.half_car() on the --track rail lengthened by its 20 m span "
+                        "(docs: Model § The vehicle)")
+    damping_options(p)
     excitation_options(p)
     p.add_argument("--brake-torque", type=finite_float, metavar="T_B",
                    help="friction brake on the wheel's rotation [N m], >= 0: beyond adhesion "
@@ -92,14 +101,18 @@ def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} elements, "
           f"fidelity {st.fidelity}, excitation: {describe(scene)}")
+    x = np.asarray(r.x_wheel)
+    print(f"  run      : wheel 0 X = {x[0, 0]:.4g} -> {x[-1, 0]:.4g} m, wheel "
+          f"{veh.n_wheels - 1} X = {x[0, -1]:.4g} -> {x[-1, -1]:.4g} m"
+          if x.ndim == 2 else f"  run      : X = {x[0]:.4g} -> {x[-1]:.4g} m")
     loads = veh.static_loads(scene.gravity)
     for i in range(veh.n_wheels):
-        a = analyse(r, wheel=i, defect_at=x_d)
-        print(f"  wheel {i} (x = {veh.positions[i]:g} m): max|d| = {a.amplitude * 1e6:.3f} µm, "
+        a = analyse(r, wheel=i if veh.n_wheels > 1 else None, defect_at=x_d)
+        print(f"  wheel {i} (x = {veh.positions[i]:g} m): measured X = {a.x_range[0]:.4g} -> "
+              f"{a.x_range[1]:.4g} m: max|d| = {a.amplitude * 1e6:.3f} µm, "
               f"N = {a.min_contact_force / 1e3:.2f} .. {a.max_contact_force / 1e3:.2f} kN "
               f"(static {loads[i] / 1e3:.2f} kN), dynamic factor {a.dynamic_factor:.4f}, "
               f"lost contact: {'yes' if a.lost_contact else 'no'}")
-    print(f"  wall time: {r.wall_time:.3f} s ({r.steps} steps)")
 
 
 def _print_forces(scene: Scene, a) -> None:
@@ -116,6 +129,25 @@ def _print_forces(scene: Scene, a) -> None:
               f"{f.defect_time * 1e3:.3f} ms)")
 
 
+def _print_sliding(scene: Scene, r, a) -> None:
+    """Whether the wheel slid and locked, beside the brake's torque and the adhesion limit
+    mu P rho0 (printed for a braked run, or whenever the wheel slid)."""
+    brake = scene.wheel.brake_torque
+    if a.slide_duration == 0.0 and brake == 0.0:
+        return
+    limit = scene.contact.friction * scene.static_load * scene.wheel.radius
+    versus = (f"brake torque {brake:g} N m {'>' if brake > limit else '<='} adhesion limit "
+              f"mu P rho0 = {limit:.0f} N m" if brake > 0.0 else "no brake")
+    if a.slide_duration == 0.0:
+        print(f"  sliding        : no ({versus})")
+        return
+    slid, locked = r.sliding_intervals(), r.locked_intervals()
+    lock = (f"; locked (theta' = 0) from t = {locked[0][0] * 1e3:.3f} ms, "
+            f"{a.locked_duration * 1e3:.3f} ms in all" if locked else "; never locked")
+    print(f"  sliding        : yes, from t = {slid[0][0] * 1e3:.3f} ms, "
+          f"{a.slide_duration * 1e3:.3f} ms in all{lock} ({versus})")
+
+
 def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005()") -> None:
     st = r.settings
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
@@ -124,7 +156,13 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
     print(f"{name}, {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings       : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} "
-          f"elements, X = {x0:.4g} -> {x1:.4g} m, fidelity {st.fidelity}")
+          f"elements, fidelity {st.fidelity}")
+    print(f"  run            : X = {x0:.4g} -> {x1:.4g} m")
+    whole = a.x_range[0] <= x0 and a.x_range[1] >= x1
+    print(f"  measured       : X = {a.x_range[0]:.4g} -> {a.x_range[1]:.4g} m  ("
+          + ("the whole run: no stretch of it is clear of the rail's ends and the start-up "
+             "transient"
+             if whole else "clear of the rail's ends and the start-up transient") + ")")
     print(f"  excitation     : {describe(scene)}")
     print(f"  amplitude      : {a.amplitude * 1e6:.3f} µm  (max |d|, d = y_B - y_qs; at "
           f"X = {a.x_wheel[i_max]:.3f} m)")
@@ -138,8 +176,13 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
               f"t = {free[0][0] * 1e3:.3f} ms, {a.loss_duration * 1e3:.3f} ms in all")
     else:
         print("  lost contact   : no")
+    _print_sliding(scene, r, a)
     _print_forces(scene, a)
-    print(f"  wall time      : {r.wall_time:.3f} s ({r.steps} steps)")
+
+
+def _wall(args: argparse.Namespace, r) -> str:
+    """The whole command's wall time, the simulation's beside it."""
+    return wall_time_text(getattr(args, "started", None), r.wall_time, r.steps)
 
 
 def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
@@ -156,6 +199,8 @@ def _finish_vehicle_run(scene: Scene, args: argparse.Namespace, r, x_d) -> int:
         except (OSError, ValueError) as exc:
             print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
             return 1
+        print(f"  plot: {args.plot}")
+    print(f"  wall time: {_wall(args, r)}")
     return 0
 
 
@@ -169,8 +214,12 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.window is not None and args.distance is None:
         parser.error("--window needs --distance (the window is for long runs)")
     try:
-        scene = vehicle_scene(track_scene(args, args.support_stiffness), args.vehicle)
+        with warnings.catch_warnings(record=True) as caught:  # e.g. a stiffness in MN/m
+            warnings.simplefilter("always")
+            track = track_scene(args, args.support_stiffness)
+        scene, vehicle_notes = vehicle_scene(track, args.vehicle)
         scene, notes = excited_scene(scene, args)
+        notes = vehicle_notes + notes
         if args.brake_torque is not None:
             scene = dataclasses.replace(scene, wheel=dataclasses.replace(
                 scene.wheel, brake_torque=args.brake_torque))
@@ -180,6 +229,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error(str(exc))
     except (ValueError, TypeError) as exc:  # e.g. a support stiffness out of range
         parser.error(option_error(exc))
+    print_warnings(caught, "run")
     print_notes(notes, "run")
     if args.distance is not None:
         return _window_run(scene, args, parser)
@@ -207,6 +257,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             print(f"trackwheel run: cannot write --plot {args.plot}: {exc}", file=sys.stderr)
             return 1
         print(f"  plot           : {args.plot}")
+    print(f"  wall time      : {_wall(args, r)}")
     return 0
 
 
@@ -216,6 +267,8 @@ def _simulate(scene: Scene, speed_kmh: float, kw: dict, parser):
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
+            # checked in km/h by speeds_kmh (the library's warning speaks of m/s)
+            warnings.filterwarnings("ignore", message="speed = ", category=PlausibilityWarning)
             r = simulate(scene, kmh(speed_kmh), **kw)
     except (ValueError, TypeError) as exc:
         parser.error(option_error(exc))
@@ -256,7 +309,8 @@ def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
           f"{w.bays_behind} + {w.bays_ahead} bays ({scene.rail.length:g} m{ends}), "
           f"{kw['fidelity']}")
     print(f"run            : {x[-1] - x[0]:.1f} m at {args.speed_kmh:g} km/h, {r.steps} steps "
-          f"in {r.wall_time:.1f} s ({1e6 * r.wall_time / max(r.steps, 1):.1f} us/step)")
+          f"simulated in {r.wall_time:.1f} s ({1e6 * r.wall_time / max(r.steps, 1):.1f} "
+          "us/step)")
     print(f"contact force  : {N.min() / 1e3:.2f} .. {N.max() / 1e3:.2f} kN, mean "
           f"{N.mean() / 1e3:.2f} kN, std {N.std() / 1e3:.2f} kN; lost contact: "
           f"{'yes' if (N <= 0.0).any() else 'no'}")
@@ -266,4 +320,5 @@ def _window_run(scene: Scene, args: argparse.Namespace, parser) -> int:
         if m.sum() > 1:
             print(f"{'':17s}{x0:>8.1f}  {N[m].min() / 1e3:>9.2f}  {N[m].max() / 1e3:>9.2f}  "
                   f"{N[m].std() / 1e3:>9.2f}")
+    print(f"wall time      : {_wall(args, r)}")
     return 0

@@ -4,15 +4,18 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from pathlib import Path
 
+from ...base.errors import FailedCasesWarning, PlausibilityWarning, SweepFailedError
 from ...base.limits import MAX_SPEED
 from ...base.units import kmh
 from ...study.columns import OUTPUTS, SPEED_KMH, SUPPORT_STIFFNESS, label
 from ...study.sweep import summarise_seeds, sweep
 from ..checks import option_error, output_file, speeds_kmh, writable_folder
-from ..formatting import print_notes
+from ..formatting import print_notes, print_warnings
 from ..options import (
+    damping_options,
     excitation_options,
     finite_float,
     positive_int,
@@ -26,7 +29,8 @@ from ..scenes import OptionError, describe, excited_scene, track_scene
 def add(sub) -> None:
     p = sub.add_parser(
         "sweep", help="run a speed x support-stiffness sweep into a store",
-        description="Run every (speed, support stiffness) case of Scene.kato2005() in parallel "
+        description="Run every (speed, support stiffness) case of the --track scene (default "
+                    "Scene.kato2005()) in parallel "
                     "(trackwheel.sweep), with --seeds one case per realisation of the random "
                     "--irregularity, keep each finished case in --store (a re-run skips them) "
                     "and print the table (with --seeds also the 5/50/95 % percentiles over "
@@ -44,6 +48,7 @@ def add(sub) -> None:
     p.add_argument("--workers", type=positive_int, metavar="N",
                    help="processes (default: one per core)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    damping_options(p)
     excitation_options(p, seeds=True)
     simulate_options(p, auto=True)
     p.set_defaults(run=run, parser=p)
@@ -114,6 +119,11 @@ def _pcts(row, q) -> str:
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     speeds_kmh(args.speeds_kmh, "--speeds-kmh", parser)
+    for option, values, unit in (("--speeds-kmh", args.speeds_kmh, "km/h"),
+                                 ("--support-stiffness", args.support_stiffness or [], "N/m")):
+        twice = sorted({x for x in values if values.count(x) > 1})
+        if twice:
+            parser.error(f"{option}: {twice[0]:g} {unit} is given twice")
     if args.out is not None:
         output_file(args.out, "--out", parser)
     writable_folder(args.store, "--store", parser, create=True)
@@ -135,13 +145,24 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error(str(exc))
     print_notes(notes, "sweep")
     try:
-        df = sweep(scene, speed=[kmh(v) for v in args.speeds_kmh], seeds=seeds,
-                   support_stiffness=args.support_stiffness, store=args.store,
-                   progress=not args.no_progress, max_workers=args.workers,
-                   **simulate_kwargs(args), **extra)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            # the failed cases are counted below; the speeds were checked in km/h above
+            warnings.filterwarnings("ignore", category=FailedCasesWarning)
+            warnings.filterwarnings("ignore", message="speed = ", category=PlausibilityWarning)
+            df = sweep(scene, speed=[kmh(v) for v in args.speeds_kmh], seeds=seeds,
+                       support_stiffness=args.support_stiffness, store=args.store,
+                       progress=not args.no_progress, max_workers=args.workers,
+                       **simulate_kwargs(args), **extra)
+    except SweepFailedError as exc:
+        print_warnings(caught, "sweep")
+        _print_sweep(exc.table, args.store, describe(scene, seeds))
+        print(f"trackwheel sweep: {exc}", file=sys.stderr)
+        return 1
     except (ValueError, TypeError) as exc:
         parser.error(option_error(exc))
-    _print_sweep(df, args.store, describe(scene))
+    print_warnings(caught, "sweep")
+    _print_sweep(df, args.store, describe(scene, seeds))
     if args.out is not None:
         try:
             df.to_csv(args.out, index=False)
@@ -151,6 +172,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         print(f"table written to {args.out}")
     n_failed = int((df["error"] != "").sum())
     if n_failed:
-        print(f"{n_failed} case(s) failed (recorded with their error)", file=sys.stderr)
+        first = df["error"][df["error"] != ""].iloc[0]
+        print(f"trackwheel sweep: {n_failed} of {len(df)} case(s) failed (recorded with their "
+              f"error); the first: {first}", file=sys.stderr)
         return 1
     return 0

@@ -17,7 +17,7 @@ stepping, no mesh, no start-up transient.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -34,14 +34,10 @@ from ...excitation import (
 )
 from ...scene import Scene
 from ._moving import receptance_matrix
-from ._track import PeriodicTrack
-from .wheel import (
-    PERIODIC_FIDELITIES,
-    fidelity_of,
-    wheel_contact_receptance,
-    wheel_of,
-    wheel_receptance,
-)
+from .balance import DEFAULT_RTOL, balance, own_weight_sag, periodic_track
+from . import outputs as _outputs
+from .outputs import extremes
+from .wheel import PERIODIC_FIDELITIES, fidelity_of, wheel_of
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
     import pandas as pd
@@ -55,71 +51,6 @@ __all__ = ["DEFAULT_HARMONICS", "PERIODIC_FIDELITIES", "PeriodicResponse", "movi
 DEFAULT_HARMONICS = 6
 #: Harmonics kept beyond the reported ones on each side of the balance [-]
 HARMONIC_MARGIN = 2
-#: Default relative tolerance of the k quadrature of the receptance matrix [-]
-DEFAULT_RTOL = 1e-7
-#: Bay phases sampled for the force's extremes [-]
-PHASES = 512
-
-
-def periodic_track(scene: Scene) -> PeriodicTrack:
-    """The scene's linear track as the periodic level sees it: the infinite rail (the scene's
-    beam theory) on its supports every ``Supports.spacing``, checked to be periodic and
-    damped. The rail's length, its end supports and absorbing zones, a travelling window and
-    the track's own weight do not enter (an infinite track; a static preload)."""
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
-    sup, rail = scene.supports, scene.rail
-    if sup.positions is not None:
-        raise ValueError("the periodic level needs a track periodic in its sleeper bay: equal "
-                         "supports every Supports.spacing (Supports.positions must be None, got "
-                         f"{len(sup.positions)} explicit positions)")
-    track = PeriodicTrack(
-        bay=sup.spacing, bending_stiffness=rail.bending_stiffness,
-        mass_per_length=rail.mass_per_length,
-        shear_stiffness=rail.shear_stiffness if rail.beam == "timoshenko" else math.inf,
-        rotary_inertia=rail.rotary_inertia if rail.beam == "timoshenko" else 0.0,
-        pad_stiffness=sup.stiffness, pad_damping=sup.damping,
-        sleeper_mass=sup.sleeper_mass or 0.0, ballast_stiffness=sup.ballast_stiffness or 0.0,
-        ballast_damping=sup.ballast_damping)
-    if not track.damped:
-        raise ValueError("the periodic level needs damping in the supports (Supports.damping > 0, "
-                         "or Supports.ballast_damping > 0 with sleepers): on an undamped "
-                         "periodic track the waves the moving wheel excites never decay, so "
-                         "there is no steady state to compute (the time domain never settles "
-                         "either)")
-    return track
-
-
-
-def own_weight_sag(scene: Scene, n: int) -> np.ndarray:
-    """Fourier coefficients c_p, p = -n..n, of the track's rest state under its own weight
-    (``Scene.rail_gravity``): the rail's height w_g(X) = sum_p c_p e^{i 2 pi p X / d} [m], X
-    from a support. By symmetry each support carries the weight of one bay, q d (q = rho A g),
-    and the rail has zero slope there, so each bay is a clamped-clamped beam under q:
-    w_g = y_s - q x^2 (d - x)^2 / (24 EI) - q x (d - x) / (2 kappa G A) (the last term
-    Timoshenko only), with the supports' own deflection y_s = -q d / k_s, or for pad-sleeper-
-    ballast supports -q d / k_p - (q d + m_s g) / k_b. Its harmonics, c_p = q d^4 / (16 EI
-    pi^4 p^4) + q d^2 / (4 kappa G A pi^2 p^2), are a bay-periodic profile the wheel rolls
-    over: the rail sags between the sleepers under its own weight."""
-    p = np.arange(-n, n + 1)
-    out = np.zeros(p.size, complex)
-    if not scene.rail_gravity:
-        return out
-    rail, sup = scene.rail, scene.supports
-    d, q = sup.spacing, rail.mass_per_length * scene.gravity
-    EI = rail.bending_stiffness
-    shear = rail.beam == "timoshenko"
-    GA = rail.shear_stiffness
-    if sup.layered:
-        y_s = -q * d / sup.stiffness - (q * d + sup.sleeper_mass * scene.gravity) / (
-            sup.ballast_stiffness)
-    else:
-        y_s = -q * d / sup.stiffness
-    out[n] = y_s - q * d**4 / (720.0 * EI) - (q * d * d / (12.0 * GA) if shear else 0.0)
-    pp = p[p != 0].astype(float)
-    out[p != 0] = q * d**4 / (16.0 * EI * math.pi**4 * pp**4) + (
-        q * d * d / (4.0 * GA * math.pi**2 * pp**2) if shear else 0.0)
-    return out
 
 
 @dataclass(frozen=True)
@@ -207,6 +138,10 @@ class PeriodicResponse:
     #: the rows: (frequency [Hz], N, y, Y (complex amplitudes, [N], [m], [m]), the moving
     #: receptance [m/N], source, order, component); built into the tables on access
     rows: tuple = ()
+    #: the balances solved, the sleeper passing first, then one per sine: (omega [rad/s],
+    #: N_p [N], y_p [m]) over all kept p (the sleeper passing's y_p: the rail under the wheel,
+    #: own-weight sag included), for the outputs of ``.outputs``
+    balances: tuple = field(default=(), repr=False, compare=False)
 
     def _harmonics(self, column: int, amplitude: str) -> pd.DataFrame:
         return _table([(r[0], abs(r[column]), float(np.angle(r[column])), r[5], r[6], r[7])
@@ -247,6 +182,39 @@ class PeriodicResponse:
         """max N / P [-]."""
         return self.max_force / self.mean_force
 
+    @cached_property
+    def amplitude(self) -> float:
+        """max |d| [m] over the steady state, d = y_B - y_qs(X_A) the dynamic part of the rail
+        under the wheel (as ``Analysis.amplitude``; y_qs the quasi-static line of the infinite
+        track, ``quasi_static_line``)."""
+        return _outputs.amplitude(self)
+
+    @cached_property
+    def main_frequency(self) -> float:
+        """The frequency of the largest line of d [Hz] (as ``Analysis.main_frequency``, exact:
+        no record, no resolution); NaN if d has none."""
+        return _outputs.main_frequency(self)
+
+    @cached_property
+    def force_rms(self) -> float:
+        """RMS of N - P over a long run [N]."""
+        return _outputs.force_rms(self)
+
+    def quasi_static_line(self, x) -> np.ndarray:
+        """y_qs [m] at wheel positions ``x`` [m] (from a support): the rail under the wheel
+        resting there, the static load on the infinite track with its own weight (as
+        ``Analysis.y_qs``)."""
+        c = _outputs.quasi_static_harmonics(self.scene, (len(self.balances[0][2]) - 1) // 2)
+        n = (c.size - 1) // 2
+        phase = 2j * math.pi * np.multiply.outer(np.asarray(x, dtype=float), np.arange(-n, n + 1))
+        return (np.exp(phase / self.scene.supports.spacing) @ c).real
+
+    def outputs(self) -> dict:
+        """The scalar outputs of the steady state by quantity name, as ``Analysis.outputs``
+        gives them by column (a sweep's row; NaN where the periodic level has none: the
+        frequency resolution, P1/P2)."""
+        return _outputs.outputs(self)
+
     def force(self, t) -> np.ndarray:
         """N(t) [N] at times t [s] (t = 0: the wheel over a support), all rows summed with the
         running surfaces' phases as given."""
@@ -275,49 +243,6 @@ class PeriodicResponse:
                 f"P = {self.mean_force / 1e3:.4g} kN, sleeper passing {self.sleeper_frequency:.4g}"
                 f" Hz with first harmonic {first:.4g} N, N in [{self.min_force / 1e3:.4g}, "
                 f"{self.max_force / 1e3:.4g}] kN, {len(self.rows)} harmonics)")
-
-
-@dataclass(frozen=True)
-class Balance:
-    """One harmonic balance: the harmonics p = -n..n at w_p = omega + p w_s."""
-
-    w: np.ndarray  #: w_p [rad/s]
-    A: np.ndarray  #: the rail's moving-load receptance matrix [m/N]
-    N: np.ndarray  #: force harmonics [N]
-    y: np.ndarray  #: the rail's displacement harmonics under the wheel [m]
-    Y: np.ndarray  #: the wheel centre's [m]
-    static: np.ndarray  #: harmonics at zero frequency (bool)
-
-
-def balance(track, wheel, fidelity, speed, omega, n, rhs, *, mean=None, rtol=DEFAULT_RTOL):
-    """Solve the harmonic balance at base frequency ``omega`` [rad/s] for the excitation
-    ``rhs`` (the running surfaces' harmonics under the wheel, (2n+1,) [m]). ``mean`` = P
-    [N]: the sleeper passing, whose harmonic p = 0 is the static load (known; its equation
-    gives the mean displacements)."""
-    p = np.arange(-n, n + 1)
-    i0 = n
-    ws = 2.0 * math.pi * speed / track.bay
-    w = omega + p * ws
-    A = receptance_matrix(track, speed, omega, n, rtol=rtol)[0]
-    # a harmonic at zero frequency carries no force: the wheel's mean acceleration is zero
-    static = np.abs(w) < 1e-9 * max(ws, abs(omega))
-    if mean is not None:
-        static = p == 0
-    wsafe = np.where(static, 1.0, w)
-    free = ~static
-    N = np.zeros(p.size, complex)
-    if mean is not None:
-        N[i0] = mean
-    if fidelity != "linear/moving_force":
-        Z = A[np.ix_(free, free)] + np.diag(wheel_contact_receptance(wheel, wsafe[free]))
-        N[free] = np.linalg.solve(Z, rhs[free] - A[np.ix_(free, static)] @ N[static])
-    y = -A @ N
-    if mean is not None:
-        y = y + rhs  # the own-weight sag: part of the rail's height under the wheel
-    Y = np.where(static, 0.0, wheel_receptance(wheel, wsafe)) * N
-    if fidelity == "linear/moving_force":
-        Y = y + (0.0 if mean is not None else rhs)
-    return Balance(w, A, N, y, Y, static)
 
 
 def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity | None = None,
@@ -380,11 +305,13 @@ def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity 
         rows.append((sp.w[j] / (2.0 * math.pi), 2.0 * sp.N[j], 2.0 * sp.y[j], 2.0 * sp.Y[j],
                      sp.A[j, j], "sleeper_passing", q, ""))
     envelopes = []  # per sine: the force harmonics, whose sum over p is its envelope
+    balances = [(0.0, sp.N, sp.y)]
     for s in sines:
         rhs = np.zeros(2 * n + 1, complex)
         rhs[i0] = s.amplitude
         b = balance(track, wheel, fidelity, speed, s.omega, n, rhs, rtol=rtol)
         envelopes.append(b.N)
+        balances.append((s.omega, b.N, b.y))
         for j in range(i0 - n_out, i0 + n_out + 1):
             if b.static[j]:
                 continue
@@ -400,23 +327,7 @@ def periodic_response(scene: Scene, speed: float, *, irregularity: Irregularity 
         scene=scene, speed=speed, fidelity=fidelity, n_harmonics=n_out,
         sleeper_frequency=speed / track.bay, mean_force=P, mean_rail_displacement=mean_rail,
         mean_wheel_displacement=mean_wheel, min_force=lo, max_force=hi,
-        contact_stiffness=wheel.contact_stiffness, rows=tuple(rows))
-
-
-def extremes(Nsp, envelopes, n) -> tuple[float, float]:
-    """(min N, max N) [N] over all phases: the sleeper passing at the bay phase theta plus,
-    per sine, its envelope |G(theta)| at the least and the most favourable phase of the sine
-    (exact for sines incommensurate with the bay, a bound otherwise)."""
-    p = np.arange(-n, n + 1)
-
-    def at_phases(N):  # sum_p N_p e^{i p theta_j}, theta_j = 2 pi j / PHASES
-        spread = np.zeros(PHASES, complex)
-        np.add.at(spread, p % PHASES, N)
-        return np.fft.ifft(spread) * PHASES
-
-    base = at_phases(Nsp).real
-    spread = sum((np.abs(at_phases(N)) for N in envelopes), np.zeros(PHASES))
-    return float((base - spread).min()), float((base + spread).max())
+        contact_stiffness=wheel.contact_stiffness, rows=tuple(rows), balances=tuple(balances))
 
 
 def check_applies(fidelity, P, lo, hi, tol, loss=True):

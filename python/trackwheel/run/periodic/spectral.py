@@ -33,14 +33,9 @@ from ...excitation import contact_half_width, filter_attenuation
 from ...scene import Scene
 from ...excitation.spectra import ChinaSpectrum, FRASpectrum, GermanSpectrum, ThirdOctaveSpectrum
 from .wheel import fidelity_of, wheel_of
-from .response import (
-    DEFAULT_RTOL,
-    PHASES,
-    balance,
-    check_applies,
-    periodic_response,
-    periodic_track,
-)
+from .balance import DEFAULT_RTOL, balance, periodic_track
+from .outputs import PHASES
+from .response import check_applies, periodic_response
 
 if TYPE_CHECKING:
     import pandas as pd

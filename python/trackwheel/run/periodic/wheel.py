@@ -10,6 +10,7 @@ import numpy as np
 
 from ...base import validate as v
 from ...scene import Scene
+from .. import kernel
 
 #: The time-domain levels the periodic level reproduces (the linear track with the wheel's
 #: contact law linear or linearised): "linear/sprung" (linear spring k), "linear/hertz"
@@ -31,7 +32,9 @@ class PeriodicWheel:
     contact_damping: float  #: [N s/m]
     static_compression: float  #: delta at the static load [m]
     radius: float  #: rho0 [m]
-    vehicle: object  #: the Vehicle with bodies, or None
+    #: (M_v, K_v, C_v) of the vehicle over u = [Y, (z, phi) per body] (the kernel's,
+    #: ``kernel.vehicle_matrices``), or None for a wheel without bodies above it
+    vehicle: tuple | None
     gravity: float
 
 
@@ -63,7 +66,10 @@ def wheel_of(scene: Scene, fidelity: str) -> PeriodicWheel:
         comp = (P / ch) ** (2.0 / 3.0)
     else:
         k, comp = math.inf, 0.0
-    bodies = scene.vehicle if (scene.vehicle is not None and scene.vehicle.n_bodies) else None
+    bodies = None
+    if scene.vehicle is not None and scene.vehicle.n_bodies:
+        vm = kernel.vehicle_matrices(scene)
+        bodies = (np.diag(vm.mass), vm.K, vm.C)
     return PeriodicWheel(load=P, mass=w.mass, contact_stiffness=k, contact_damping=c.damping,
                   static_compression=comp, radius=w.radius, vehicle=bodies,
                   gravity=scene.gravity)
@@ -71,53 +77,17 @@ def wheel_of(scene: Scene, fidelity: str) -> PeriodicWheel:
 
 def wheel_receptance(wheel: PeriodicWheel, w: np.ndarray) -> np.ndarray:
     """alpha_W(w) [m/N]: the wheel centre's displacement per upward force on it at w [rad/s]
-    (w != 0): -1/(M w^2) for a free wheel, else from the vehicle's dynamic stiffness
-    K_v + i w C_v - w^2 M_v over u = [Y_wheel, (z, phi) per body]
-    (docs: Model § The vehicle)."""
+    (w != 0): -1/(M w^2) for a free wheel, else the wheel's entry of the inverse of the
+    vehicle's dynamic stiffness K_v + i w C_v - w^2 M_v over u = [Y_wheel, (z, phi) per body],
+    the kernel's matrices (docs: Model § The vehicle)."""
     w = np.asarray(w, dtype=float)
     if wheel.vehicle is None:
         return -1.0 / (wheel.mass * w * w) + 0j
-    M, K, C = vehicle_matrices(wheel.vehicle)
+    M, K, C = wheel.vehicle
     Z = K[None] + 1j * w[:, None, None] * C[None] - (w * w)[:, None, None] * M[None]
     rhs = np.zeros((w.size, M.shape[0], 1), complex)
     rhs[:, 0, 0] = 1.0
     return np.linalg.solve(Z, rhs)[:, 0, 0]
-
-
-def vehicle_matrices(veh):
-    """(M, K, C) of a one-wheel vehicle over u = [Y, z_0, phi_0, ...]: the masses and
-    inertias, and sum k_s g_s g_s^T, sum c_s g_s g_s^T over its suspensions, g_s the
-    gradient of the extension d_s = z_u + a_u phi_u - (Y or z_l + a_l phi_l) (the kernel's
-    convention, docs: Model § The vehicle)."""
-    nb = veh.n_bodies
-    n = 1 + 2 * nb
-    M = np.zeros((n, n))
-    K = np.zeros((n, n))
-    C = np.zeros((n, n))
-    M[0, 0] = veh.wheels[0].mass
-    springs = []
-    for j, b in enumerate(veh.bogies):
-        M[1 + 2 * j, 1 + 2 * j], M[2 + 2 * j, 2 + 2 * j] = b.mass, b.pitch_inertia
-        for w in b.wheels:
-            g = np.zeros(n)
-            g[1 + 2 * j] += 1.0
-            g[2 + 2 * j] += veh.positions[w] - b.centre
-            g[w] -= 1.0
-            springs.append((b.primary_stiffness, b.primary_damping, g))
-    if veh.car is not None:
-        jc = len(veh.bogies)
-        c = veh.car
-        M[1 + 2 * jc, 1 + 2 * jc], M[2 + 2 * jc, 2 + 2 * jc] = c.mass, c.pitch_inertia
-        for j, b in enumerate(veh.bogies):
-            g = np.zeros(n)
-            g[1 + 2 * jc] += 1.0
-            g[2 + 2 * jc] += b.centre - c.centre
-            g[1 + 2 * j] -= 1.0
-            springs.append((c.secondary_stiffness, c.secondary_damping, g))
-    for k, c, g in springs:
-        K += k * np.outer(g, g)
-        C += c * np.outer(g, g)
-    return M, K, C
 
 
 def fidelity_of(scene, fidelity) -> str:

@@ -52,6 +52,13 @@ parent running threads (Jupyter, progress bars, Dask). Its workers import the ma
 command and ``max_workers=1`` need nothing). Records are written by the calling process as the
 cases come back, so any executor works, local or remote.
 
+The periodic level (``fidelity="periodic/linear"``): each case is the steady state from
+:func:`trackwheel.periodic_response`, in milliseconds, run in the calling process
+(:mod:`.periodic`); the output columns it fills and those it leaves NaN are listed by
+:data:`trackwheel.study.columns.PERIODIC_OUTPUTS`, its settings columns are empty but
+``fidelity``, and a case it refuses (contact loss, an undamped or non-periodic track, several
+wheels, a profile that is not a sum of sines) is a failed case with the reason.
+
 Failed cases: a case whose run diverges (:class:`trackwheel.DivergenceError`), is rejected
 (``ValueError``, e.g. a speed above simulate's range) or cannot start (``RuntimeError``: the
 static solve at the start failed) becomes a row with its message in ``error`` and NaN outputs,

@@ -10,15 +10,17 @@ import dataclasses
 import inspect
 import math
 import time
+import warnings
 
 import numpy as np
 
-from ...base.errors import DivergenceError
-from ...run.simulate import simulate
+from ...base.errors import DivergenceError, PlausibilityWarning
+from ...run.simulate import PERIODIC_LEVEL, simulate
 from ...scene import Scene
 from ..analysis import analyse
 from ..columns import COLUMNS, FLOAT_COLUMNS, SETTINGS_COLUMNS, SWEEP_COLUMNS, label
 from ..force_statistics import defect_position
+from . import periodic
 
 #: simulate's keyword arguments and their defaults (what a sweep passes on)
 SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).parameters.items()
@@ -28,8 +30,10 @@ SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).pa
 def case_scene(scene: Scene, stiffness: float, seed: int | None = None) -> Scene:
     """``scene`` with the support stiffness ``stiffness`` [N/m] and, with a ``seed``, its
     irregularity's random parts drawn afresh (:meth:`trackwheel.Irregularity.reseeded`)."""
-    scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
-                                                                    stiffness=stiffness))
+    with warnings.catch_warnings():  # the sweep warns once about implausible stiffnesses
+        warnings.simplefilter("ignore", PlausibilityWarning)
+        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
+                                                                        stiffness=stiffness))
     if seed is None:
         return scene
     return dataclasses.replace(scene, irregularity=scene.irregularity.reseeded(seed))
@@ -62,17 +66,24 @@ def wheel_outputs(r, scene: Scene) -> list[dict]:
         x_d = defect_position(scene)
         if x_d is not None and not ri.x_wheel[0] <= x_d <= ri.x_wheel[-1]:
             x_d = None  # this wheel does not reach the joint: no P1/P2
-        out.append(analyse(ri, defect_at=x_d).outputs())
+        # analysed as a wheel of the vehicle (its quasi-static line with the whole vehicle)
+        wheel = i if r.n_wheels > 1 else None
+        out.append(analyse(r, wheel=wheel, defect_at=x_d).outputs())
     return out
 
 
 def run_case(scene: Scene, speed: float, kwargs: dict) -> dict:
     """Simulate and analyse one case; DivergenceError, ValueError and the kernel's RuntimeError
     (a failed static solve) become an error row. A vehicle's case row holds its worst wheel's
-    outputs and, under ``wheels``, every wheel's (the table has one row per wheel)."""
+    outputs and, under ``wheels``, every wheel's (the table has one row per wheel). At the
+    periodic level, the steady state's row (:mod:`.periodic`)."""
+    if kwargs.get("fidelity") == PERIODIC_LEVEL:
+        return periodic.run_case(scene, speed, kwargs)
     t0 = time.perf_counter()
     try:
-        r = simulate(scene, speed, progress=False, **kwargs)
+        with warnings.catch_warnings():  # the sweep warns once about implausible speeds
+            warnings.simplefilter("ignore", PlausibilityWarning)
+            r = simulate(scene, speed, progress=False, **kwargs)
         wheels = wheel_outputs(r, scene)
     except (DivergenceError, ValueError, RuntimeError) as exc:
         # RuntimeError: the kernel's static solve at the start failed (e.g. a load that pushes

@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import multiprocessing
 import os
+import signal
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 
@@ -33,7 +34,14 @@ def make_pool(workers: int) -> ProcessPoolExecutor:
         ctx.set_forkserver_preload(["__main__", cases.__name__])
     else:
         ctx = multiprocessing.get_context("spawn")
-    return ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+    return ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_ignore_ctrl_c)
+
+
+def _ignore_ctrl_c() -> None:
+    """In a worker: ignore SIGINT. Ctrl-C at a terminal reaches the whole process group; the
+    parent handles it (keeps the finished cases, terminates the workers), so the workers must
+    not die each with a KeyboardInterrupt traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def terminate(pool: ProcessPoolExecutor) -> None:

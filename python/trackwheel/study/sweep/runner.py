@@ -5,6 +5,7 @@ finished case stored as it comes back, and the rows returned as the sweep table.
 from __future__ import annotations
 
 import itertools
+import warnings
 from concurrent.futures import Executor
 from typing import TYPE_CHECKING
 
@@ -12,11 +13,14 @@ import numpy as np
 
 from ..._version import __version__
 from ...base import validate as v
+from ...base.errors import FailedCasesWarning, SweepFailedError
+from ...base.units import check_speed_units, check_stiffness_units
 from ...base.limits import MAX_SEED
 from ...scene import Scene
-from ..columns import SPEED_KMH, SWEEP_COLUMNS, doc_table, label
+from ..columns import SPEED_KMH, SWEEP_COLUMNS, doc_table, label, periodic_doc_table
 from ..fidelity import adequacy
-from . import cases, pool
+from ...run.simulate import PERIODIC_LEVEL
+from . import cases, periodic, pool
 from . import store as store_module  # sweep's argument `store` is the directory
 
 if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import trackwheel` light
@@ -59,6 +63,13 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
         supports, the most dynamic corner of the sweep -- and sweeps at the cheapest level
         within ``fidelity_tol`` of the full model; the choice is in the ``fidelity`` column and
         ``df.attrs["fidelity_auto"]`` (chosen level, sample case, the adequacy table).
+        ``fidelity="periodic/linear"`` (:data:`trackwheel.FIDELITY_LEVELS`' least detailed)
+        takes each case's steady state from :func:`trackwheel.periodic_response` in
+        milliseconds, in this process (a pool costs more than it saves; an ``executor``
+        given is used); the columns it fills are listed below, and the other simulate
+        keywords, which it has no use for, are refused (chosen by ``"auto"``, it ignores
+        them). A case it refuses (contact loss, an undamped track, a random profile, ...)
+        is an error row like a diverged one.
 
     Returns
     -------
@@ -75,9 +86,20 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     Raises
     ------
     ValueError, TypeError : bad arguments (empty, non-positive, NaN or duplicate values,
-        unknown simulate keywords, seeds without a random irregularity), before anything runs.
+        unknown simulate keywords, seeds without a random irregularity, a support stiffness
+        the scene refuses), before anything runs.
+    SweepFailedError : every case failed (DivergenceError, ValueError or the kernel's
+        RuntimeError, each stored as a failed case); the message gives the first error, the
+        exception's ``table`` the whole table.
     Any exception other than DivergenceError/ValueError/RuntimeError from a case, and
     KeyboardInterrupt: re-raised after the finished cases are stored.
+
+    Warns
+    -----
+    FailedCasesWarning : some cases failed: their number and the first error (the rows carry
+        each case's ``error``).
+    PlausibilityWarning : a speed above the wheel-on-rail record or a support stiffness below
+        1 MN/m (a likely slip of units), once per value.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
@@ -88,6 +110,8 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     seed_axis = _seeds(seeds, scene)
     kwargs = _simulate_kwargs(simulate_kwargs)
     auto = None
+    if kwargs.get("fidelity") == PERIODIC_LEVEL:
+        periodic.check_keywords(kwargs)
     if kwargs.get("fidelity") == "auto":
         auto = _auto_fidelity(scene, speeds, stiffs, kwargs, fidelity_tol)
         kwargs["fidelity"] = auto["chosen"]
@@ -96,9 +120,16 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
         raise TypeError("progress and retry_errors must be True or False")
     store_dir = store_module.open_store(store)
 
+    for sp in speeds.tolist():  # once here, not once per case
+        check_speed_units(sp, stacklevel=3)
+    for k in stiffs.tolist():
+        check_stiffness_units("support_stiffness", k, stacklevel=3)
     case_list = []  # (speed, stiffness, seed, case scene, inputs, hash)
     for sp, k, seed in itertools.product(speeds.tolist(), stiffs.tolist(), seed_axis):
-        cs = cases.case_scene(scene, k, seed)
+        try:
+            cs = cases.case_scene(scene, k, seed)
+        except ValueError as exc:  # e.g. a support so soft that the track sags metres
+            raise ValueError(f"support_stiffness = {k:g} N/m: {exc}") from None
         inputs = store_module.inputs(cs, sp, k, kwargs, seed)
         case_list.append((sp, k, seed, cs, inputs, store_module.inputs_hash(inputs)))
     rows = ([None] * len(case_list) if store_dir is None
@@ -109,7 +140,29 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     df.attrs.update(computed=len(todo), from_store=len(case_list) - len(todo))
     if auto is not None:
         df.attrs["fidelity_auto"] = auto
+    _report_failures(df)
     return df
+
+
+def _report_failures(df) -> None:
+    """Warn (FailedCasesWarning) with the number of failed cases and the first error; raise
+    SweepFailedError, the table attached, if every case failed."""
+    error = label("error")
+    failed = df[df[error].fillna("") != ""]
+    if failed.empty:
+        return
+    import pandas as pd
+
+    first = failed.iloc[0]
+    seed = first[label("seed")]
+    where = (f"v = {first[label('speed')]:.4g} m/s, k_s = "
+             f"{first[label('support_stiffness')]:.4g} N/m"
+             + ("" if pd.isna(seed) else f", seed {seed}"))
+    text = f"the first ({where}): {first[error]}"
+    if len(failed) == len(df):
+        raise SweepFailedError(f"every case of the sweep failed ({len(df)}); {text}", df)
+    warnings.warn(f"{len(failed)} of {len(df)} cases of the sweep failed (rows with an error); "
+                  f"{text}", FailedCasesWarning, stacklevel=3)
 
 
 def _compute(case_list, rows, todo, kwargs, store_dir, executor, workers, progress) -> None:
@@ -132,8 +185,10 @@ def _compute(case_list, rows, todo, kwargs, store_dir, executor, workers, progre
         rows[i] = row
         bar.update(1)
 
+    # the periodic level's cases take milliseconds: a pool would cost more than it saves
+    serial = workers == 1 or len(todo) == 1 or kwargs.get("fidelity") == PERIODIC_LEVEL
     try:
-        if todo and executor is None and (workers == 1 or len(todo) == 1):
+        if todo and executor is None and serial:
             for i in todo:
                 finish(i, cases.run_case(case_list[i][3], case_list[i][0], kwargs))
         elif todo:
@@ -223,3 +278,6 @@ def _seeds(seeds, scene: Scene) -> list[int | None]:
 
 sweep.__doc__ += "\n    Columns\n    -------\n" + "\n".join(
     "    " + line for line in doc_table(SWEEP_COLUMNS).splitlines()) + "\n"
+_PERIODIC_TITLE = 'At the periodic level (``fidelity="periodic/linear"``)'
+sweep.__doc__ += (f"\n    {_PERIODIC_TITLE}\n    {'-' * len(_PERIODIC_TITLE)}\n" + "\n".join(
+    "    " + line for line in periodic_doc_table().splitlines()) + "\n")

@@ -1,0 +1,151 @@
+"""The quasi-static line a run is measured from (docs: Model § Outputs): y_qs(X), the static
+contact-point displacement with the wheel resting at X -- one wheel's, or a vehicle wheel's with
+the whole vehicle resting on the track -- solved at Chebyshev points where it is smooth and
+interpolated, cached per scene, mesh, model and range.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+from numpy.polynomial import chebyshev
+
+from ..run.statics import linear_quasi_static, linear_vehicle_line, quasi_static, vehicle_static
+from ..scene import Scene
+
+__all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_breakpoints",
+           "vehicle_qs_series", "vehicle_quasi_static_line", "window_reference"]
+
+#: Degree of the polynomial that represents the quasi-static line inside each rail element.
+#: With the wheel at X, the static contact-point displacement is, to within the geometric
+#: nonlinearity, N(X)^T K^-1 N(X) P with cubic Hermite shape functions N: a polynomial of degree
+#: 6 in X inside an element, with kinks in its derivatives only at the nodes (the support springs
+#: enter K, not N). So y_qs is solved at the QS_DEGREE + 1 Chebyshev-Lobatto points of each
+#: element the run crosses (the end points shared with the neighbours: QS_DEGREE static solves
+#: per element) and interpolated by the element's Chebyshev series. Measured against direct
+#: static solves: < 2e-13 m for the paper's scene with 20 elements and < 1e-15 m with 80, i.e.
+#: below 1e-8 of the static deflection (7e-5 m) and 1e-7 of the smallest dynamic amplitude of
+#: Fig. 7 (1.2e-6 m at 50 km/h); a cubic on a 5 mm grid costs 7 (20 elements) or 1.5 (80) times
+#: as many solves for an error of 2e-11 m. Each analysis reports an estimate of its own error,
+#: |c_7| + |c_8| of the Chebyshev coefficients (``Analysis.y_qs_error``, ~1e-12 m here).
+QS_DEGREE = 8
+
+@lru_cache(maxsize=128)
+def qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
+    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh: of the ANCF model or
+    (``linear``) of the linear track in all its coordinates.
+
+    Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
+    mesh, element range): the same range is always solved the same way (one warm-started
+    sweep), so the line is bit-identical whichever process or earlier analysis computed it.
+    """
+    n = QS_DEGREE
+    le = scene.rail.length / n_elements
+    t = -np.cos(np.pi * np.arange(n + 1) / n)  # Chebyshev-Lobatto points on [-1, 1]
+    n_el = e1 - e0
+    x = ((np.arange(e0, e1)[:, None] + 0.5 * (t[None, :-1] + 1.0)) * le).ravel()
+    x = np.minimum(np.append(x, e1 * le), scene.rail.length)
+    if linear:
+        y = linear_quasi_static(scene, x, n_elements=n_elements)
+    else:
+        y = quasi_static(scene, x, n_elements=n_elements).y_contact
+    values = y[np.arange(n_el)[:, None] * n + np.arange(n + 1)[None, :]]  # (n_el, n + 1)
+    coef = np.linalg.solve(chebyshev.chebvander(t, n), values.T)  # (n + 1, n_el)
+    coef.setflags(write=False)
+    return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
+
+
+def in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
+    """X [m] as the rail coordinate of a fixed rail, or on a travelling window the same place
+    in its bay in the window's middle bay (the quasi-static line of the periodic track)."""
+    if scene.window is None:
+        return x
+    d = scene.supports.spacing
+    middle = round(scene.rail.length / d) // 2
+    return middle * d + np.mod(x, d)
+
+
+def quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
+    """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
+    x = in_window(scene, x)
+    le = scene.rail.length / n_elements
+    e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
+    e1 = max(e0 + 1, min(n_elements, math.ceil(float(x.max()) / le)))
+    coef, err = qs_series(scene, n_elements, e0, e1, linear)
+    k = np.clip(np.floor(x / le).astype(np.int64) - e0, 0, e1 - e0 - 1)
+    t = np.clip(2.0 * (x / le - (k + e0)) - 1.0, -1.0, 1.0)
+    return chebyshev.chebval(t, coef[:, k], tensor=False), err
+
+
+def window_reference(scene: Scene, x_ref: np.ndarray) -> np.ndarray:
+    """The vehicle's reference positions [m] on a fixed rail, or on a travelling window the same
+    place in the bay with the vehicle in the window's middle (the periodic track's line)."""
+    if scene.window is None:
+        return x_ref
+    d = scene.supports.spacing
+    rear, front = scene.active_vehicle.span
+    n_bays = round(scene.rail.length / d)
+    first = max((n_bays - math.ceil((front - rear) / d - 1e-9)) // 2, 0)
+    return first * d + np.mod(x_ref + rear, d) - rear
+
+
+@lru_cache(maxsize=16)
+def vehicle_breakpoints(scene: Scene, n_elements: int) -> np.ndarray:
+    """The reference positions [m] where some wheel of the vehicle crosses a node of the mesh
+    (and the ends of the range the vehicle can take): between two of them every wheel stays
+    inside one element, so each wheel's static displacement is smooth there."""
+    veh = scene.active_vehicle
+    rear, front = veh.span
+    lo, hi = -rear, scene.rail.length - front
+    le = scene.rail.length / n_elements
+    nodes = np.arange(n_elements + 1) * le
+    b = np.sort(np.concatenate([nodes - p for p in veh.positions] + [[lo, hi]]))
+    b = b[(b >= lo) & (b <= hi)]
+    keep = np.concatenate(([True], np.diff(b) > 1e-9 * le))
+    return b[keep]
+
+
+@lru_cache(maxsize=128)
+def vehicle_qs_series(scene: Scene, n_elements: int, s0: int, s1: int, linear: bool):
+    """Chebyshev series of every wheel's quasi-static line on the segments s0 .. s1-1 between
+    :func:`vehicle_breakpoints`: the static contact-point displacement of each wheel with the
+    whole vehicle resting on the track under the lever-rule loads (the ANCF statics of
+    :func:`trackwheel.statics.vehicle_static`, or for ``linear`` the linear track's, the
+    superposition of each wheel's own line and the static flexibility, the receptance at 0 Hz,
+    to its neighbours' loads). Returns (coefficients (QS_DEGREE + 1, s1 - s0, n_wheels) [m],
+    error estimate [m]); cached like :func:`qs_series`."""
+    n = QS_DEGREE
+    b = vehicle_breakpoints(scene, n_elements)
+    t = -np.cos(np.pi * np.arange(n + 1) / n)
+    a, w = b[s0:s1], b[s0 + 1:s1 + 1] - b[s0:s1]
+    x = (a[:, None] + 0.5 * (t[None, :-1] + 1.0) * w[:, None]).ravel()
+    x = np.append(x, b[s1])
+    veh = scene.active_vehicle
+    if linear:
+        y = linear_vehicle_line(scene, x, n_elements=n_elements)
+    else:
+        y = np.array([vehicle_static(scene, xi, n_elements=n_elements).y_contact for xi in x])
+    idx = np.arange(s1 - s0)[:, None] * n + np.arange(n + 1)[None, :]  # (n_seg, n + 1)
+    values = y[idx]  # (n_seg, n + 1, n_wheels)
+    inv = np.linalg.inv(chebyshev.chebvander(t, n))
+    coef = np.einsum("kj,sjw->ksw", inv, values)
+    coef.setflags(write=False)
+    err = float(np.max(np.abs(coef[-2]) + np.abs(coef[-1]))) if veh.n_wheels else 0.0
+    return coef, err
+
+
+def vehicle_quasi_static_line(scene: Scene, n_elements: int, x_ref: np.ndarray, wheel: int,
+                               linear: bool = False):
+    """Wheel ``wheel``'s quasi-static line with the whole vehicle resting at the reference
+    positions ``x_ref`` [m], and the estimate of its error [m]."""
+    x = window_reference(scene, x_ref)
+    b = vehicle_breakpoints(scene, n_elements)
+    last = b.size - 2
+    k = np.clip(np.searchsorted(b, x, side="right") - 1, 0, last)
+    s0, s1 = int(k.min()), int(k.max()) + 1
+    coef, err = vehicle_qs_series(scene, n_elements, s0, s1, linear)
+    a, w = b[k], b[k + 1] - b[k]
+    t = np.clip(2.0 * (x - a) / w - 1.0, -1.0, 1.0)
+    return chebyshev.chebval(t, coef[:, k - s0, wheel], tensor=False), err
