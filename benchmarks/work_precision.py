@@ -18,7 +18,7 @@ chart.
 
 Also measured: the per-step cost of generalized-alpha against one banded factorisation + solve
 of the rail's iteration matrix M + gamma' h C_s + beta' h^2 K_t (kernel helper
-``_core.time_band_factor_solve``, plain band and bordered with the wheel's three rows).
+``_core.testing.time_band_factor_solve``, plain band and bordered with the wheel's three rows).
 
     python benchmarks/work_precision.py [--quick]
 
@@ -134,8 +134,8 @@ def step_cost():
         runs = [tw.simulate(SCENE, tw.kmh(300), dt=h, n_elements=ne, progress=False)
                 for _ in range(5)]
         step = min(r.wall_time for r in runs) / runs[0].steps
-        band = min(_core.time_band_factor_solve(model, cq, cv, 20000) for _ in range(5))
-        bord = min(_core.time_band_factor_solve(model, cq, cv, 20000, True) for _ in range(5))
+        band = min(_core.testing.time_band_factor_solve(model, cq, cv, 20000) for _ in range(5))
+        bord = min(_core.testing.time_band_factor_solve(model, cq, cv, 20000, True) for _ in range(5))
         out.append(dict(n_elements=ne, ga_step_us=1e6 * step,
                         newton_per_step=runs[0].newton_iterations / runs[0].steps,
                         band_factor_solve_us=1e6 * band, bordered_factor_solve_us=1e6 * bord,

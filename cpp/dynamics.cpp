@@ -76,9 +76,6 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
   check_initial(model, initial);
   System sys(model, set);
   SimOutput out;
-  out.rec.start(model.n_wheels(), set.record_energy,
-                static_cast<std::size_t>(n_steps_of(set) / set.output_every + 2));
-  out.rec.start_bodies(model.n_bodies());
   SimState st = initial;
   start_sleepers(model.rail, st);
   Eval ev;
@@ -86,17 +83,10 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
   start_state(sys, st, ev, acc);
 
   std::vector<double> xs, ys;
-  Watchdog wd;
   for (int w = 0; w < model.n_wheels(); ++w) {
-    const WheelParams& p = model.wheels[w];
     xs.push_back(sys.s_at(w, 0.0));  // the rail coordinate
     ys.push_back(st.wheels[w].y);
-    wd.energy_cap += 100.0 * std::max(p.total_load(), 1.0) * p.radius;
-    wd.y0.push_back(st.wheels[w].y);
-    wd.reach.push_back(10.0 * p.radius);
   }
-  // the bodies' weight reaches the track through the wheels: the same cap per newton of load
-  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
   // a sleeper between pad and ballast can be stiffer than anything in the rail
   const double omega_max =
       std::max(highest_frequency(model, st.e, xs, ys), Sleepers(model.rail).highest_frequency());
@@ -108,8 +98,7 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
     stepper = std::make_unique<GeneralizedAlpha>(sys, st, ev, acc, out, div);
   else
     stepper = std::make_unique<ExplicitRK4>(sys, st, ev, acc, out, div);
-  stepper->record_sample(0.0);
-  run_time_loop(*stepper, set, wd, div, out, progress);
+  run_time_loop(*stepper, model, set, div, out, progress);
   out.final_state = st;
   return out;
 }

@@ -36,7 +36,7 @@ void ExplicitRK4::step(long n) {
   const SimSettings& set = sys_.settings();
   const double h = set.dt, t1 = n * h, t0 = t1 - h;
   // the window moved: the accelerations at the start are evaluated anew at the shifted state
-  if (shift_window(t1)) start_ready_ = false;
+  if (shift_window(t1, {})) start_ready_ = false;
   if (!start_ready_) {
     sys_.evaluate(t0, st_, true, ev_);
     sys_.accelerations(st_, ev_, acc_);

@@ -18,31 +18,22 @@ FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOut
   const RailModel& rail = sys.rail();
   std::vector<int> map(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
-  win_ = WindowShift(rail, wp, map, rail.n_dof(), sys.sleepers().size());
   const StaticResult rest = solve_track_static(rail);
-  e_st_ = rest.e;
-  z_st_ = rest.z;
+  win_ = WindowFollower(WindowShift(rail, wp, map, rail.n_dof(), sys.sleepers().size()), rest.e,
+                        rest.z);
 }
 
 // What moves is the departure from the rest state (the ANCF x coordinates: the displacement,
-// not the position), so the fresh bay joins at rest and the window's ends keep their own sag;
-// the wheels' rail coordinates and warm starts drop by a bay with the origin's step.
-bool FullStepper::shift_window(double t1) {
+// not the position); the wheels' rail coordinates and warm starts drop by a bay with the
+// origin's step.
+bool FullStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   if (!win_.active()) return false;
-  const WindowParams& wp = win_.params();
-  bool moved = false;
-  for (;;) {
-    double rear = sys_.s_at(0, t1);
-    for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.s_at(w, t1));
-    if (rear < wp.hold) return moved;
-    win_.shift(st_.e, &e_st_);
-    win_.shift(st_.edot);
-    win_.shift_sleepers(st_.z, &z_st_);
-    win_.shift_sleepers(st_.zdot);
-    for (WheelState& ws : st_.wheels) ws.s -= wp.bay;
-    sys_.set_origin(sys_.origin() + wp.bay);
-    moved = true;
-  }
+  double rear = sys_.x_at(0, t1);
+  for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.x_at(w, t1));
+  double origin = sys_.origin();
+  const bool moved = win_.follow(rear, origin, st_, accs);
+  sys_.set_origin(origin);
+  return moved;
 }
 
 void FullStepper::record_sample(double t) {

@@ -19,14 +19,12 @@ class FullStepper : public Stepper {
   }
   double wheel_height(int w) const override { return st_.wheels[w].y; }
   // Append the sample of the current state, evaluation and accelerations at time t [s].
-  void record_sample(double t);
+  void record_sample(double t) override;
 
  protected:
   // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
-  // point (window.hpp): the departures of e and z from the rest state, their rates and each
-  // wheel's contact warm start; true if it moved. The integrator shifts its own history with
-  // win_.shift / win_.shift_sleepers.
-  bool shift_window(double t1);
+  // point (window.hpp): the state and the integrator's accelerations accs; true if it moved.
+  bool shift_window(double t1, std::initializer_list<Accel*> accs);
 
   System& sys_;
   SimState& st_;
@@ -34,8 +32,7 @@ class FullStepper : public Stepper {
   Accel& acc_;
   SimOutput& out_;
   const Divergence& div_;
-  WindowShift win_;
-  Eigen::VectorXd e_st_, z_st_;  // the window's rest state under its own weight (no wheel)
+  WindowFollower win_;
 };
 
 }  // namespace trackwheel

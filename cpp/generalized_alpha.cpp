@@ -8,65 +8,19 @@
 
 namespace trackwheel {
 
-GACoefficients::GACoefficients(double ri) {
-  am = (2.0 * ri - 1.0) / (ri + 1.0);
-  af = ri / (ri + 1.0);
-  gam = 0.5 - am + af;
-  bet = 0.25 * (1.0 - am + af) * (1.0 - am + af);
-  bp = bet * (1.0 - af) / (1.0 - am);
-  gp = gam * (1.0 - af) / (1.0 - am);
-}
-
 GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
                                    const Divergence& div)
     : FullStepper(sys, st, ev, acc, out, div),
-      c_(sys.settings().rho_inf),
-      h_(sys.settings().dt),
-      cq_(c_.bp * h_ * h_),
-      cv_(c_.gp * h_),
-      a_e_(acc.edd),
-      a_b_(acc.x),
-      a_z_(acc.zdd),
+      c_(sys.settings().rho_inf, sys.settings().dt),
+      layout_(sys.layout()),
+      alg_(acc),
       prev_(acc),
       key_(sys.n_wheels()),
       dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {}
 
 void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Accel& x,
                                SimState& s1) {
-  const double h = h_, bet = c_.bet, gam = c_.gam;
-  // written out (not c_.algorithmic) so that Eigen evaluates it into ae_'s storage
-  ae_ = (c_.af * acc0.edd - c_.am * a_e_ + (1.0 - c_.af) * x.edd) / (1.0 - c_.am);
-  s1.e = s0.e + h * s0.edot + h * h * ((0.5 - bet) * a_e_ + bet * ae_);
-  s1.edot = s0.edot + h * ((1.0 - gam) * a_e_ + gam * ae_);
-  if (a_z_.size() > 0) {
-    az_ = (c_.af * acc0.zdd - c_.am * a_z_ + (1.0 - c_.af) * x.zdd) / (1.0 - c_.am);
-    s1.z = s0.z + h * s0.zdot + h * h * ((0.5 - bet) * a_z_ + bet * az_);
-    s1.zdot = s0.zdot + h * ((1.0 - gam) * a_z_ + gam * az_);
-  }
-  ab_.resize(a_b_.size());
-  for (int w = 0; w < sys_.n_wheels(); ++w) {
-    const int o = kBorderPerWheel * w;
-    const WheelState& w0 = s0.wheels[w];
-    WheelState& w1 = s1.wheels[w];
-    const double ay0 = a_b_(o + kY), ath0 = a_b_(o + kTheta);
-    const double ay = c_.algorithmic(x.x(o + kY), acc0.x(o + kY), ay0);
-    const double ath = c_.algorithmic(x.x(o + kTheta), acc0.x(o + kTheta), ath0);
-    ab_(o + kY) = ay;
-    ab_(o + kTheta) = ath;
-    ab_(o + kLambda) = 0.0;  // a multiplier has no algorithmic counterpart
-    w1.y = w0.y + h * w0.ydot + h * h * ((0.5 - bet) * ay0 + bet * ay);
-    w1.ydot = w0.ydot + h * ((1.0 - gam) * ay0 + gam * ay);
-    w1.theta = w0.theta + h * w0.thetadot + h * h * ((0.5 - bet) * ath0 + bet * ath);
-    w1.thetadot = w0.thetadot + h * ((1.0 - gam) * ath0 + gam * ath);
-  }
-  const int ob = kBorderPerWheel * sys_.n_wheels();
-  for (int k = 0; k < 2 * sys_.n_bodies(); ++k) {  // the vehicle's bodies: z, phi
-    const double a0 = a_b_(ob + k);
-    const double a = c_.algorithmic(x.x(ob + k), acc0.x(ob + k), a0);
-    ab_(ob + k) = a;
-    s1.body(k) = s0.body(k) + h * s0.bodydot(k) + h * h * ((0.5 - bet) * a0 + bet * a);
-    s1.bodydot(k) = s0.bodydot(k) + h * ((1.0 - gam) * a0 + gam * a);
-  }
+  ga_state_at(c_, layout_, s0, acc0, alg_, x, s1, alg1_);
 }
 
 bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
@@ -88,7 +42,7 @@ bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
 void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x, int it) {
   const bool refresh_rail = !have_matrix_ || it >= 3 || out_.factorizations % 64 == 0;
   sys_.contact_terms(s1, true, ev_);
-  sys_.assemble_iteration_matrix(s1, ev_, x, cq_, cv_, refresh_rail);
+  sys_.assemble_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail);
   if (!sys_.factorize_iteration_matrix()) div_.fail(n, "singular Newton matrix");
   have_matrix_ = true;
   for (int w = 0; w < sys_.n_wheels(); ++w)
@@ -110,7 +64,7 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
     if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
     sys_.evaluate(t1, s1, false, ev_);
     for (int w = 0; w < sys_.n_wheels(); ++w) s1.wheels[w].s = ev_.w[w].pt.s;
-    sys_.residual(s1, ev_, x, cv_, r1_, r2_);
+    sys_.residual(s1, ev_, x, c_.cv, r1_, r2_);
     if (matrix_is_stale(s1, it)) rebuild_matrix(n, s1, x, it);
     sys_.solve(r1_, r2_, x1_, x2_, dz_);
     ++out_.newton_iterations;
@@ -133,7 +87,7 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
     const int ob = kBorderPerWheel * sys_.n_wheels();
     for (int k = 0; k < 2 * sys_.n_bodies(); k += 2)  // body pitch: as the 1 m-arm displacement
       dq = std::max({dq, std::abs(x2_(ob + k)), std::abs(x2_(ob + k + 1))});
-    dq *= cq_;
+    dq *= c_.cq;
     if (dq <= set.newton_tol && small_lambda) {
       predict(s0, acc0, x, s1);
       if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
@@ -161,8 +115,11 @@ int GeneralizedAlpha::commit_slip_states(Accel& x, SimState& s1, bool& changed) 
 }
 
 void GeneralizedAlpha::step(long n) {
-  const double t1 = n * h_;
-  if (shift_window(t1)) shift_history();
+  const double t1 = n * c_.h;
+  // the window moved: the accelerations, their algorithmic counterparts and the predictor's
+  // history moved with the state; the cached matrix holds the rail's tangent at the unshifted
+  // state, so it is rebuilt, the rail part too
+  if (shift_window(t1, {&acc_, &alg_, &prev_})) have_matrix_ = false;
   s0_ = st_;  // members: the copies reuse their storage, nothing is allocated per step
   acc0_ = acc_;
   for (int attempt = 0; attempt < 4; ++attempt) {
@@ -194,25 +151,10 @@ void GeneralizedAlpha::step(long n) {
     have_prev_ = !changed && attempt == 0;
     std::swap(prev_, acc0_);
     std::swap(st_, s1_);
-    std::swap(a_e_, ae_);
-    std::swap(a_b_, ab_);
-    std::swap(a_z_, az_);
+    std::swap(alg_, alg1_);
     std::swap(acc_, x_);
     return;
   }
-}
-
-// The window moved: the accelerations, their algorithmic counterparts and the predictor's history
-// move with the state (departures from rest are zero there already); the cached matrix holds
-// the rail's tangent at the unshifted state, so it is rebuilt, the rail part too.
-void GeneralizedAlpha::shift_history() {
-  win_.shift(acc_.edd);
-  win_.shift(a_e_);
-  win_.shift(prev_.edd);
-  win_.shift_sleepers(acc_.zdd);
-  win_.shift_sleepers(a_z_);
-  win_.shift_sleepers(prev_.zdd);
-  have_matrix_ = false;
 }
 
 void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r,
@@ -220,8 +162,8 @@ void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r
   SimState s1 = st_;
   predict(st_, acc_, x, s1);
   sys_.evaluate(t1, s1, true, ev_);
-  sys_.residual(s1, ev_, x, cv_, r1_, r2_);
-  sys_.assemble_iteration_matrix(s1, ev_, x, cq_, cv_, true);
+  sys_.residual(s1, ev_, x, c_.cv, r1_, r2_);
+  sys_.assemble_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, true);
   J = sys_.iteration_matrix_dense();
   const Eigen::VectorXd& rs = sys_.sleeper_residual();
   minus_r.resize(r1_.size() + r2_.size() + rs.size());

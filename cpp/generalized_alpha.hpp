@@ -1,27 +1,15 @@
-// Generalized-alpha (Chung & Hulbert 1993) in the Arnold & Bruls (2007) form: the true
-// accelerations satisfy the equations at t_{n+1}, the algorithmic accelerations a carry the
-// alpha weighting. Newton on the analytic iteration matrix with the bordered banded solver; the
-// rolling constraints are enforced at velocity level at every step (no drift).
+// Generalized-alpha on the full path (the scheme: ga_scheme.hpp): the true accelerations satisfy
+// the equations at t_{n+1}, the algorithmic accelerations a carry the alpha weighting. Newton on
+// the analytic iteration matrix with the bordered banded solver; the rolling constraints are
+// enforced at velocity level at every step (no drift).
 #pragma once
 
 #include <vector>
 
 #include "full_path.hpp"
+#include "ga_scheme.hpp"
 
 namespace trackwheel {
-
-// Chung-Hulbert parameters from the spectral radius at infinite frequency rho_inf in [0, 1];
-// shared by the full and the linear path.
-struct GACoefficients {
-  explicit GACoefficients(double rho_inf);
-  double am, af, gam, bet;  // alpha_m, alpha_f, gamma, beta
-  double bp, gp;            // beta' = beta (1 - af)/(1 - am), gamma' = gamma (1 - af)/(1 - am)
-  // a_{n+1} from the true accelerations qdd_{n+1}, qdd_n and a_n
-  template <class T>
-  T algorithmic(const T& qdd1, const T& qdd0, const T& a0) const {
-    return (af * qdd0 - am * a0 + (1.0 - af) * qdd1) / (1.0 - am);
-  }
-};
 
 class GeneralizedAlpha : public FullStepper {
  public:
@@ -29,7 +17,7 @@ class GeneralizedAlpha : public FullStepper {
   GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
                    const Divergence& div);
   void step(long n) override;
-  void record(long n) override { record_sample(n * h_); }
+  void record(long n) override { record_sample(n * c_.h); }
   // Test hook: at the iterate x of the step from the current state to t1, the negated residual
   // -r (the right-hand side of J dx = -r, as the Newton loop solves it) and the assembled
   // (unfactorised) iteration matrix J = dr/dx, dense; x = [e''_free, border, z''], and dx the
@@ -38,20 +26,17 @@ class GeneralizedAlpha : public FullStepper {
              Eigen::VectorXd& dx);
 
  private:
-  // q_{n+1}, v_{n+1} and the algorithmic accelerations (ae_, ab_) from the iterate x.
+  // q_{n+1}, v_{n+1} and the algorithmic accelerations (alg1_) from the iterate x.
   void predict(const SimState& s0, const Accel& acc0, const Accel& x, SimState& s1);
   bool newton(long n, double t1, const SimState& s0, const Accel& acc0, Accel& x, SimState& s1);
   bool matrix_is_stale(const SimState& s1, int it) const;
   void rebuild_matrix(long n, const SimState& s1, const Accel& x, int it);
   int commit_slip_states(Accel& x, SimState& s1, bool& changed);
-  void shift_history();
 
-  GACoefficients c_;
-  double h_, cq_, cv_;
-  Eigen::VectorXd a_e_, a_b_;  // algorithmic accelerations: rail (full), border
-  Eigen::VectorXd ae_, ab_;    // their candidates at the current iterate
-  Eigen::VectorXd a_z_, az_;   // the sleepers' algorithmic accelerations and candidates
-  Accel prev_;                 // accelerations of the step before (predictor)
+  const GACoefficients c_;
+  const BorderLayout layout_;
+  Accel alg_, alg1_;  // algorithmic accelerations and their candidates at the current iterate
+  Accel prev_;        // accelerations of the step before (predictor)
   bool have_prev_ = false;
   // The factorised matrix is reused (modified Newton) while every wheel's contact stays in
   // the element, slip state and 5 % of an element it was built at.

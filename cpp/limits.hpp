@@ -29,4 +29,9 @@ constexpr double kMaxSpeed = 300.0;
 // 0.5 m spacing has nine; 1.5 km of sleepers every 0.6 m, 2500).
 constexpr int kMaxSupports = 100000;
 
+// Most harmonics n on each side of the periodic level's moving-load receptance matrix
+// (harmonics -n..n) [-]: a guard of the kernel's quadrature (its panels grow with n), well above
+// what trackwheel.periodic asks for; not a scene limit, so not exported.
+constexpr int kMaxPeriodicHarmonics = 200;
+
 }  // namespace trackwheel::limits

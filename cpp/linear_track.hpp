@@ -13,11 +13,14 @@
 //   Hertz        N = C_H delta^1.5 for delta > 0, else 0 (unilateral: loss of contact).
 // Contact stays vertical at X_A (no obliquity, no contact-point search, no rolling constraint:
 // the tangential dynamics do not enter the vertical problem of a straight linear beam).
-// Generalized-alpha (Arnold-Bruls form, the coefficients of generalized_alpha.hpp) with the
-// constant band part factorised once; each wheel and its contact force are a 2-wide border, so
-// a step costs one band solve per wheel for the moving coupling (cached per element) plus one
-// for the right-hand side (one Newton iteration for the linear levels). The time loop,
-// watchdog and divergence reports are time_loop.hpp's, the contact law contact.hpp's.
+// Generalized-alpha (Arnold-Bruls form, ga_scheme.hpp) with the constant band part factorised
+// once; each wheel and its contact force are a 2-wide border, so a step costs one band solve per
+// wheel for the moving coupling (cached per element) plus one for the right-hand side (one
+// Newton iteration for the linear levels). The rooms mirror the full path's: the workspace
+// (linear_system.hpp, beside system.hpp), the stepper's shared part (linear_path.hpp, beside
+// full_path.hpp) and the integrator (linear_alpha.hpp, beside generalized_alpha.hpp); the time
+// loop, watchdog and divergence reports are time_loop.hpp's, the contact law contact.hpp's, the
+// vehicle's and the sleepers' rows vehicle.hpp's and sleepers.hpp's, as on the full path.
 #pragma once
 
 #include <Eigen/Core>

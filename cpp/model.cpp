@@ -31,4 +31,23 @@ void check_model(const Model& m) {
   check_vehicle(m.vehicle, m.n_wheels());
 }
 
+std::vector<double> static_wheel_loads(const Model& m) {
+  const int nw = m.n_wheels(), nb = m.n_bodies();
+  const Eigen::VectorXd fv =
+      nb > 0 ? static_wheel_forces(vehicle_matrices(m.vehicle, nw), Eigen::VectorXd::Zero(nw))
+             : Eigen::VectorXd();
+  std::vector<double> P;
+  for (int w = 0; w < nw; ++w) P.push_back(m.wheels[w].total_load() - (nb > 0 ? fv(w) : 0.0));
+  return P;
+}
+
+double vertical_kinetic_energy(const Model& m, const SimState& st) {
+  double E = 0.0;
+  for (int w = 0; w < m.n_wheels(); ++w)
+    E += 0.5 * m.wheels[w].mass * st.wheels[w].ydot * st.wheels[w].ydot;
+  for (int b = 0; b < m.n_bodies(); ++b)
+    E += 0.5 * m.vehicle.bodies[b].mass * st.bodydot(2 * b) * st.bodydot(2 * b);
+  return E;
+}
+
 }  // namespace trackwheel

@@ -13,6 +13,7 @@
 
 #include "contact.hpp"
 #include "rail.hpp"
+#include "state.hpp"
 #include "vehicle.hpp"
 
 namespace trackwheel {
@@ -63,5 +64,19 @@ struct Model {
 
 // Throws std::invalid_argument naming the first wheel or contact field out of range.
 void check_model(const Model& model);
+
+// Wheel w's track coordinate X_A at t [m]: X_0 + x_offset + v t (the prescribed forward motion).
+inline double wheel_x(const Model& model, const SimSettings& set, int w, double t) {
+  return set.x_start + model.wheels[w].x_offset + set.speed * t;
+}
+
+// Each wheel's static load [N]: F + M g, plus the vehicle's static force on it (the bodies'
+// weight distribution, vehicle.hpp): the scale of its contact forces.
+std::vector<double> static_wheel_loads(const Model& model);
+
+// Kinetic energy of the wheels' and the vehicle's bodies' vertical motion,
+// sum (1/2) M Y_A'^2 + sum (1/2) m_b z_b'^2 [J] (with the rail's and the sleepers', the runaway
+// watchdog's measure).
+double vertical_kinetic_energy(const Model& model, const SimState& st);
 
 }  // namespace trackwheel

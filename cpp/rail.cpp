@@ -33,48 +33,53 @@ void check_layers(const SupportParams& s) {
             "ballast_damping must be >= 0 N s/m");
   }
 }
+// Every rail and support parameter in range, in the order a message names the first one out.
+void check_inputs(const RailParams& p, const SupportParams& sup) {
+  require(std::isfinite(p.length) && p.length > 0, "rail length must be > 0 m");
+  require(p.n_elements >= 1 && p.n_elements <= limits::kMaxElements,
+          "n_elements must be in [1, " + std::to_string(limits::kMaxElements) + "]");
+  require(std::isfinite(p.EA) && p.EA > 0, "EA must be > 0 N");
+  require(std::isfinite(p.EI) && p.EI > 0, "EI must be > 0 N m^2");
+  require(std::isfinite(p.rhoA) && p.rhoA > 0, "rho A must be > 0 kg/m");
+  require(p.n_gauss >= limits::kMinGauss && p.n_gauss <= limits::kMaxGauss,
+          "n_gauss must be in [" + std::to_string(limits::kMinGauss) + ", " +
+              std::to_string(limits::kMaxGauss) + "]");
+  require(std::isfinite(p.gravity), "gravity must be finite");
+  require(std::isfinite(p.absorbing_length) && p.absorbing_length >= 0 &&
+              2.0 * p.absorbing_length <= p.length,
+          "absorbing_length must be in [0, L/2] m");
+  require(std::isfinite(p.absorbing_damping) && p.absorbing_damping >= 0,
+          "absorbing_damping must be >= 0 N s/m^2");
+  const size_t ns = sup.position.size();
+  require(
+      ns <= static_cast<size_t>(limits::kMaxSupports),
+      "at most " + std::to_string(limits::kMaxSupports) + " supports, got " + std::to_string(ns));
+  require(sup.stiffness.size() == ns && sup.damping.size() == ns,
+          "support position, stiffness and damping must have the same length");
+  for (size_t j = 0; j < ns; ++j) {
+    require(std::isfinite(sup.position[j]) && sup.position[j] >= 0 && sup.position[j] <= p.length,
+            "support positions must lie in [0, L]");
+    require(std::isfinite(sup.stiffness[j]) && sup.stiffness[j] >= 0,
+            "support stiffness must be >= 0 N/m");
+    require(std::isfinite(sup.damping[j]) && sup.damping[j] >= 0,
+            "support damping must be >= 0 N s/m");
+  }
+  check_layers(sup);
+  require(std::isfinite(p.shear_stiffness) && p.shear_stiffness >= 0,
+          "shear_stiffness must be >= 0 N (0: Euler-Bernoulli)");
+  require(std::isfinite(p.rotary_inertia) && p.rotary_inertia >= 0,
+          "rotary_inertia must be >= 0 kg m");
+  require(p.shear() || p.rotary_inertia == 0.0,
+          "rotary_inertia must be 0 kg m with shear_stiffness = 0 (the Euler-Bernoulli rail "
+          "has no rotary inertia)");
+}
+
 }  // namespace
 
 RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Profile profile)
     : p_(rail), sup_(supports), profile_(std::move(profile)) {
-  require(std::isfinite(p_.length) && p_.length > 0, "rail length must be > 0 m");
-  require(p_.n_elements >= 1 && p_.n_elements <= limits::kMaxElements,
-          "n_elements must be in [1, " + std::to_string(limits::kMaxElements) + "]");
-  require(std::isfinite(p_.EA) && p_.EA > 0, "EA must be > 0 N");
-  require(std::isfinite(p_.EI) && p_.EI > 0, "EI must be > 0 N m^2");
-  require(std::isfinite(p_.rhoA) && p_.rhoA > 0, "rho A must be > 0 kg/m");
-  require(p_.n_gauss >= limits::kMinGauss && p_.n_gauss <= limits::kMaxGauss,
-          "n_gauss must be in [" + std::to_string(limits::kMinGauss) + ", " +
-              std::to_string(limits::kMaxGauss) + "]");
-  require(std::isfinite(p_.gravity), "gravity must be finite");
-  require(std::isfinite(p_.absorbing_length) && p_.absorbing_length >= 0 &&
-              2.0 * p_.absorbing_length <= p_.length,
-          "absorbing_length must be in [0, L/2] m");
-  require(std::isfinite(p_.absorbing_damping) && p_.absorbing_damping >= 0,
-          "absorbing_damping must be >= 0 N s/m^2");
+  check_inputs(p_, sup_);
   const size_t ns = sup_.position.size();
-  require(
-      ns <= static_cast<size_t>(limits::kMaxSupports),
-      "at most " + std::to_string(limits::kMaxSupports) + " supports, got " + std::to_string(ns));
-  require(sup_.stiffness.size() == ns && sup_.damping.size() == ns,
-          "support position, stiffness and damping must have the same length");
-  for (size_t j = 0; j < ns; ++j) {
-    require(
-        std::isfinite(sup_.position[j]) && sup_.position[j] >= 0 && sup_.position[j] <= p_.length,
-        "support positions must lie in [0, L]");
-    require(std::isfinite(sup_.stiffness[j]) && sup_.stiffness[j] >= 0,
-            "support stiffness must be >= 0 N/m");
-    require(std::isfinite(sup_.damping[j]) && sup_.damping[j] >= 0,
-            "support damping must be >= 0 N s/m");
-  }
-  check_layers(sup_);
-  require(std::isfinite(p_.shear_stiffness) && p_.shear_stiffness >= 0,
-          "shear_stiffness must be >= 0 N (0: Euler-Bernoulli)");
-  require(std::isfinite(p_.rotary_inertia) && p_.rotary_inertia >= 0,
-          "rotary_inertia must be >= 0 kg m");
-  require(p_.shear() || p_.rotary_inertia == 0.0,
-          "rotary_inertia must be 0 kg m with shear_stiffness = 0 (the Euler-Bernoulli rail "
-          "has no rotary inertia)");
 
   sec_.length = p_.length / p_.n_elements;
   sec_.EA = p_.EA;

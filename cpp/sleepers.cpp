@@ -42,6 +42,21 @@ void Sleepers::forces(const Eigen::VectorXd& u, const Eigen::VectorXd* udot,
   }
 }
 
+void Sleepers::residual(const Eigen::VectorXd& u, const Eigen::VectorXd* udot,
+                        const std::vector<int>& map, const Eigen::VectorXd& z,
+                        const Eigen::VectorXd* zdot, const Eigen::VectorXd& zdd,
+                        Eigen::VectorXd& rs) const {
+  forces(u, udot, map, z, zdot, rs);
+  for (int j = 0; j < size(); ++j) rs(j) -= m_[j] * zdd(j);
+}
+
+void Sleepers::accelerations(const Eigen::VectorXd& u, const Eigen::VectorXd* udot,
+                             const std::vector<int>& map, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd* zdot, Eigen::VectorXd& zdd) const {
+  forces(u, udot, map, z, zdot, zdd);
+  for (int j = 0; j < size(); ++j) zdd(j) /= m_[j];
+}
+
 void Sleepers::add_rail_force(const Eigen::VectorXd& z, const Eigen::VectorXd* zdot,
                               const std::vector<int>& map, Eigen::VectorXd& Q, double sign) const {
   for (int j = 0; j < size(); ++j) {

@@ -45,6 +45,15 @@ class Sleepers {
   // F_j for every sleeper from the rail's u, u' over map (udot, zdot may be null: at rest).
   void forces(const Eigen::VectorXd& u, const Eigen::VectorXd* udot, const std::vector<int>& map,
               const Eigen::VectorXd& z, const Eigen::VectorXd* zdot, Eigen::VectorXd& F) const;
+  // The sleepers' rows at a generalized-alpha iterate (both paths): the negated residual
+  // rs_j = F_j - m_s z_j'' at the state (u, u', z, z') and the sleepers' accelerations zdd.
+  void residual(const Eigen::VectorXd& u, const Eigen::VectorXd* udot, const std::vector<int>& map,
+                const Eigen::VectorXd& z, const Eigen::VectorXd* zdot, const Eigen::VectorXd& zdd,
+                Eigen::VectorXd& rs) const;
+  // z_j'' = F_j / m_s: the sleepers carry no mass coupling.
+  void accelerations(const Eigen::VectorXd& u, const Eigen::VectorXd* udot,
+                     const std::vector<int>& map, const Eigen::VectorXd& z,
+                     const Eigen::VectorXd* zdot, Eigen::VectorXd& zdd) const;
   // Q += sign s_j (k_p z_j + c_p z_j') over Q's indexing; sign = -1 adds the sleepers' pull to
   // a vector of internal forces that holds RailModel's pad-to-ground forces.
   void add_rail_force(const Eigen::VectorXd& z, const Eigen::VectorXd* zdot,

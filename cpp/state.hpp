@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 namespace trackwheel {
@@ -54,11 +55,52 @@ struct WheelState {
   double brake_sign = -1.0;
 };
 
+// The dynamic state of a run, on either path: the full path's rail coordinates are the ANCF
+// vector, the linear path's the linear track's generalised coordinates q (linear_rail.hpp: the
+// y coordinates, or modal); the wheels, the vehicle's bodies and the sleepers are the same.
 struct SimState {
-  Eigen::VectorXd e, edot;         // rail coordinates (full, n_dof) [m, m, -, -] and rates
+  Eigen::VectorXd e, edot;  // rail coordinates (full: n_dof [m, m, -, -]; linear: q) and rates
   std::vector<WheelState> wheels;  // one per model wheel
   Eigen::VectorXd body, bodydot;   // (2 n_bodies,) [z_b, phi_b] per vehicle body [m, rad], rates
   Eigen::VectorXd z, zdot;         // sleeper heights [m] and rates (layered supports; else empty)
+};
+
+// True if every coordinate and rate of the state is finite (the watchdog's first check).
+inline bool finite_state(const SimState& st) {
+  if (!st.e.allFinite() || !st.edot.allFinite() || !st.z.allFinite() || !st.zdot.allFinite())
+    return false;
+  if (!st.body.allFinite() || !st.bodydot.allFinite()) return false;
+  for (const WheelState& w : st.wheels)
+    if (!std::isfinite(w.y) || !std::isfinite(w.ydot) || !std::isfinite(w.theta) ||
+        !std::isfinite(w.thetadot))
+      return false;
+  return true;
+}
+
+// Accelerations and multipliers that go with a SimState: the rail's e'' (over the state's rail
+// coordinates), the border x (each wheel's unknowns, then [z_b'', phi_b''] per vehicle body, as
+// BorderLayout places them) and the sleepers' z''. A stepper also keeps its generalized-alpha
+// algorithmic accelerations in one (ga_scheme.hpp).
+struct Accel {
+  Eigen::VectorXd edd;
+  Eigen::VectorXd x;
+  Eigen::VectorXd zdd;  // sleepers (layered supports; else empty)
+};
+
+// Where a path's border keeps each wheel's and each vehicle body's unknowns: per_wheel entries
+// per wheel (the wheel's Y_A'' first, its theta'' at `theta` if the path integrates the
+// rotation, its contact multiplier at `multiplier`), then [z_b'', phi_b''] per body. The full
+// path: [Y'', theta'', lambda]; the linear path: [Y'', N].
+struct BorderLayout {
+  int n_wheels = 0, n_bodies = 0;
+  int per_wheel = 3;
+  int theta = 1;       // -1: the rotation is not integrated
+  int multiplier = 2;  // lambda (full) or N (linear)
+  int y(int w) const { return per_wheel * w; }
+  int body(int k) const { return per_wheel * n_wheels + k; }  // k in [0, 2 n_bodies)
+  int size() const { return per_wheel * n_wheels + 2 * n_bodies; }
+  // the border index of vehicle coordinate i (vehicle.hpp: wheel heights, then bodies)
+  int vehicle(int i) const { return i < n_wheels ? y(i) : body(i - n_wheels); }
 };
 
 }  // namespace trackwheel

@@ -24,6 +24,70 @@ double static_tolerance(const RailModel& rail) {
   return std::max(1e-13, rail.n_free() * eps) * rail.params().length;
 }
 
+// The bordered system of the static Newton iteration and its buffers.
+struct StaticSystem {
+  StaticSystem(int nf, int m) : K(nf, kHalfBandwidth), B(nf, m), C(m, nf), D(m, m), r1(nf), r2(m) {}
+  BandMatrix K;
+  Eigen::MatrixXd B, C, D;
+  Eigen::VectorXd R, r1, r2;  // R: the rail's full residual
+};
+
+// Wheel w's contact at (X_A, Y_A) = (x, y) into the system: its force on the rail rows of R and
+// their Jacobian K_c, the wheel's row r2(w) = -(P - F_y) and its border entries; the contact
+// point and force into the result.
+void add_wheel_rows(const RailModel& rail, const Eigen::VectorXd& e, const WheelParams& wheel,
+                    const ContactParams& contact, double x, double y, double& s_guess, int w,
+                    StaticSystem& sys, StaticResult& res) {
+  const auto& f2f = rail.full_to_free();
+  const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(x, y), s_guess);
+  s_guess = pt.s;
+  const ContactForce cf = contact_force(contact, pt, Vec10::Zero(), true);
+  const int d0 = pt.mp.dof0();
+  sys.R.segment<8>(d0) -= cf.F.segment<8>(2);
+  sys.r2(w) = -(wheel.total_load() - cf.F(1));
+  // Jacobian of residual: rail rows += K_c, wheel row: d(P - F_y)/dq = K_c(1, .)
+  for (int a = 0; a < 8; ++a) {
+    const int i = f2f[d0 + a];
+    if (i < 0) continue;
+    for (int b = 0; b < 8; ++b) {
+      const int j = f2f[d0 + b];
+      if (j >= 0) sys.K.add(i, j, cf.K(2 + a, 2 + b));
+    }
+    sys.B(i, w) = cf.K(2 + a, 1);
+    sys.C(w, i) = cf.K(1, 2 + a);
+  }
+  sys.D(w, w) = cf.K(1, 1);
+  if (!cf.active) throw std::runtime_error("static solve: the wheel lost contact with the rail");
+  res.contact_s = pt.s;
+  res.normal_force = cf.N;
+  res.horizontal_reaction = -cf.F(0);
+}
+
+// The converged results: the rail and the sleepers in each, and each wheel's contact anew at
+// its final height (the rail under the load: the element's own deflection included).
+void finish(const RailModel& rail, const Eigen::VectorXd& e, const Eigen::VectorXd& z,
+            const Sleepers& sl, const std::vector<ContactParams>& contacts,
+            const std::vector<double>& xs, const std::vector<double>& ys,
+            const std::vector<double>& s_guess, std::vector<StaticResult>& res) {
+  const int m = static_cast<int>(xs.size());
+  const Eigen::VectorXd ballast = sl.ballast_force(z);
+  for (int w = 0; w < std::max(m, 1); ++w) {
+    res[w].e = e;
+    res[w].z = z;
+    res[w].ballast_force = ballast;
+  }
+  for (int w = 0; w < m; ++w) {
+    res[w].x_wheel = xs[w];
+    res[w].y_wheel = ys[w];
+    const ContactPoint pt = find_contact_point(rail, e, Eigen::Vector2d(xs[w], ys[w]), s_guess[w]);
+    res[w].contact_s = pt.s;
+    const ContactForce cf = contact_force(contacts[w], pt, Vec10::Zero(), false);
+    res[w].y_contact = pt.r.y() - cf.deflection * pt.n.y();
+    res[w].normal_force = cf.N;
+    res[w].horizontal_reaction = -cf.F(0);
+  }
+}
+
 // Newton over the free rail coordinates and the heights Y_A of the given wheels (none: the rail
 // alone), each wheel w held at X_A = xs[w] under its load P_w = F_w + M_w g; sleepers (layered
 // supports) are condensed into the rail's band (sleepers.hpp, at rest: (cm, cv, cq) = (0, 0, 1)).
@@ -34,10 +98,9 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
                                         std::vector<double> ys) {
   const int nf = rail.n_free();
   const int m = static_cast<int>(wheels.size());
-  BandMatrix K(nf, kHalfBandwidth);
-  Eigen::MatrixXd B(nf, m), C(m, nf), D(m, m);
+  StaticSystem sys(nf, m);
   BorderedSolver solver;
-  Eigen::VectorXd Q, r1(nf), r2(m), dx1, dx2;
+  Eigen::VectorXd Q, dx1, dx2;
   const Eigen::VectorXd& Qg = rail.gravity_force();
   const auto& f2f = rail.full_to_free();
   std::vector<double> s_guess = xs;
@@ -50,52 +113,27 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
   Eigen::VectorXd z = sl.static_z(e), rs, dz;
   for (int it = 0; it < 60; ++it) {
     rail.internal_force(e, nullptr, Q);
-    Eigen::VectorXd R = Q - Qg;  // full residual of the rail
-    K.set_zero();
-    rail.add_tangent(e, 1.0, K);
+    sys.R = Q - Qg;  // full residual of the rail
+    sys.K.set_zero();
+    rail.add_tangent(e, 1.0, sys.K);
     if (!sl.empty()) {
-      sl.add_rail_force(z, nullptr, identity, R);
-      sl.condense_matrix(f2f, K);
+      sl.add_rail_force(z, nullptr, identity, sys.R);
+      sl.condense_matrix(f2f, sys.K);
       sl.forces(e, nullptr, identity, z, nullptr, rs);
     }
-    B.setZero();
-    C.setZero();
-    D.setZero();
-    r2.setZero();
-    for (int w = 0; w < m; ++w) {
-      const ContactParams& cw = contacts[w];
-      const Eigen::Vector2d RA(xs[w], ys[w]);
-      const ContactPoint pt = find_contact_point(rail, e, RA, s_guess[w]);
-      s_guess[w] = pt.s;
-      const ContactForce cf = contact_force(cw, pt, Vec10::Zero(), true);
-      const int d0 = pt.mp.dof0();
-      R.segment<8>(d0) -= cf.F.segment<8>(2);
-      r2(w) = -(wheels[w]->total_load() - cf.F(1));
-      // Jacobian of residual: rail rows += K_c, wheel row: d(P - F_y)/dq = K_c(1, .)
-      for (int a = 0; a < 8; ++a) {
-        const int i = f2f[d0 + a];
-        if (i < 0) continue;
-        for (int b = 0; b < 8; ++b) {
-          const int j = f2f[d0 + b];
-          if (j >= 0) K.add(i, j, cf.K(2 + a, 2 + b));
-        }
-        B(i, w) = cf.K(2 + a, 1);
-        C(w, i) = cf.K(1, 2 + a);
-      }
-      D(w, w) = cf.K(1, 1);
-      if (!cf.active)
-        throw std::runtime_error("static solve: the wheel lost contact with the rail");
-      res[w].contact_s = pt.s;
-      res[w].normal_force = cf.N;
-      res[w].horizontal_reaction = -cf.F(0);
-    }
-    for (int i = 0; i < nf; ++i) r1(i) = -R(rail.free_to_full()[i]);
-    if (!sl.empty()) sl.condense_rhs(rs, f2f, r1);
-    if (!r1.allFinite() || !r2.allFinite())
+    sys.B.setZero();
+    sys.C.setZero();
+    sys.D.setZero();
+    sys.r2.setZero();
+    for (int w = 0; w < m; ++w)
+      add_wheel_rows(rail, e, *wheels[w], contacts[w], xs[w], ys[w], s_guess[w], w, sys, res[w]);
+    for (int i = 0; i < nf; ++i) sys.r1(i) = -sys.R(rail.free_to_full()[i]);
+    if (!sl.empty()) sl.condense_rhs(rs, f2f, sys.r1);
+    if (!sys.r1.allFinite() || !sys.r2.allFinite())
       throw std::runtime_error("static solve: non-finite residual");
-    if (!solver.factorize(K, B, C, D))
+    if (!solver.factorize(sys.K, sys.B, sys.C, sys.D))
       throw std::runtime_error("static solve: singular stiffness (is the wheel off the rail?)");
-    solver.solve(r1, r2, dx1, dx2);
+    solver.solve(sys.r1, sys.r2, dx1, dx2);
     rail.add_from_free(dx1, e);
     double step = dx1.lpNorm<Eigen::Infinity>();
     if (!sl.empty()) {
@@ -109,24 +147,7 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
     }
     for (StaticResult& r : res) r.iterations = it + 1;
     if (step <= tol) {
-      const Eigen::VectorXd ballast = sl.ballast_force(z);
-      for (int w = 0; w < std::max(m, 1); ++w) {
-        res[w].e = e;
-        res[w].z = z;
-        res[w].ballast_force = ballast;
-      }
-      for (int w = 0; w < m; ++w) {
-        const ContactParams& cw = contacts[w];
-        res[w].x_wheel = xs[w];
-        res[w].y_wheel = ys[w];
-        const ContactPoint pt =
-            find_contact_point(rail, e, Eigen::Vector2d(xs[w], ys[w]), s_guess[w]);
-        res[w].contact_s = pt.s;
-        const ContactForce cf = contact_force(cw, pt, Vec10::Zero(), false);
-        res[w].y_contact = pt.r.y() - cf.deflection * pt.n.y();
-        res[w].normal_force = cf.N;
-        res[w].horizontal_reaction = -cf.F(0);
-      }
+      finish(rail, e, z, sl, contacts, xs, ys, s_guess, res);
       return res;
     }
   }

@@ -14,7 +14,8 @@ System::System(const Model& model, const SimSettings& set)
       nf_(model.rail.n_free()),
       nw_(model.n_wheels()),
       nb_(model.n_bodies()),
-      vm_(vehicle_matrices(model.vehicle, model.n_wheels())),
+      vehicle_(model.vehicle, layout()),
+      static_load_(static_wheel_loads(model)),
       sl_(model.rail),
       identity_(model.rail.n_dof()) {
   for (int i = 0; i < model.rail.n_dof(); ++i) identity_[i] = i;
@@ -26,10 +27,6 @@ System::System(const Model& model, const SimSettings& set)
   Db_.resize(m, m);
   J_.resize(nf_, kHalfBandwidth);
   lam_.resize(nw_);
-  const Eigen::VectorXd fv =
-      nb_ > 0 ? static_wheel_forces(vm_, Eigen::VectorXd::Zero(nw_)) : Eigen::VectorXd();
-  for (int w = 0; w < nw_; ++w)
-    static_load_.push_back(model.wheels[w].total_load() - (nb_ > 0 ? fv(w) : 0.0));
 }
 
 void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
@@ -90,33 +87,7 @@ void System::forces(const SimState& st, const Eval& ev, const Eigen::VectorXd& l
     fb(o + kTheta) = wheel_torque(p, we, lam(w));
     if (p.brake_torque > 0.0) fb(o + kTheta) += brake_torque(p, st.wheels[w]);
   }
-  if (nb_ > 0) add_vehicle_forces(st, fb);
-}
-
-void System::add_vehicle_forces(const SimState& st, Eigen::VectorXd& fb) const {
-  u_.resize(nw_ + 2 * nb_);
-  udot_.resize(nw_ + 2 * nb_);
-  for (int w = 0; w < nw_; ++w) {
-    u_(w) = st.wheels[w].y;
-    udot_(w) = st.wheels[w].ydot;
-  }
-  u_.tail(2 * nb_) = st.body;
-  udot_.tail(2 * nb_) = st.bodydot;
-  fu_ = vehicle_forces(vm_, u_, udot_);
-  for (int i = 0; i < fu_.size(); ++i) fb(vehicle_index(i)) += fu_(i);
-}
-
-// The bodies' masses and inertias on the diagonal; the suspensions' dr/du'' = cq K_v + cv C_v
-// (u = u_pred + cq u'', u' = u'_pred + cv u'').
-void System::add_vehicle_block(bool inertia_only, double cq, double cv) {
-  const int nu = nw_ + 2 * nb_, o = kBorderPerWheel * nw_;
-  for (int k = 0; k < 2 * nb_; ++k) Db_(o + k, o + k) += vm_.mass(nw_ + k);
-  if (inertia_only) return;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nu; ++j) {
-      const double v = cq * vm_.K(i, j) + cv * vm_.C(i, j);
-      if (v != 0.0) Db_(vehicle_index(i), vehicle_index(j)) += v;
-    }
+  if (nb_ > 0) vehicle_.add_forces(st, fb);
 }
 
 void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
@@ -170,7 +141,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
   }
   lock_theta_rows(st, &r2);
   if (nb_ > 0) {
-    add_vehicle_block(true, 0.0, 0.0);
+    vehicle_.add_block(Db_, true, 0.0, 0.0);
     const int o = kBorderPerWheel * nw_;
     r2.segment(o, 2 * nb_) = fb.segment(o, 2 * nb_);
   }
@@ -179,9 +150,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
   solve_bordered(r1, r2, x1_, acc.x);
   acc.edd.setZero(rail().n_dof());
   rail().add_from_free(x1_, acc.edd);
-  // the sleepers carry no mass coupling: z'' = F / m_s
-  sl_.forces(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd);
-  for (int j = 0; j < sl_.size(); ++j) acc.zdd(j) /= sl_.mass(j);
+  sl_.accelerations(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd);
 }
 
 void System::residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
@@ -201,10 +170,8 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
     // a locked wheel: the velocity theta'_{n+1} = 0, scaled as d theta'_{n+1} / d theta'' = cv
     if (st.wheels[w].locked) r2(o + kTheta) = -st.wheels[w].thetadot / cv;
   }
-  const int o = kBorderPerWheel * nw_;
-  for (int k = 0; k < 2 * nb_; ++k) r2(o + k) = -(vm_.mass(nw_ + k) * acc.x(o + k) - fb_(o + k));
-  sl_.forces(st.e, &st.edot, identity_, st.z, &st.zdot, rs_);
-  for (int j = 0; j < sl_.size(); ++j) rs_(j) -= sl_.mass(j) * acc.zdd(j);
+  vehicle_.body_residual(acc.x, fb_, r2);
+  sl_.residual(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd, rs_);
 }
 
 void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
@@ -254,7 +221,7 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
   }
   for (int w = 0; w < nw_; ++w) add_wheel_block(st, ev, acc, w, cq, cv);
   lock_theta_rows(st, nullptr);
-  if (nb_ > 0) add_vehicle_block(false, cq, cv);
+  if (nb_ > 0) vehicle_.add_block(Db_, false, cq, cv);
 }
 
 // A locked wheel's theta row holds theta' = 0 (the brake's stiction) in place of J theta'' =
@@ -403,15 +370,9 @@ Eigen::MatrixXd System::iteration_matrix_dense() const {
 }
 
 double vehicle_energy_of(const Model& model, const SimState& st) {
-  const int nw = model.n_wheels(), nb = model.n_bodies();
-  Eigen::VectorXd u(nw + 2 * nb), udot(nw + 2 * nb);
-  for (int w = 0; w < nw; ++w) {
-    u(w) = st.wheels[w].y;
-    udot(w) = st.wheels[w].ydot;
-  }
-  u.tail(2 * nb) = st.body;
-  udot.tail(2 * nb) = st.bodydot;
-  return vehicle_energy(vehicle_matrices(model.vehicle, nw), u, udot);
+  Eigen::VectorXd u, udot;
+  vehicle_coordinates(st, u, udot);
+  return vehicle_energy(vehicle_matrices(model.vehicle, model.n_wheels()), u, udot);
 }
 
 double total_energy(const Model& model, const SimState& st, const Eval& ev) {
@@ -453,24 +414,9 @@ double vibration_energy(const Model& model, const SimState& st) {
   const Eigen::VectorXd v = model.rail.to_free(st.edot);
   Eigen::VectorXd Mv;
   model.rail.mass().multiply(v, Mv);
-  double E = 0.5 * v.dot(Mv);
-  for (int w = 0; w < model.n_wheels(); ++w)
-    E += 0.5 * model.wheels[w].mass * st.wheels[w].ydot * st.wheels[w].ydot;
-  for (int b = 0; b < model.n_bodies(); ++b)
-    E += 0.5 * model.vehicle.bodies[b].mass * st.bodydot(2 * b) * st.bodydot(2 * b);
+  double E = 0.5 * v.dot(Mv) + vertical_kinetic_energy(model, st);
   if (st.zdot.size() > 0) E += Sleepers(model.rail).kinetic_energy(st.zdot);
   return E;
-}
-
-bool finite_state(const SimState& st) {
-  if (!st.e.allFinite() || !st.edot.allFinite() || !st.z.allFinite() || !st.zdot.allFinite())
-    return false;
-  if (!st.body.allFinite() || !st.bodydot.allFinite()) return false;
-  for (const WheelState& w : st.wheels)
-    if (!std::isfinite(w.y) || !std::isfinite(w.ydot) || !std::isfinite(w.theta) ||
-        !std::isfinite(w.thetadot))
-      return false;
-  return true;
 }
 
 }  // namespace trackwheel

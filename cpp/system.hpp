@@ -48,13 +48,6 @@ struct Eval {
   Eigen::VectorXd Qint;  // elastic + support forces (full) [N]
 };
 
-// Accelerations and multipliers: rail e'' (full) and the border x = [Y'', theta'', lambda]_w.
-struct Accel {
-  Eigen::VectorXd edd;
-  Eigen::VectorXd x;
-  Eigen::VectorXd zdd;  // sleepers (layered supports; else empty)
-};
-
 class System {
  public:
   System(const Model& model, const SimSettings& settings);
@@ -69,15 +62,11 @@ class System {
   // its contact forces, e.g. for Newton's tolerance on lambda).
   double static_load(int w) const { return static_load_[w]; }
   int n_border() const { return kBorderPerWheel * nw_ + 2 * nb_; }
-  // The border index of vehicle coordinate i (vehicle.hpp: wheel heights, then bodies).
-  int vehicle_index(int i) const {
-    return i < nw_ ? kBorderPerWheel * i + kY : kBorderPerWheel * nw_ + i - nw_;
-  }
+  // The border x = [Y'', theta'', lambda]_w, then [z'', phi''] per body (Accel::x).
+  BorderLayout layout() const { return {nw_, nb_, kBorderPerWheel, kTheta, kLambda}; }
   // Wheel w's track coordinate X_A at t [m] (outputs) and its rail coordinate s = X_A - X_w
   // on a travelling window of origin X_w (X_A on a fixed rail) [m].
-  double x_at(int w, double t) const {
-    return set_.x_start + model_.wheels[w].x_offset + set_.speed * t;
-  }
+  double x_at(int w, double t) const { return wheel_x(model_, set_, w, t); }
   double s_at(int w, double t) const { return x_at(w, t) - origin_; }
   // The travelling window's origin X_w [m] (0 on a fixed rail); the rail's profile is given in
   // the rail coordinate of the start window (X_w at t = 0), so it is read shifted by the travel.
@@ -126,10 +115,6 @@ class System {
   // border forces fb = [F_Y, F_theta, 0]_w.
   void forces(const SimState& st, const Eval& ev, const Eigen::VectorXd& lam, Eigen::VectorXd& fr,
               Eigen::VectorXd& fb) const;
-  // The suspensions' and bodies' weights added to the border forces fb; the bodies' inertia
-  // (diagonal) and, with cq and cv, the suspensions' cq K_v + cv C_v added to Db_.
-  void add_vehicle_forces(const SimState& st, Eigen::VectorXd& fb) const;
-  void add_vehicle_block(bool inertia_only, double cq, double cv);
   // The bordered factorisation of [A B; C D] (A factorised here if factor_band). The vehicle's
   // bodies touch no rail coordinate (their B columns and C rows are zero), so they are
   // condensed out of the border exactly: D_ww - D_wb D_bb^-1 D_bw on the wheels' 3 n_w
@@ -149,9 +134,8 @@ class System {
   const SimSettings& set_;
   double origin_ = 0.0;  // window origin X_w [m]
   int nf_, nw_, nb_;
-  VehicleMatrices vm_;
+  VehicleRows vehicle_;  // the vehicle's rows of the border
   std::vector<double> static_load_;
-  mutable Eigen::VectorXd u_, udot_, fu_;  // vehicle coordinates, rates, forces (buffers)
   BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
   Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
@@ -172,6 +156,5 @@ double total_energy(const Model& model, const SimState& st, const Eval& ev);
 double vehicle_energy_of(const Model& model, const SimState& st);
 // Kinetic energy of the rail and the wheels' vertical motion [J] (the runaway watchdog's).
 double vibration_energy(const Model& model, const SimState& st);
-bool finite_state(const SimState& st);
 
 }  // namespace trackwheel

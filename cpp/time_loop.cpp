@@ -1,5 +1,6 @@
 #include "time_loop.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -40,6 +41,24 @@ void Divergence::fail(long step, const std::string& what, const std::string& cau
 
 namespace {
 
+struct Watchdog {
+  double energy_cap = 0.0;        // [J]
+  std::vector<double> y0, reach;  // start height and allowed excursion per wheel [m]
+};
+
+Watchdog watchdog_of(const Model& model, const Stepper& s) {
+  Watchdog wd;
+  for (int w = 0; w < model.n_wheels(); ++w) {
+    const WheelParams& p = model.wheels[w];
+    wd.energy_cap += 100.0 * std::max(p.total_load(), 1.0) * p.radius;
+    wd.y0.push_back(s.wheel_height(w));
+    wd.reach.push_back(10.0 * p.radius);
+  }
+  // the bodies' weight reaches the track through the wheels: the same cap per newton of load
+  wd.energy_cap += 100.0 * vehicle_weight(model.vehicle) * model.wheels[0].radius;
+  return wd;
+}
+
 void watch(Stepper& s, long n, const Watchdog& wd, const Divergence& div) {
   const double Ev = s.vibration_energy();
   if (!(Ev <= wd.energy_cap))
@@ -54,9 +73,14 @@ void watch(Stepper& s, long n, const Watchdog& wd, const Divergence& div) {
 
 }  // namespace
 
-void run_time_loop(Stepper& s, const SimSettings& set, const Watchdog& wd, const Divergence& div,
+void run_time_loop(Stepper& s, const Model& model, const SimSettings& set, const Divergence& div,
                    SimOutput& out, const ProgressFn& progress) {
   const long n_steps = n_steps_of(set);
+  out.rec.start(model.n_wheels(), set.record_energy,
+                static_cast<std::size_t>(n_steps / set.output_every + 2));
+  out.rec.start_bodies(model.n_bodies());
+  const Watchdog wd = watchdog_of(model, s);
+  s.record_sample(0.0);
   for (long n = 1; n <= n_steps; ++n) {
     try {
       s.step(n);

@@ -1,7 +1,8 @@
-// The time loop, written once for every integrator and for the linear path: steps, watchdog
-// (non-finite state, energy runaway, runaway wheel), decimated recording, progress callbacks
-// (which is also where Ctrl-C reaches the kernel) and divergence reports that name the time,
-// step, wheel position and likely cause.
+// The time loop, written once for every integrator and for the linear path: the recording's
+// start, the watchdog (non-finite state, energy runaway, runaway wheel) set up from the model and
+// the start state, the steps, decimated recording, progress callbacks (which is also where Ctrl-C
+// reaches the kernel) and divergence reports that name the time, step, wheel position and likely
+// cause.
 #pragma once
 
 #include <functional>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "model.hpp"
 #include "output.hpp"
 #include "state.hpp"
 
@@ -62,18 +64,16 @@ class Stepper {
   virtual double vibration_energy() const = 0;   // [J]
   virtual double wheel_height(int w) const = 0;  // Y_A of wheel w [m]
   virtual void record(long n) = 0;               // append the sample at step n
-};
-
-// Runaway limits: vibration energy above 100 (F + M g) rho0 summed over the wheels (a wheel
-// that fell ten radii), or a wheel centre ten radii from its start.
-struct Watchdog {
-  double energy_cap = 0.0;        // [J]
-  std::vector<double> y0, reach;  // start height and allowed excursion per wheel [m]
+  virtual void record_sample(double t) = 0;      // append the sample of the state at t [s]
 };
 
 long n_steps_of(const SimSettings& set);
 
-void run_time_loop(Stepper& stepper, const SimSettings& set, const Watchdog& watchdog,
+// Runs the stepper from its start state (sample 0) to settings.t_end. The watchdog fails the run
+// when the vibration energy exceeds 100 (F + M g) rho0 summed over the wheels (a wheel that fell
+// ten radii), plus as much per newton of the vehicle's bodies' weight, or when a wheel centre is
+// ten radii from its start.
+void run_time_loop(Stepper& stepper, const Model& model, const SimSettings& set,
                    const Divergence& divergence, SimOutput& out, const ProgressFn& progress);
 
 }  // namespace trackwheel

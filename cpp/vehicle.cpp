@@ -109,4 +109,51 @@ Eigen::VectorXd static_wheel_forces(const VehicleMatrices& vm, const Eigen::Vect
   return vehicle_forces(vm, u, Eigen::VectorXd::Zero(u.size())).head(nw);
 }
 
+void vehicle_coordinates(const SimState& st, Eigen::VectorXd& u, Eigen::VectorXd& udot) {
+  const int nw = static_cast<int>(st.wheels.size()), nb2 = static_cast<int>(st.body.size());
+  u.resize(nw + nb2);
+  udot.resize(nw + nb2);
+  for (int w = 0; w < nw; ++w) {
+    u(w) = st.wheels[w].y;
+    udot(w) = st.wheels[w].ydot;
+  }
+  u.tail(nb2) = st.body;
+  udot.tail(nb2) = st.bodydot;
+}
+
+VehicleRows::VehicleRows(const VehicleParams& vehicle, const BorderLayout& layout)
+    : vm_(vehicle_matrices(vehicle, layout.n_wheels)), layout_(layout) {}
+
+void VehicleRows::add_forces(const SimState& st, Eigen::VectorXd& fb) const {
+  vehicle_coordinates(st, u_, udot_);
+  fu_ = vehicle_forces(vm_, u_, udot_);
+  for (int i = 0; i < fu_.size(); ++i) fb(layout_.vehicle(i)) += fu_(i);
+}
+
+void VehicleRows::body_residual(const Eigen::VectorXd& x, const Eigen::VectorXd& fb,
+                                Eigen::VectorXd& r) const {
+  const int nw = layout_.n_wheels;
+  for (int k = 0; k < 2 * layout_.n_bodies; ++k) {
+    const int i = layout_.body(k);
+    r(i) = fb(i) - vm_.mass(nw + k) * x(i);
+  }
+}
+
+void VehicleRows::add_block(Eigen::MatrixXd& D, bool inertia_only, double cq, double cv) const {
+  const int nw = layout_.n_wheels, nu = nw + 2 * layout_.n_bodies;
+  for (int k = 0; k < 2 * layout_.n_bodies; ++k)
+    D(layout_.body(k), layout_.body(k)) += vm_.mass(nw + k);
+  if (inertia_only) return;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nu; ++j) {
+      const double v = cq * vm_.K(i, j) + cv * vm_.C(i, j);
+      if (v != 0.0) D(layout_.vehicle(i), layout_.vehicle(j)) += v;
+    }
+}
+
+double VehicleRows::energy(const SimState& st) const {
+  vehicle_coordinates(st, u_, udot_);
+  return vehicle_energy(vm_, u_, udot_);
+}
+
 }  // namespace trackwheel

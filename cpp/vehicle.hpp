@@ -16,6 +16,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "state.hpp"
+
 namespace trackwheel {
 
 // One rigid body of the vehicle (a bogie frame or the car body, on one rail: half the body).
@@ -68,6 +70,35 @@ Eigen::VectorXd vehicle_forces(const VehicleMatrices& vm, const Eigen::VectorXd&
 // bodies' gravity [J].
 double vehicle_energy(const VehicleMatrices& vm, const Eigen::VectorXd& u,
                       const Eigen::VectorXd& udot);
+
+// u and u' of a state: the wheels' heights Y_A and rates, then the bodies' [z, phi] and rates.
+void vehicle_coordinates(const SimState& st, Eigen::VectorXd& u, Eigen::VectorXd& udot);
+
+// The vehicle's rows in a path's border system (System, LinearSystem), written once for both
+// paths: the suspensions' forces f_u on the wheels' force rows (vertical) and on the bodies'
+// rows M_b [z_b'', phi_b''] = f_u, and their Jacobian with respect to the accelerations,
+// cq K_v + cv C_v (u = u_pred + cq u'', u' = u'_pred + cv u''). The layout places wheel
+// heights and bodies in the border (state.hpp).
+class VehicleRows {
+ public:
+  VehicleRows() = default;
+  VehicleRows(const VehicleParams& vehicle, const BorderLayout& layout);
+  bool empty() const { return layout_.n_bodies == 0; }
+  const VehicleMatrices& matrices() const { return vm_; }
+  // fb(vehicle(i)) += f_u(i), f_u = -K_v u - C_v u' - G_v at the state's u, u'.
+  void add_forces(const SimState& st, Eigen::VectorXd& fb) const;
+  // The bodies' rows of the negated residual, r = fb - M_b x (fb holding f_u), at the iterate x.
+  void body_residual(const Eigen::VectorXd& x, const Eigen::VectorXd& fb, Eigen::VectorXd& r) const;
+  // D += M_b on the bodies' diagonal; unless inertia_only also cq K_v + cv C_v over u.
+  void add_block(Eigen::MatrixXd& D, bool inertia_only, double cq, double cv) const;
+  // vehicle_energy at the state [J].
+  double energy(const SimState& st) const;
+
+ private:
+  VehicleMatrices vm_;
+  BorderLayout layout_;
+  mutable Eigen::VectorXd u_, udot_, fu_;  // buffers
+};
 
 // The bodies' static coordinates [z, phi per body] above wheel centres at heights Y: the
 // bodies' rows of K_v u = -G_v solved with Y held (minimum-norm, so a body free to pitch, e.g.

@@ -66,4 +66,25 @@ void WindowShift::apply(const std::vector<int>& src, Eigen::VectorXd& v, Eigen::
     v(static_cast<Eigen::Index>(k)) = src[k] >= 0 ? buf(src[k]) : 0.0;
 }
 
+bool WindowFollower::follow(double rear_x, double& origin, SimState& st,
+                            std::initializer_list<Accel*> accs) const {
+  if (!active()) return false;
+  const WindowParams& wp = shift_.params();
+  bool moved = false;
+  while (rear_x - origin >= wp.hold) {
+    shift_.shift(st.e, &e_rest_);
+    shift_.shift(st.edot);
+    shift_.shift_sleepers(st.z, &z_rest_);
+    shift_.shift_sleepers(st.zdot);
+    for (WheelState& ws : st.wheels) ws.s -= wp.bay;
+    for (Accel* a : accs) {
+      shift_.shift(a->edd);
+      shift_.shift_sleepers(a->zdd);
+    }
+    origin += wp.bay;
+    moved = true;
+  }
+  return moved;
+}
+
 }  // namespace trackwheel

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <initializer_list>
+#include <utility>
 #include <vector>
 
 #include "rail.hpp"
@@ -51,6 +53,27 @@ class WindowShift {
   std::vector<int> zsrc_;  // per sleeper
   mutable Eigen::VectorXd buf_;
   static void apply(const std::vector<int>& src, Eigen::VectorXd& v, Eigen::VectorXd& buf);
+};
+
+// A stepper's travelling window (both paths): the shift maps and the rest state whose departures
+// move, the track at rest under its own weight without a wheel (so the fresh bay joins at rest
+// and the window's ends keep their own sag).
+class WindowFollower {
+ public:
+  WindowFollower() = default;
+  WindowFollower(WindowShift shift, Eigen::VectorXd e_rest, Eigen::VectorXd z_rest)
+      : shift_(std::move(shift)), e_rest_(std::move(e_rest)), z_rest_(std::move(z_rest)) {}
+  bool active() const { return shift_.active(); }
+  // While the rearmost wheel, at the track coordinate rear_x [m], is at or past the hold point
+  // of the window of origin X_w = origin [m]: moves the state one bay back (the departures of e
+  // and z from rest, their rates, each wheel's contact warm start s), each of accs likewise (e''
+  // and z'' as they are) and origin one bay on. True if it moved.
+  bool follow(double rear_x, double& origin, SimState& st,
+              std::initializer_list<Accel*> accs) const;
+
+ private:
+  WindowShift shift_;
+  Eigen::VectorXd e_rest_, z_rest_;
 };
 
 }  // namespace trackwheel

@@ -86,13 +86,13 @@ M = Mutant
 DYN = "cpp/dynamics.cpp"
 SYS = "cpp/system.cpp"
 SLIP = "cpp/slip.cpp"
-GA = "cpp/generalized_alpha.cpp"
+GA = "cpp/ga_scheme.cpp"
 RK4 = "cpp/explicit_rk4.cpp"
 FULL = "cpp/full_path.cpp"
 LOOP = "cpp/time_loop.cpp"
 OUT = "cpp/output.cpp"
 LBEAM = "cpp/linear_beam.cpp"
-LIN = "cpp/linear_track.cpp"
+LIN = "cpp/linear_system.cpp"
 ANCF = "cpp/ancf_cable.cpp"
 CON = "cpp/contact.cpp"
 ROLL = "cpp/rolling.cpp"
@@ -100,7 +100,7 @@ RAIL = "cpp/rail.cpp"
 EIG = "cpp/eigen_analysis.cpp"
 ANA = "python/trackwheel/study/analysis.py"
 SHEAR = "cpp/ancf_shear.cpp"
-SCENE = "python/trackwheel/scene/window.py"
+WINDOW = "python/trackwheel/scene/window.py"
 VEH = "cpp/vehicle.cpp"
 VEHPY = "python/trackwheel/scene/vehicle.py"
 
@@ -138,10 +138,10 @@ MUTANTS: list[Mutant] = [
       "0.0, 0.5 * l, 0.0", "consistent gravity load lumped (nodal moments dropped)"),
     M("linear-rail-gravity", LBEAM, "Qgy(a) = r.gravity_force()(full_of_y[a]);", "Qgy(a) = 0.0;",
       "linear path without the rail's weight"),
-    M("linear-iteration-damping", LIN, "1.0, tr_.M, cv, tr_.C", "1.0, tr_.M, 0.0, tr_.C",
+    M("linear-iteration-damping", LIN, "1.0, tr_.M, c_.cv, tr_.C", "1.0, tr_.M, 0.0, tr_.C",
       "linear path's iteration matrix M + cq K without cv C (its Newton stops after one "
       "iteration for the linear wheel models, so the matrix is part of the scheme there)"),
-    M("linear-contact-damping-convection", LIN, "+ set_.speed * lw.ss.dot(q_);", ";",
+    M("linear-contact-damping-convection", LIN, "+ set_.speed * wc.ss.dot(st.e);", ";",
       "linear path's contact damper without the convected rate v y_s(X_A) of the rail"),
     # --- contact: the law shared by both paths, the distance and the running surface
     M("contact-stiffness", CON, "return k * delta;", "return 1.05 * k * delta;",
@@ -236,7 +236,7 @@ MUTANTS: list[Mutant] = [
       "shear-deformable element's mass without the rotary inertia rho I"),
     M("absorbing-axial", RAIL, "gw[g] * c_x * h.n[i] * h.n[k]", "gw[g] * 0.0 * c_x * h.n[i] * h.n[k]",
       "absorbing end zones without their axial dampers"),
-    M("window-default-zones", SCENE, "absorbing_length: float = 4.8",
+    M("window-default-zones", WINDOW, "absorbing_length: float = 4.8",
       "absorbing_length: float = 0.0", "the travelling window without its default end zones"),
     M("shear-director-stretch", SHEAR, "const double ft = wl * c.kGA * stretch;",
       "const double ft = 0.0 * wl * c.kGA * stretch;",

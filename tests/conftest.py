@@ -36,7 +36,7 @@ def section():
     """Factory for one element's CableSection of the paper's rail, length ``l`` [m]."""
 
     def make(length=0.25, exact=True, n_gauss=5):
-        c = _core.CableSection()
+        c = _core.testing.CableSection()
         c.length = length
         c.EA = EA
         c.EI = EI

@@ -97,11 +97,11 @@ def random_states(seed=20050101):
 
 STATES = random_states()
 PARTS = {
-    "axial": (_core.cable_axial, True),
-    "bending_exact": (_core.cable_bending, True),
-    "bending_simplified": (_core.cable_bending, False),
-    "total_exact": (_core.cable_elastic, True),
-    "total_simplified": (_core.cable_elastic, False),
+    "axial": (_core.testing.cable_axial, True),
+    "bending_exact": (_core.testing.cable_bending, True),
+    "bending_simplified": (_core.testing.cable_bending, False),
+    "total_exact": (_core.testing.cable_elastic, True),
+    "total_simplified": (_core.testing.cable_elastic, False),
 }
 
 
@@ -151,7 +151,7 @@ def deflected_element(section):
     wheel): the force and energy scale that round-off is measured against."""
     e = reference_element()
     e[5] -= 1e-4
-    Q, _, U = _core.cable_elastic(section, e)
+    Q, _, U = _core.testing.cable_elastic(section, e)
     return np.linalg.norm(Q), U
 
 
@@ -161,7 +161,7 @@ def deflected_element(section):
 def test_rigid_motion_gives_zero_elastic_force(section, exact, angle, shift):
     c = section(exact=exact)
     e = rigid(reference_element(), angle, shift)
-    Q, _, U = _core.cable_elastic(c, e)
+    Q, _, U = _core.testing.cable_elastic(c, e)
     # round-off: |r_s| = 1 to ~1e-15, so the strain (and curvature) are ~1e-15 while the
     # comparison state has a rotation of 4e-4 rad: 1e-9 leaves a wide margin
     q_scale, u_scale = deflected_element(c)
@@ -175,9 +175,9 @@ def test_elastic_force_is_objective(section, rel, exact):
     only on stretch and (for the exact curvature) on the true curvature."""
     c = section(exact=exact)
     e = STATES[0]
-    Q0, K0, U0 = _core.cable_elastic(c, e)
+    Q0, K0, U0 = _core.testing.cable_elastic(c, e)
     angle = 0.9
-    Q1, K1, U1 = _core.cable_elastic(c, rigid(e, angle, shift=(2.0, -0.5)))
+    Q1, K1, U1 = _core.testing.cable_elastic(c, rigid(e, angle, shift=(2.0, -0.5)))
     T = block_rotation(angle)
     assert rel(Q1, T @ Q0) < 1e-10
     assert rel(K1, T @ K0 @ T.T) < 1e-10
@@ -212,7 +212,7 @@ def hermite_consistent_mass(m, le):
 @pytest.mark.parametrize("le", [0.25, 0.1, 1.3])
 def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, le, validation):
     c = section(length=le, exact=exact)
-    Q, K, _ = _core.cable_elastic(c, reference_element(le))
+    Q, K, _ = _core.testing.cable_elastic(c, reference_element(le))
     scale = np.abs(K).max()
     assert np.abs(Q).max() < 1e-12 * scale * le  # the straight rail is unstressed
     # bending in y: exactly the Hermite beam (the integrand is a polynomial the 5-point rule
@@ -237,7 +237,7 @@ def test_linearised_element_is_euler_bernoulli_beam_plus_bar(section, exact, le,
 
 @pytest.mark.parametrize("le", [0.25, 0.1, 1.3])
 def test_mass_matrix_is_consistent_hermite_mass(section, le, validation):
-    M = _core.cable_mass(section(length=le))
+    M = _core.testing.cable_mass(section(length=le))
     Mh = hermite_consistent_mass(RHO_A, le)
     np.testing.assert_allclose(M[np.ix_(Y_DOFS, Y_DOFS)], Mh, rtol=0, atol=1e-13 * Mh.max())
     if le == 0.25:
@@ -256,27 +256,27 @@ def test_mass_matrix_is_consistent_hermite_mass(section, le, validation):
 
 def test_hermite_functions_interpolate_nodes_and_differentiate(fd):
     le = 0.37
-    n0, ns0, _ = _core.hermite(0.0, le)
-    n1, ns1, _ = _core.hermite(1.0, le)
+    n0, ns0, _ = _core.testing.hermite(0.0, le)
+    n1, ns1, _ = _core.testing.hermite(1.0, le)
     np.testing.assert_allclose(n0, [1, 0, 0, 0], atol=1e-15)
     np.testing.assert_allclose(ns0, [0, 1, 0, 0], atol=1e-14)
     np.testing.assert_allclose(n1, [0, 0, 1, 0], atol=1e-15)
     np.testing.assert_allclose(ns1, [0, 0, 0, 1], atol=1e-14)
     for xi in (0.13, 0.5, 0.91):
-        n, ns, nss = _core.hermite(xi, le)
+        n, ns, nss = _core.testing.hermite(xi, le)
         assert n[0] + n[2] == pytest.approx(1.0, abs=1e-15)  # rigid translation
         # derivatives are with respect to s = xi le; the functions are cubics, so the central
         # difference error is h^2/6 n''' <= ~1e-11 for h = 1e-6 le
         h = 1e-6
         np.testing.assert_allclose(
-            fd(lambda x: _core.hermite(x[0], le)[0], [xi], h)[:, 0] / le, ns, rtol=0, atol=1e-8)
+            fd(lambda x: _core.testing.hermite(x[0], le)[0], [xi], h)[:, 0] / le, ns, rtol=0, atol=1e-8)
         np.testing.assert_allclose(
-            fd(lambda x: _core.hermite(x[0], le)[1], [xi], h)[:, 0] / le, nss, rtol=0, atol=1e-7)
+            fd(lambda x: _core.testing.hermite(x[0], le)[1], [xi], h)[:, 0] / le, nss, rtol=0, atol=1e-7)
 
 
 @pytest.mark.parametrize("n", range(1, 11))
 def test_gauss_points_integrate_degree_2n_minus_1_exactly(n):
-    xi, w = _core.gauss_points(n)
+    xi, w = _core.testing.gauss_points(n)
     assert np.all((xi > 0) & (xi < 1))
     for k in range(2 * n):
         assert w @ xi**k == pytest.approx(1.0 / (k + 1), rel=1e-13, abs=1e-15)
@@ -287,7 +287,7 @@ def test_gauss_points_integrate_degree_2n_minus_1_exactly(n):
 @pytest.mark.parametrize("n", [0, 11])
 def test_gauss_points_outside_table_raise(n):
     with pytest.raises(ValueError):
-        _core.gauss_points(n)
+        _core.testing.gauss_points(n)
 
 
 @pytest.mark.parametrize("i_state", range(len(STATES)))
@@ -295,13 +295,13 @@ def test_more_gauss_points_do_not_change_the_forces(section, rel, i_state):
     e = STATES[i_state]
     # Green strain: eps is quartic in xi, eps^2 of degree 8 <= 2*5 - 1: 5 points are exact.
     # Simplified curvature: r_s x r_ss is cubic, kappa^2 of degree 6: exact too.
-    for fun, exact in ((_core.cable_axial, True), (_core.cable_bending, False)):
+    for fun, exact in ((_core.testing.cable_axial, True), (_core.testing.cable_bending, False)):
         Q5, K5, U5 = fun(section(exact=exact, n_gauss=5), e)
         Q7, K7, U7 = fun(section(exact=exact, n_gauss=7), e)
         assert rel(Q7, Q5) < 1e-12 and rel(K7, K5) < 1e-12
         assert U7 == pytest.approx(U5, rel=1e-12)
     # exact curvature divides by |r_s|^3 (not a polynomial); for moderate stretch the
     # quadrature error is tiny
-    Q5, K5, U5 = _core.cable_elastic(section(n_gauss=5), e)
-    Q7, K7, U7 = _core.cable_elastic(section(n_gauss=7), e)
+    Q5, K5, U5 = _core.testing.cable_elastic(section(n_gauss=5), e)
+    Q7, K7, U7 = _core.testing.cable_elastic(section(n_gauss=7), e)
     assert rel(Q7, Q5) < 1e-6 and rel(K7, K5) < 1e-6

@@ -30,7 +30,7 @@ def test_band_lu_solves_like_numpy(n, b):
     A = _band(rng, n, b)
     assert np.linalg.cond(A) < 1e2
     r = rng.standard_normal(n)
-    x = _core.band_solve(A, b, r)
+    x = _core.testing.band_solve(A, b, r)
     ref = np.linalg.solve(A, r)
     assert np.linalg.norm(x - ref) <= RTOL * np.linalg.norm(ref)
 
@@ -41,7 +41,7 @@ def test_band_lu_uses_only_the_band():
     A = _band(rng, 20, 2)
     r = rng.standard_normal(20)
     noisy = A + np.triu(rng.standard_normal((20, 20)), 3)
-    np.testing.assert_array_equal(_core.band_solve(noisy, 2, r), _core.band_solve(A, 2, r))
+    np.testing.assert_array_equal(_core.testing.band_solve(noisy, 2, r), _core.testing.band_solve(A, 2, r))
 
 
 @pytest.mark.parametrize("n, b, m", [(40, 3, 1), (83, 7, 3), (83, 7, 6), (160, 7, 9),
@@ -57,7 +57,7 @@ def test_bordered_solver_solves_like_numpy(n, b, m):
     full = np.block([[A, B], [C, D]])
     assert np.linalg.cond(full) < 1e2
     r1, r2 = rng.standard_normal(n), rng.standard_normal(m)
-    x1, x2 = _core.bordered_solve(A, b, B, C, D, r1, r2)
+    x1, x2 = _core.testing.bordered_solve(A, b, B, C, D, r1, r2)
     ref = np.linalg.solve(full, np.concatenate([r1, r2]))
     x = np.concatenate([x1, x2])
     assert np.linalg.norm(x - ref) <= RTOL * np.linalg.norm(ref)
@@ -77,7 +77,7 @@ def test_bordered_solver_with_sparse_border_columns():
     C[5, 50:58] = rng.standard_normal(8)
     D = np.diag(np.array([10.0, 0.05, 1.0, 10.0, 0.05, 1.0])) + 0.1 * rng.standard_normal((m, m))
     r1, r2 = rng.standard_normal(n), rng.standard_normal(m)
-    x1, x2 = _core.bordered_solve(A, b, B, C, D, r1, r2)
+    x1, x2 = _core.testing.bordered_solve(A, b, B, C, D, r1, r2)
     ref = np.linalg.solve(np.block([[A, B], [C, D]]), np.concatenate([r1, r2]))
     assert np.linalg.norm(np.concatenate([x1, x2]) - ref) <= RTOL * np.linalg.norm(ref)
 
@@ -86,12 +86,12 @@ def test_singular_and_inconsistent_inputs_raise():
     A = np.eye(4)
     A[2, 2] = 0.0
     with pytest.raises(RuntimeError, match="singular"):
-        _core.band_solve(A, 1, np.ones(4))
+        _core.testing.band_solve(A, 1, np.ones(4))
     with pytest.raises(RuntimeError, match="singular"):
-        _core.bordered_solve(np.eye(3), 1, np.zeros((3, 1)), np.zeros((1, 3)), np.zeros((1, 1)),
+        _core.testing.bordered_solve(np.eye(3), 1, np.zeros((3, 1)), np.zeros((1, 3)), np.zeros((1, 1)),
                              np.ones(3), np.ones(1))
     with pytest.raises(ValueError, match="inconsistent shapes"):
-        _core.bordered_solve(np.eye(3), 1, np.zeros((3, 2)), np.zeros((1, 3)), np.eye(1),
+        _core.testing.bordered_solve(np.eye(3), 1, np.zeros((3, 2)), np.zeros((1, 3)), np.eye(1),
                              np.ones(3), np.ones(1))
     with pytest.raises(ValueError, match="square"):
-        _core.band_solve(np.ones((2, 3)), 1, np.ones(2))
+        _core.testing.band_solve(np.ones((2, 3)), 1, np.ones(2))

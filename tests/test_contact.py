@@ -185,7 +185,7 @@ def test_straight_rail_contact_is_vertical(rail):
     # the rail element receives -N S_y(s*)^T: the y-position entries (F[3], F[7]) add up to
     # -N, and the y-slope entries make it act at s* (a point load, not a load plus a couple)
     assert d["F"][[3, 7]].sum() == pytest.approx(-d["N"], rel=1e-12)
-    n, _, _ = _core.hermite(d["s"] / 0.25 - d["element"], 0.25)
+    n, _, _ = _core.testing.hermite(d["s"] / 0.25 - d["element"], 0.25)
     np.testing.assert_allclose(d["F"][3::2], -d["N"] * np.asarray(n), rtol=1e-12, atol=1e-9)
     assert np.abs(d["F"][2::2]).max() < 1e-10 * d["N"]  # no x force from a vertical normal
 

@@ -72,16 +72,16 @@ def test_fixed_end_compliance_limits_and_symmetry():
     derivatives against central differences (G is a polynomial of degree 6 in a: the
     difference quotient's error ~h^2 G''', h = 1e-5 l, far below 1e-7)."""
     le = 0.075
-    g_mid = _core.fixed_end_compliance(EI, 1.0 / KGA, le, 0.5 * le)[0]
+    g_mid = _core.testing.fixed_end_compliance(EI, 1.0 / KGA, le, 0.5 * le)[0]
     assert g_mid == pytest.approx(le**3 / (192 * EI) + le / (4 * KGA), rel=1e-14, abs=0)
     for a in (0.0, 0.013, 0.031, le):
-        g = _core.fixed_end_compliance(EI, 0.0, le, a)[0]
+        g = _core.testing.fixed_end_compliance(EI, 0.0, le, a)[0]
         assert g == pytest.approx(a**3 * (le - a) ** 3 / (3 * EI * le**3), rel=1e-14, abs=0)
-        assert _core.fixed_end_compliance(EI, 1.0 / KGA, le, le - a)[0] == pytest.approx(
-            _core.fixed_end_compliance(EI, 1.0 / KGA, le, a)[0], rel=1e-13, abs=1e-30)
+        assert _core.testing.fixed_end_compliance(EI, 1.0 / KGA, le, le - a)[0] == pytest.approx(
+            _core.testing.fixed_end_compliance(EI, 1.0 / KGA, le, a)[0], rel=1e-13, abs=1e-30)
     h = 1e-5 * le
     for a in (0.011, 0.029, 0.052):
-        G = [_core.fixed_end_compliance(EI, 1.0 / KGA, le, a + k * h) for k in (-1, 0, 1)]
+        G = [_core.testing.fixed_end_compliance(EI, 1.0 / KGA, le, a + k * h) for k in (-1, 0, 1)]
         assert (G[2][0] - G[0][0]) / (2 * h) == pytest.approx(G[1][1], rel=1e-7, abs=0)
         assert (G[2][1] - G[0][1]) / (2 * h) == pytest.approx(G[1][2], rel=1e-7, abs=0)
 
@@ -114,7 +114,7 @@ def test_linear_static_deflection_under_a_load_between_nodes(beam, a, validation
             reference="simply supported span: P a² b²/(3 EI L) + P a b/(L κGA)",
             measured=abs(with_g / exact - 1.0), tolerance=1e-12)
     le = L / n
-    g = _core.fixed_end_compliance(EI, 1.0 / KGA if shear else 0.0, le, a - le * math.floor(a / le))
+    g = _core.testing.fixed_end_compliance(EI, 1.0 / KGA if shear else 0.0, le, a - le * math.floor(a / le))
     assert plain - with_g == pytest.approx(g[0] * P, rel=1e-9, abs=1e-12 * abs(exact))
     if a != 1.0 / 3.0 and shear:
         assert abs(plain / exact - 1.0) > 0.02
@@ -162,13 +162,13 @@ def test_series_law(law, G):
     law itself."""
     k = LAWS[law]
     for delta in (2e-5, 1e-4):
-        N, slope, comp, energy = _core.series_contact(getattr(_core.ContactLaw, law), k, G, delta)
+        N, slope, comp, energy = _core.testing.series_contact(getattr(_core.ContactLaw, law), k, G, delta)
         law_n = k * comp if law == "linear" else k * comp**1.5
         assert N == pytest.approx(law_n, rel=1e-14, abs=0)
         assert comp + G * N == pytest.approx(delta, rel=1e-14, abs=0)
         h = 1e-4 * delta
-        up = _core.series_contact(getattr(_core.ContactLaw, law), k, G, delta + h)
-        dn = _core.series_contact(getattr(_core.ContactLaw, law), k, G, delta - h)
+        up = _core.testing.series_contact(getattr(_core.ContactLaw, law), k, G, delta + h)
+        dn = _core.testing.series_contact(getattr(_core.ContactLaw, law), k, G, delta - h)
         assert (up[0] - dn[0]) / (2 * h) == pytest.approx(slope, rel=1e-7, abs=0)
         assert (up[3] - dn[3]) / (2 * h) == pytest.approx(N, rel=1e-7, abs=0)
         if G == 0.0:
@@ -285,7 +285,7 @@ def test_the_climbing_force_is_the_horizontal_part():
         x = (9 + xi) * le
         d = _core.contact_eval(model, e, x, RHO0 - 5e-5, x, contact("linear", K_LIN),
                                np.zeros(10))
-        G, Ga, _ = _core.fixed_end_compliance(EI, 1.0 / KGA, le, xi * le)
+        G, Ga, _ = _core.testing.fixed_end_compliance(EI, 1.0 / KGA, le, xi * le)
         assert d["compliance"] == pytest.approx(G, rel=1e-13, abs=0)
         assert d["F"][0] == pytest.approx(0.5 * d["N"] ** 2 * Ga, rel=1e-10, abs=1e-9)
         assert d["F"][1] == pytest.approx(d["N"], rel=1e-13, abs=0)
@@ -335,7 +335,7 @@ def test_full_iteration_matrix_with_compliance_matches_central_differences(law, 
     model, wheels, cp, s, st, dt = _ballasted_probe(law, slide, polygon)
 
     def R(x=None):
-        return _core.ga_probe(model, wheels, cp, s, st, dt, x)
+        return _core.testing.ga_probe(model, wheels, cp, s, st, dt, x)
 
     p0 = R()
     x0, J = p0["start"], p0["matrix"]
@@ -455,7 +455,7 @@ def test_director_length_follows_the_centre_line_on_fine_meshes():
     e = np.asarray(st.rail_coordinates).reshape(-1, 4)
     le = s.rail.length / s.rail.n_elements
     phi = 12.0 * s.rail.bending_stiffness / (s.rail.shear_stiffness * le * le)
-    ws = _core.timoshenko_shapes(0.0, le, phi)[1]  # r_s at each element's first node
+    ws = _core.testing.timoshenko_shapes(0.0, le, phi)[1]  # r_s at each element's first node
     rs = (ws[0] * e[:-1, :2] + ws[1] * e[:-1, 2:] + ws[2] * e[1:, :2] + ws[3] * e[1:, 2:])
     stretch = np.hypot(e[:-1, 2], e[:-1, 3]) - np.hypot(rs[:, 0], rs[:, 1])
     assert np.max(np.abs(stretch)) < 1e-6
@@ -546,7 +546,7 @@ def test_rolling_radius_terms_of_an_out_of_round_wheel():
     assert d["N"] > 0.0 and d["compliance"] > 0.0  # the contact is closed, between nodes
 
     def R(x=None):
-        return _core.ga_probe(model, wheels, cp, s, st, dt, x)
+        return _core.testing.ga_probe(model, wheels, cp, s, st, dt, x)
 
     x0 = R()["start"].copy()
     th, lam = model.n_free + 1, model.n_free + 2

@@ -235,14 +235,14 @@ def test_rolling_jacobians_against_finite_differences(validation):
     xa, ya = 1.3, float(model.positions(e, [1.3])[0, 1]) + 0.0999
     qdot = np.concatenate([[27.0, 0.05], 0.02 * rng.standard_normal(8)])
     thetadot = 270.0
-    base = _core.rolling_eval(model, e, xa, ya, xa, qdot, thetadot)
+    base = _core.testing.rolling_eval(model, e, xa, ya, xa, qdot, thetadot)
     el = int(np.floor(base["s"] / model.element_length))
     d0 = 4 * el
 
     def at(q, qd=qdot):
         ee = e.copy()
         ee[d0:d0 + 8] = q[2:]
-        return _core.rolling_eval(model, ee, q[0], q[1], base["s"], qd, thetadot)
+        return _core.testing.rolling_eval(model, ee, q[0], q[1], base["s"], qd, thetadot)
 
     q0 = np.concatenate([[xa, ya], e[d0:d0 + 8]])
     h = 1e-7

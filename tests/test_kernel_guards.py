@@ -34,7 +34,7 @@ CONTACT = _kernel.contact_params(KATO)
     lambda e: MODEL.tangent_dense(e),
     lambda e: MODEL.positions(e, [2.5]),
     lambda e: _core.contact_eval(MODEL, e, 2.5, 0.1, 2.5, CONTACT, np.zeros(10)),
-    lambda e: _core.rolling_eval(MODEL, e, 2.5, 0.1, 2.5, np.zeros(10), 1.0),
+    lambda e: _core.testing.rolling_eval(MODEL, e, 2.5, 0.1, 2.5, np.zeros(10), 1.0),
     lambda e: _core.highest_frequency(MODEL, WHEEL, CONTACT, e, 2.5, 0.1),
 ], ids=["internal_force", "tangent_dense", "positions", "contact_eval", "rolling_eval",
         "highest_frequency"])
@@ -53,7 +53,7 @@ def test_kernel_hostile_values_become_exceptions():
     with pytest.raises(ValueError, match="n_modes must be in"):
         _core.vertical_modes(MODEL, 10.0, 7e8, [2.5], 10**6)
     with pytest.raises(ValueError, match="n_gauss"):
-        _core.gauss_points(0)
+        _core.testing.gauss_points(0)
     p = _core.RailParams()  # no physics defaults: every field 0
     with pytest.raises(ValueError, match="rail length must be > 0 m"):
         _core.RailModel(p, _core.SupportParams())

@@ -156,7 +156,7 @@ def test_ballast_carries_the_wheel_load_and_each_sleeper_its_bay():
     d rho A g, plus its own weight m_s g (measured 5e-10; tolerance 1e-6)."""
     scene = tw.Scene.ballasted_track()
     loaded = tw.static(scene, 15.0)
-    bare = _core.track_static(_kernel.rail_model(scene))
+    bare = _core.testing.track_static(_kernel.rail_model(scene))
     F0 = np.asarray(bare["ballast_force"])
     n = len(scene.support_positions)
     assert loaded.ballast_force.shape == (n,) and F0.shape == (n,)

@@ -276,7 +276,7 @@ def test_iteration_matrix_with_absorbing_ends_matches_central_differences():
     zoned = _kernel.rail_model(long_scene(5.0, 20, ends=tw.AbsorbingEnds(1.0)), 20)
 
     def R(m, x=None):
-        return _core.ga_probe(m, wheels, contact, s, st, DT, x)
+        return _core.testing.ga_probe(m, wheels, contact, s, st, DT, x)
 
     p0 = R(zoned)
     x0, J = p0["start"], p0["matrix"]

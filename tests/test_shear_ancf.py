@@ -32,14 +32,14 @@ TOL_TRACE = 5e-3
 
 def shear_section(kga=TIMO.shear_stiffness, rho_i=TIMO.rotary_inertia, exact=True,
                   length=L_EL, n_gauss=5):
-    c = _core.ShearSection()
+    c = _core.testing.ShearSection()
     c.length, c.EA, c.EI, c.kGA = length, TIMO.axial_stiffness, TIMO.bending_stiffness, kga
     c.rhoA, c.rhoI, c.exact_curvature, c.n_gauss = TIMO.mass_per_length, rho_i, exact, n_gauss
     return c
 
 
 def cable_section(exact=True, length=L_EL):
-    c = _core.CableSection()
+    c = _core.testing.CableSection()
     c.length, c.EA, c.EI, c.rhoA = length, TIMO.axial_stiffness, TIMO.bending_stiffness, \
         TIMO.mass_per_length
     c.exact_curvature, c.n_gauss = exact, 5
@@ -76,8 +76,8 @@ def test_force_is_the_gradient_of_the_energy(exact, i_state):
     term of 1e-7 of Q go unseen."""
     c = shear_section(exact=exact)
     e = STATES[i_state]
-    Q = _core.shear_elastic(c, e)[0]
-    Q_fd, tol = fd_with_tolerance(lambda x: _core.shear_elastic(c, x)[2], e, H_FD_ENERGY, Q)
+    Q = _core.testing.shear_elastic(c, e)[0]
+    Q_fd, tol = fd_with_tolerance(lambda x: _core.testing.shear_elastic(c, x)[2], e, H_FD_ENERGY, Q)
     assert tol < TOL_CEILING_ENERGY
     assert rel(Q_fd, Q) < tol
 
@@ -89,8 +89,8 @@ def test_tangent_matches_central_differences(exact, i_state, validation):
     Hessian of U)."""
     c = shear_section(exact=exact)
     e = STATES[i_state]
-    K = _core.shear_elastic(c, e)[1]
-    K_fd, tol = fd_with_tolerance(lambda x: _core.shear_elastic(c, x)[0], e, H_FD, K)
+    K = _core.testing.shear_elastic(c, e)[1]
+    K_fd, tol = fd_with_tolerance(lambda x: _core.testing.shear_elastic(c, x)[0], e, H_FD, K)
     assert tol < TOL_CEILING
     assert rel(K_fd, K) < tol
     if exact and i_state == 3:
@@ -116,10 +116,10 @@ def test_time_loop_force_equals_the_checked_force(exact, i_state):
     p.shear_stiffness, p.rotary_inertia = c.kGA, c.rhoI
     model = _core.RailModel(p, _core.SupportParams())
     Q, U = model.internal_force(STATES[i_state])
-    Q_ref, _, U_ref = _core.shear_elastic(c, STATES[i_state])
+    Q_ref, _, U_ref = _core.testing.shear_elastic(c, STATES[i_state])
     assert rel(Q, Q_ref) < 1e-12
     assert U == pytest.approx(U_ref, rel=1e-12)
-    np.testing.assert_array_equal(model.mass_dense(), _core.shear_mass(c))
+    np.testing.assert_array_equal(model.mass_dense(), _core.testing.shear_mass(c))
 
 
 @pytest.mark.parametrize("exact", [True, False])
@@ -131,10 +131,10 @@ def test_rigid_motion_gives_zero_force_and_energy(exact, angle, shift):
     bending strains ~1e-4..1e-3): 1e-9 and 1e-12 leave wide margins, while a frame-dependent
     strain (e.g. gamma = d_y - r_s,y) would give O(1) of the scale."""
     c = shear_section(exact=exact)
-    Q, _, U = _core.shear_elastic(c, rigid(reference_element(), angle, shift))
+    Q, _, U = _core.testing.shear_elastic(c, rigid(reference_element(), angle, shift))
     bent = reference_element()
     bent[5] -= 1e-4
-    q_scale, _, u_scale = _core.shear_elastic(c, bent)
+    q_scale, _, u_scale = _core.testing.shear_elastic(c, bent)
     assert np.linalg.norm(Q) < 1e-9 * np.linalg.norm(q_scale)
     assert abs(U) < 1e-12 * u_scale
 
@@ -149,12 +149,12 @@ def test_euler_bernoulli_limit_is_the_cable(exact, i_state):
     kga = 12.0 * TIMO.bending_stiffness / (phi * L_EL**2)
     s, cab = shear_section(kga=kga, rho_i=0.0, exact=exact), cable_section(exact)
     e = STATES[i_state]
-    Qs, Ks, Us = _core.shear_elastic(s, e)
-    Qc, Kc, Uc = _core.cable_elastic(cab, e)
+    Qs, Ks, Us = _core.testing.shear_elastic(s, e)
+    Qc, Kc, Uc = _core.testing.cable_elastic(cab, e)
     assert rel(Qs, Qc) < 10 * phi
     assert rel(Ks, Kc) < 10 * phi
     assert Us == pytest.approx(Uc, rel=10 * phi)
-    assert rel(_core.shear_mass(s), _core.cable_mass(cab)) < 10 * phi
+    assert rel(_core.testing.shear_mass(s), _core.testing.cable_mass(cab)) < 10 * phi
 
 
 def test_linearised_element_is_the_iie_timoshenko_beam(validation):
@@ -162,11 +162,11 @@ def test_linearised_element_is_the_iie_timoshenko_beam(validation):
     (closed form, exact with n_gauss >= 3: psi'^2 has degree 2, gamma is constant), the y block
     of M the IIE mass with rotary inertia, and y does not couple with x; to round-off (1e-12)."""
     c = shear_section()
-    K = _core.shear_elastic(c, reference_element())[1]
-    M = _core.shear_mass(c)
+    K = _core.testing.shear_elastic(c, reference_element())[1]
+    M = _core.testing.shear_mass(c)
     iy, ix = np.ix_(Y_DOFS, Y_DOFS), np.ix_(Y_DOFS, [0, 2, 4, 6])
-    k_ref = _core.timoshenko_stiffness(c.EI, c.kGA, L_EL)
-    m_ref = _core.timoshenko_mass(c.rhoA, c.rhoI, c.EI, c.kGA, L_EL)
+    k_ref = _core.testing.timoshenko_stiffness(c.EI, c.kGA, L_EL)
+    m_ref = _core.testing.timoshenko_mass(c.rhoA, c.rhoI, c.EI, c.kGA, L_EL)
     np.testing.assert_allclose(K[iy], k_ref, rtol=0, atol=1e-12 * np.abs(k_ref).max())
     validation.record(
         "element.shear_linearised_is_iie_timoshenko", level="element", kind="closed form",
@@ -185,7 +185,7 @@ def test_mass_of_rigid_motions():
     """Translation: rhoA l; rotation of the straight element about its centre (r = (s - l/2) t,
     d = t): rhoA l^3/12 + rhoI l, the section's rotary inertia (exact quadrature, 1e-13)."""
     c = shear_section()
-    M = _core.shear_mass(c)
+    M = _core.testing.shear_mass(c)
     t = np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0])  # rigid vertical velocity
     w = np.array([0.0, -L_EL / 2, 0.0, 1.0, 0.0, L_EL / 2, 0.0, 1.0])  # angular velocity 1
     assert t @ M @ t == pytest.approx(c.rhoA * L_EL, rel=1e-13)
@@ -252,7 +252,7 @@ def test_full_model_frequencies_equal_the_linear_timoshenko_track():
     s = tw.Scene.kato2005()
     s = dc.replace(s, rail=dc.replace(s.rail, beam="timoshenko"))
     model = _kernel.rail_model(s)
-    lin = np.asarray(_core.track_modes(model, _kernel.beam_params(s), 0.0, 0.0, [0.0],
+    lin = np.asarray(_core.testing.track_modes(model, _kernel.beam_params(s), 0.0, 0.0, [0.0],
                                        8)[0]).ravel()
     np.testing.assert_allclose(_dense_vertical_frequencies(s)[:8], lin, rtol=1e-9)
     ne = s.rail.n_elements  # the mesh of the model above
@@ -354,7 +354,7 @@ def test_iteration_matrix_matches_central_differences(law, slide):
     s.speed, s.x_start, s.dt, s.t_end = v, 1.3, dt, dt
 
     def R(x=None):
-        return _core.ga_probe(model, [wheel], contact, s, st, dt, x)
+        return _core.testing.ga_probe(model, [wheel], contact, s, st, dt, x)
 
     p0 = R()
     x0, J = p0["start"], p0["matrix"]
@@ -397,7 +397,7 @@ def _linear_outputs(scene):
     _kernel.rail_model.cache_clear()
     r = tw.simulate(scene, 30.0, fidelity="linear/hertz", x_start=2.0, x_end=2.4, dt=2e-5)
     model = _kernel.rail_model(scene)
-    modes = [] if scene.supports.layered else _core.track_modes(
+    modes = [] if scene.supports.layered else _core.testing.track_modes(
         model, _kernel.beam_params(scene), scene.wheel.mass, scene.contact_stiffness, [2.1], 6)[0]
     rec = tw.receptance(scene, 2.1, [10.0, 500.0, 1500.0])
     return [r.y_contact, r.normal_force, r.y_wheel, np.asarray(modes), rec,

@@ -148,13 +148,13 @@ def test_rolling_jacobians_on_lifted_surface_match_central_differences(lifted, f
     ya = base0["surface"][1] + RHO0 - 1e-4
     qdot = np.concatenate([[27.0, 0.05], 0.02 * rng.standard_normal(8)])
     thetadot = 270.0
-    base = _core.rolling_eval(model, e, xa, ya, xa, qdot, thetadot)
+    base = _core.testing.rolling_eval(model, e, xa, ya, xa, qdot, thetadot)
     d0 = 4 * int(np.floor(base["s"] / model.element_length))
 
     def at(q, qd=qdot):
         ee = e.copy()
         ee[d0:d0 + 8] = q[2:]
-        return _core.rolling_eval(model, ee, q[0], q[1], base["s"], qd, thetadot)
+        return _core.testing.rolling_eval(model, ee, q[0], q[1], base["s"], qd, thetadot)
 
     q0 = np.concatenate([[xa, ya], e[d0:d0 + 8]])
     for name, key in (("dg_dq", "g"), ("db_dq", "b"), ("ds_dq", "s")):
@@ -176,11 +176,11 @@ def test_iteration_matrix_with_a_rail_profile_matches_central_differences(law, s
     model, wheels, contact, s, st = _probe_case(law, slide, 1,
                                                 irregularity=tw.Irregularity.sine(0.5, 5e-5))
     smooth = _probe_case(law, slide, 1)
-    assert not np.allclose(_core.ga_probe(*smooth, DT)["residual"],
-                           _core.ga_probe(model, wheels, contact, s, st, DT)["residual"])
+    assert not np.allclose(_core.testing.ga_probe(*smooth, DT)["residual"],
+                           _core.testing.ga_probe(model, wheels, contact, s, st, DT)["residual"])
 
     def R(x=None):
-        return _core.ga_probe(model, wheels, contact, s, st, DT, x)
+        return _core.testing.ga_probe(model, wheels, contact, s, st, DT, x)
 
     p0 = R()
     x0, J = p0["start"], p0["matrix"]

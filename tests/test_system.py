@@ -1,5 +1,5 @@
 """The system workspace (cpp/system.hpp): the generalized-alpha iteration matrix against
-central finite differences of the residual, through the test-only binding ``_core.ga_probe``.
+central finite differences of the residual, through the test-only binding ``_core.testing.ga_probe``.
 
 The unknowns of a step are x = [e''_free, (Y'', theta'', lambda) per wheel]; the kernel
 solves J dx = -r with J = dr/dx assembled analytically: the rail's M + gamma' h C_s +
@@ -103,7 +103,7 @@ def test_iteration_matrix_matches_central_differences(law, slide, n_wheels, poly
                                                 locked=locked)
 
     def R(x=None):
-        return _core.ga_probe(model, wheels, contact, s, st, DT, x)
+        return _core.testing.ga_probe(model, wheels, contact, s, st, DT, x)
 
     p0 = R()
     x0, J = p0["start"], p0["matrix"]
@@ -144,13 +144,13 @@ def test_newton_on_the_probe_matrix_reaches_the_round_off_floor(law, slide, n_wh
     is the derivative of the very residual the kernel's Newton solves (measured: 3e-6 N and
     1e-7 N; bound 1e-4 N, far below the 1e-6 (F + M g) ~ 0.05 N the kernel accepts)."""
     model, wheels, contact, s, st = _probe_case(law, slide, n_wheels)
-    p0 = _core.ga_probe(model, wheels, contact, s, st, DT)
+    p0 = _core.testing.ga_probe(model, wheels, contact, s, st, DT)
     x = p0["start"].copy()
     assert np.linalg.norm(p0["residual"]) > 1e3
     for _ in range(5):
-        p = _core.ga_probe(model, wheels, contact, s, st, DT, x)
+        p = _core.testing.ga_probe(model, wheels, contact, s, st, DT, x)
         x = x + np.linalg.solve(p["matrix"], p["residual"])
-    r = _core.ga_probe(model, wheels, contact, s, st, DT, x)["residual"]
+    r = _core.testing.ga_probe(model, wheels, contact, s, st, DT, x)["residual"]
     assert np.linalg.norm(r) < 1e-4
 
 
@@ -161,7 +161,7 @@ def test_condensed_sleepers_solve_equals_the_dense_solve(law, slide, n_wheels):
     dense solve of the uncondensed matrix J dx = -r to round-off: cond(J) = 7e4 here, so
     1e-10 of max |dx| (measured 2e-15)."""
     model, wheels, contact, s, st = _probe_case(law, slide, n_wheels, layered=True)
-    p = _core.ga_probe(model, wheels, contact, s, st, DT)
+    p = _core.testing.ga_probe(model, wheels, contact, s, st, DT)
     dense = np.linalg.solve(p["matrix"], p["residual"])
     assert np.max(np.abs(dense)) > 0.0
     np.testing.assert_allclose(p["solution"], dense, rtol=0,

@@ -41,14 +41,14 @@ def _timoshenko_pinned_pinned(rail: tw.Rail, d: float) -> float:
 def test_stiffness_is_the_hessian_of_the_element_energy():
     """K_e = d2U/dq2 by central differences of U (quadratic: the differences are exact up to
     round-off, ~1e-8 of the largest entry at this step)."""
-    K = _core.timoshenko_stiffness(EI, KGA, L_EL)
+    K = _core.testing.timoshenko_stiffness(EI, KGA, L_EL)
     q0 = np.array([1e-3, -2e-3, 0.5e-3, 1e-3])
     h = 1e-4
     H = np.empty((4, 4))
     for i in range(4):
         for j in range(4):
             e_i, e_j = h * np.eye(4)[i], h * np.eye(4)[j]
-            U = [_core.timoshenko_energy(EI, KGA, L_EL, q0 + si * e_i + sj * e_j)
+            U = [_core.testing.timoshenko_energy(EI, KGA, L_EL, q0 + si * e_i + sj * e_j)
                  for si, sj in ((1, 1), (1, -1), (-1, 1), (-1, -1))]
             H[i, j] = (U[0] - U[1] - U[2] + U[3]) / (4 * h * h)
     np.testing.assert_allclose(H, K, atol=1e-7 * np.abs(K).max())
@@ -58,7 +58,7 @@ def test_shear_strain_is_constant_and_nodal_values_interpolate():
     """The IIE interpolation: gamma = w' - psi is constant in the element (it solves the static
     equations), and w, psi take their nodal values at the ends."""
     phi = 12 * EI / (KGA * L_EL**2)
-    rows = [np.asarray(_core.timoshenko_shapes(xi, L_EL, phi)) for xi in np.linspace(0, 1, 7)]
+    rows = [np.asarray(_core.testing.timoshenko_shapes(xi, L_EL, phi)) for xi in np.linspace(0, 1, 7)]
     gamma = np.array([r[1] - r[3] for r in rows])  # (n_xi, 4)
     np.testing.assert_allclose(gamma, np.broadcast_to(gamma[0], gamma.shape), atol=1e-12)
     np.testing.assert_allclose(rows[0][[0, 3]], [[1, 0, 0, 0], [0, 1, 0, 0]], atol=1e-15)
@@ -69,7 +69,7 @@ def test_mass_of_rigid_motions():
     """q^T M q of a translation is rhoA l; of a rotation about the centre (w = s - l/2,
     psi = 1) rhoA l^3/12 + rhoI l: translational and rotary inertia (exact quadrature)."""
     rhoA, rhoI = 54.4, 2.43e-1
-    M = _core.timoshenko_mass(rhoA, rhoI, EI, KGA, L_EL)
+    M = _core.testing.timoshenko_mass(rhoA, rhoI, EI, KGA, L_EL)
     t = np.array([1.0, 0.0, 1.0, 0.0])
     r = np.array([-L_EL / 2, 1.0, L_EL / 2, 1.0])
     assert t @ M @ t == pytest.approx(rhoA * L_EL, rel=1e-13)
@@ -84,7 +84,7 @@ def test_thin_beam_limit_is_the_hermite_element():
     kga = 12 * EI / (1e-9 * h * h)
     herm = EI / h**3 * np.array([[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h],
                                  [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
-    np.testing.assert_allclose(_core.timoshenko_stiffness(EI, kga, h), herm, rtol=1e-8,
+    np.testing.assert_allclose(_core.testing.timoshenko_stiffness(EI, kga, h), herm, rtol=1e-8,
                                atol=1e-8 * np.abs(herm).max())
 
 
@@ -96,7 +96,7 @@ def test_thin_beam_limit_frequencies_equal_euler_bernoulli():
     b = _core.BeamParams()
     b.shear_stiffness = 1e10 * s.rail.bending_stiffness / s.rail.length**2
     b.rotary_inertia = 0.0
-    f_t = np.asarray(_core.track_modes(model, b, 0.0, 0.0, [0.0], 8)[0]).ravel()
+    f_t = np.asarray(_core.testing.track_modes(model, b, 0.0, 0.0, [0.0], 8)[0]).ravel()
     np.testing.assert_allclose(f_t, rail_frequencies(s, 8, n_elements=s.rail.n_elements),
                                rtol=1e-7)
 

@@ -215,7 +215,7 @@ def vehicle_probe(scene, speed):
     st.bodydot = np.linspace(0.01, -0.02, len(st.body))
 
     def R(x=None):
-        return _core.ga_probe(plan.model, wheels, contact, s, st, 1e-5, x, vp)
+        return _core.testing.ga_probe(plan.model, wheels, contact, s, st, 1e-5, x, vp)
 
     return R, plan.model.n_free
 

@@ -53,7 +53,7 @@ def test_bogie_statics_on_the_ballasted_track():
     P = np.array(veh.static_loads(scene.gravity))
     vs = vehicle_static(scene, 15.0 - 1.25)
     np.testing.assert_allclose(vs.normal_force, P, rtol=1e-8)
-    bare = np.asarray(_core.track_static(_kernel.rail_model(scene))["ballast_force"])
+    bare = np.asarray(_core.testing.track_static(_kernel.rail_model(scene))["ballast_force"])
     n = len(scene.support_positions)
     assert vs.ballast_force.shape == (n,) and vs.sleeper_z.shape == (n,)
     assert abs((vs.ballast_force - bare).sum() / P.sum() - 1.0) < 1e-8

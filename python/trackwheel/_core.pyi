@@ -6,107 +6,8 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BeamParams', 'BodyParams', 'CableSection', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'ShearSection', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'band_solve', 'bordered_solve', 'cable_axial', 'cable_bending', 'cable_elastic', 'cable_mass', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'fixed_end_compliance', 'ga_probe', 'gauss_points', 'hermite', 'highest_frequency', 'linear_static_line', 'periodic_lattice_sum', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'rolling_eval', 'series_contact', 'shear_elastic', 'shear_mass', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'time_band_factor_solve', 'timoshenko_energy', 'timoshenko_mass', 'timoshenko_shapes', 'timoshenko_stiffness', 'track_modes', 'track_static', 'vehicle_matrices', 'vertical_modes']
-class CableSection:
-    exact_curvature: bool
-    def __init__(self) -> None:
-        ...
-    @property
-    def EA(self) -> float:
-        """
-        axial stiffness [N]
-        """
-    @EA.setter
-    def EA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def EI(self) -> float:
-        """
-        bending stiffness [N m^2]
-        """
-    @EI.setter
-    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def length(self) -> float:
-        """
-        element length l [m]
-        """
-    @length.setter
-    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def n_gauss(self) -> int:
-        ...
-    @n_gauss.setter
-    def n_gauss(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def rhoA(self) -> float:
-        """
-        mass per length [kg/m]
-        """
-    @rhoA.setter
-    def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class ShearSection:
-    exact_curvature: bool
-    def __init__(self) -> None:
-        ...
-    @property
-    def EA(self) -> float:
-        """
-        axial stiffness [N]
-        """
-    @EA.setter
-    def EA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def EI(self) -> float:
-        """
-        bending stiffness [N m^2]
-        """
-    @EI.setter
-    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def kGA(self) -> float:
-        """
-        shear stiffness kappa G A [N]
-        """
-    @kGA.setter
-    def kGA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def length(self) -> float:
-        """
-        element length l [m]
-        """
-    @length.setter
-    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def n_gauss(self) -> int:
-        ...
-    @n_gauss.setter
-    def n_gauss(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def rhoA(self) -> float:
-        """
-        mass per length [kg/m]
-        """
-    @rhoA.setter
-    def rhoA(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def rhoI(self) -> float:
-        """
-        rotary inertia per length [kg m]
-        """
-    @rhoI.setter
-    def rhoI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+import types
+__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_line', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
 class RailParams:
     exact_curvature: bool
     pin_far_end: bool
@@ -232,6 +133,25 @@ class SupportParams:
         ...
     @stiffness.setter
     def stiffness(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+class BeamParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def rotary_inertia(self) -> float:
+        """
+        rho I [kg m]
+        """
+    @rotary_inertia.setter
+    def rotary_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shear_stiffness(self) -> float:
+        """
+        kappa G A [N]; 0: Euler-Bernoulli
+        """
+    @shear_stiffness.setter
+    def shear_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class Profile:
     """
@@ -389,6 +309,90 @@ class ContactLaw:
     @property
     def value(self) -> int:
         ...
+class ContactParams:
+    law: ContactLaw
+    def __init__(self) -> None:
+        ...
+    @property
+    def damping(self) -> float:
+        ...
+    @damping.setter
+    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def element_compliance(self) -> bool:
+        """
+        the rail element's fixed-end compliance under the load in series with the law (docs: Model § Contact)
+        """
+    @element_compliance.setter
+    def element_compliance(self, arg0: bool) -> None:
+        ...
+    @property
+    def friction(self) -> float:
+        """
+        mu, slip judgement [-]
+        """
+    @friction.setter
+    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
+    @radius.setter
+    def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stiffness(self) -> float:
+        ...
+    @stiffness.setter
+    def stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class RailModel:
+    @typing.overload
+    def __init__(self, arg0: RailParams, arg1: SupportParams) -> None:
+        ...
+    @typing.overload
+    def __init__(self, arg0: RailParams, arg1: SupportParams, arg2: Profile) -> None:
+        ...
+    def gravity_force(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def internal_force(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], float]:
+        ...
+    def mass_band_dense(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    def mass_dense(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    def positions(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        Rail points r(s) (n, 2) [m] for material coordinates s [m]
+        """
+    def reference(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def tangent_dense(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def element_length(self) -> float:
+        ...
+    @property
+    def free_to_full(self) -> list[int]:
+        ...
+    @property
+    def n_dof(self) -> int:
+        ...
+    @property
+    def n_free(self) -> int:
+        ...
+    @property
+    def n_nodes(self) -> int:
+        ...
+    @property
+    def profile(self) -> Profile:
+        """
+        the rail's profile (a streamed one shares its state)
+        """
+    @property
+    def total_mass(self) -> float:
+        ...
 class BodyParams:
     def __init__(self) -> None:
         ...
@@ -502,191 +506,40 @@ class VehicleParams:
     @suspensions.setter
     def suspensions(self, arg0: collections.abc.Sequence[SuspensionParams]) -> None:
         ...
-class ContactParams:
-    law: ContactLaw
+class WindowParams:
     def __init__(self) -> None:
-        ...
-    @property
-    def damping(self) -> float:
-        ...
-    @damping.setter
-    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def element_compliance(self) -> bool:
-        """
-        the rail element's fixed-end compliance under the load in series with the law (docs: Model § Contact)
-        """
-    @element_compliance.setter
-    def element_compliance(self, arg0: bool) -> None:
-        ...
-    @property
-    def friction(self) -> float:
-        """
-        mu, slip judgement [-]
-        """
-    @friction.setter
-    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def radius(self) -> float:
-        ...
-    @radius.setter
-    def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def stiffness(self) -> float:
-        ...
-    @stiffness.setter
-    def stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class RailModel:
-    @typing.overload
-    def __init__(self, arg0: RailParams, arg1: SupportParams) -> None:
-        ...
-    @typing.overload
-    def __init__(self, arg0: RailParams, arg1: SupportParams, arg2: Profile) -> None:
-        ...
-    def gravity_force(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-        ...
-    def internal_force(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], float]:
-        ...
-    def mass_band_dense(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        ...
-    def mass_dense(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        ...
-    def positions(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        """
-        Rail points r(s) (n, 2) [m] for material coordinates s [m]
-        """
-    def reference(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-        ...
-    def tangent_dense(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
-        ...
-    @property
-    def element_length(self) -> float:
-        ...
-    @property
-    def free_to_full(self) -> list[int]:
-        ...
-    @property
-    def n_dof(self) -> int:
-        ...
-    @property
-    def n_free(self) -> int:
-        ...
-    @property
-    def n_nodes(self) -> int:
-        ...
-    @property
-    def profile(self) -> Profile:
-        """
-        the rail's profile (a streamed one shares its state)
-        """
-    @property
-    def total_mass(self) -> float:
-        ...
-class BeamParams:
-    def __init__(self) -> None:
-        ...
-    @property
-    def rotary_inertia(self) -> float:
-        """
-        rho I [kg m]
-        """
-    @rotary_inertia.setter
-    def rotary_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def shear_stiffness(self) -> float:
-        """
-        kappa G A [N]; 0: Euler-Bernoulli
-        """
-    @shear_stiffness.setter
-    def shear_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class PeriodicTrackParams:
-    def __init__(self) -> None:
-        ...
-    @property
-    def EI(self) -> float:
-        """
-        bending stiffness [N m^2]
-        """
-    @EI.setter
-    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def ballast_damping(self) -> float:
-        """
-        c_b [N s/m]
-        """
-    @ballast_damping.setter
-    def ballast_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def ballast_stiffness(self) -> float:
-        """
-        k_b [N/m]
-        """
-    @ballast_stiffness.setter
-    def ballast_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def bay(self) -> float:
         """
-        d, support spacing [m]
+        sleeper bay d_s [m]; 0: no window
         """
     @bay.setter
     def bay(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def mass(self) -> float:
+    def elements_per_bay(self) -> int:
         """
-        rho A [kg/m]
+        [-]
         """
-    @mass.setter
-    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @elements_per_bay.setter
+    def elements_per_bay(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def pad_damping(self) -> float:
+    def hold(self) -> float:
         """
-        c_s or c_p [N s/m]
+        s of the rearmost wheel at a shift [m]
         """
-    @pad_damping.setter
-    def pad_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @hold.setter
+    def hold(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def pad_stiffness(self) -> float:
+    def origin(self) -> float:
         """
-        k_s or k_p [N/m]
+        track coordinate of s = 0 at t = 0 [m]
         """
-    @pad_stiffness.setter
-    def pad_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def rotary(self) -> float:
-        """
-        rho I [kg m]
-        """
-    @rotary.setter
-    def rotary(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def shear(self) -> float:
-        """
-        kappa G A [N]; 0: Euler-Bernoulli
-        """
-    @shear.setter
-    def shear(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def sleeper_mass(self) -> float:
-        """
-        m_s [kg]; 0: single
-        """
-    @sleeper_mass.setter
-    def sleeper_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @origin.setter
+    def origin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class Integrator:
     """
@@ -843,53 +696,18 @@ class SimSettings:
     def t_end(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def window(self) -> ...:
+    def window(self) -> WindowParams:
         """
         the travelling window (a copy: assign it)
         """
     @window.setter
-    def window(self, arg0: ...) -> None:
+    def window(self, arg0: WindowParams) -> None:
         ...
     @property
     def x_start(self) -> float:
         ...
     @x_start.setter
     def x_start(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class WindowParams:
-    def __init__(self) -> None:
-        ...
-    @property
-    def bay(self) -> float:
-        """
-        sleeper bay d_s [m]; 0: no window
-        """
-    @bay.setter
-    def bay(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def elements_per_bay(self) -> int:
-        """
-        [-]
-        """
-    @elements_per_bay.setter
-    def elements_per_bay(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def hold(self) -> float:
-        """
-        s of the rearmost wheel at a shift [m]
-        """
-    @hold.setter
-    def hold(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def origin(self) -> float:
-        """
-        track coordinate of s = 0 at t = 0 [m]
-        """
-    @origin.setter
-    def origin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class WheelState:
     state: SlipState
@@ -1087,27 +905,92 @@ class LinearOptions:
     @n_modes.setter
     def n_modes(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
-def axial_modes(arg0: RailModel, arg1: typing.SupportsInt | typing.SupportsIndex) -> tuple:
-    ...
-def band_solve(A: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], half_bandwidth: typing.SupportsInt | typing.SupportsIndex, r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+class PeriodicTrackParams:
+    def __init__(self) -> None:
+        ...
+    @property
+    def EI(self) -> float:
+        """
+        bending stiffness [N m^2]
+        """
+    @EI.setter
+    def EI(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ballast_damping(self) -> float:
+        """
+        c_b [N s/m]
+        """
+    @ballast_damping.setter
+    def ballast_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ballast_stiffness(self) -> float:
+        """
+        k_b [N/m]
+        """
+    @ballast_stiffness.setter
+    def ballast_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bay(self) -> float:
+        """
+        d, support spacing [m]
+        """
+    @bay.setter
+    def bay(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mass(self) -> float:
+        """
+        rho A [kg/m]
+        """
+    @mass.setter
+    def mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pad_damping(self) -> float:
+        """
+        c_s or c_p [N s/m]
+        """
+    @pad_damping.setter
+    def pad_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pad_stiffness(self) -> float:
+        """
+        k_s or k_p [N/m]
+        """
+    @pad_stiffness.setter
+    def pad_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotary(self) -> float:
+        """
+        rho I [kg m]
+        """
+    @rotary.setter
+    def rotary(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shear(self) -> float:
+        """
+        kappa G A [N]; 0: Euler-Bernoulli
+        """
+    @shear.setter
+    def shear(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sleeper_mass(self) -> float:
+        """
+        m_s [kg]; 0: single
+        """
+    @sleeper_mass.setter
+    def sleeper_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+def axial_modes(rail: RailModel, n_modes: typing.SupportsInt | typing.SupportsIndex) -> tuple:
     """
-    Test hook: solve A x = r by the band LU (no pivoting) of A's band
-    """
-def bordered_solve(A: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], half_bandwidth: typing.SupportsInt | typing.SupportsIndex, B: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], C: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], D: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], r1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], r2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
-    """
-    Test hook: solve [A B; C D] [x1; x2] = [r1; r2] with the bordered band solver
-    """
-def cable_axial(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
-    ...
-def cable_bending(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
-    ...
-def cable_elastic(arg0: CableSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
-    """
-    Elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy U [J]
-    """
-def cable_mass(arg0: CableSection) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"]:
-    """
-    Element mass matrix (8x8) [kg]
+    Axial modes of the rail: (frequencies (1, n_modes) [Hz], shapes (1, n_dof, n_modes))
     """
 def contact_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: ContactParams, arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"]) -> dict:
     """
@@ -1118,58 +1001,32 @@ def direction_pencil(rail: RailModel, component: typing.SupportsInt | typing.Sup
     K [N/m], M [kg], C [N s/m] of one direction (0: x, 1: y with the wheel if wheel_mass > 0) at the straight reference as triplets {n, dofs, row, col, K, M, C} over local coordinates (the direction's free coordinates, full indices in dofs, then the wheel's Y_w and the sleepers' z_j on layered supports)
     """
 def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) -> float:
-    ...
-def fixed_end_compliance(EI: typing.SupportsFloat | typing.SupportsIndex, shear_compliance: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, a: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float]:
     """
-    The element's clamped-clamped compliance under a point load at a in [0, l]: (G [m/N], dG/da, d2G/da2); shear_compliance = 1/kGA [1/N], 0 for Euler-Bernoulli
+    The explicit RK4 stability limit 2 sqrt(2) / omega_max [s] for omega_max [rad/s]
     """
-def ga_probe(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, t1: typing.SupportsFloat | typing.SupportsIndex, x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"] | None = None, vehicle: VehicleParams = ...) -> dict:
-    """
-    Test hook: the generalized-alpha step from the consistent start of `initial` to t1 [s] at the iterate x = [e''_free, (Y'', theta'', lambda) per wheel, (z'', phi'') per body, z'' per sleeper] (None: the start accelerations). Returns {'start': the start accelerations in that layout, 'residual': -r, 'matrix': the iteration matrix dr/dx (assembled, dense, the sleepers uncondensed), 'solution': the kernel's Newton correction (the sleepers condensed)}
-    """
-def gauss_points(arg0: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
-    ...
-def hermite(arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: typing.SupportsFloat | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 1]"]]:
-    ...
 def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
     """
-def linear_static_line(rail: RailModel, beam: ..., load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+def linear_static_line(rail: RailModel, beam: BeamParams, load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
     Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; element_compliance: the element's own deflection under the load G(X_i) P included.
-    """
-def periodic_lattice_sum(track: PeriodicTrackParams, k: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex, w: complex | typing.SupportsComplex | typing.SupportsFloat | typing.SupportsIndex) -> complex:
-    """
-    The lattice sum S(k, w) [m/N] of the periodic track
     """
 def periodic_receptance_matrix(track: PeriodicTrackParams, speed: typing.SupportsFloat | typing.SupportsIndex, omega: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsInt | typing.SupportsIndex, offsets: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, stats: bool = False) -> typing.Any:
     """
     Moving-load receptance matrices (n_offsets, 2n+1, 2n+1) [m/N] of the periodic track; with stats=True also the work counts {points, poles, rounds, den_evaluations}
     """
-def quasi_static(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
-    ...
-def rail_static(arg0: RailModel) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-    ...
-def receptance(rail: RailModel, beam: BeamParams, x: typing.SupportsFloat | typing.SupportsIndex, x_response: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], freqs: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.complex128], "[m, n]"]:
+def quasi_static(rail: RailModel, wheel: WheelParams, contact: ContactParams, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
     """
-    Receptances (n_freq, n_resp) [m/N] of the linear track, unit force at x
+    The quasi-static line: a static solve at each X_A in x [m], each from the rail of the one before; {'y_contact', 'y_wheel', 'contact_s' [m], 'normal_force' [N]} (n,) each
     """
-def rolling_eval(arg0: RailModel, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[10, 1]"], arg6: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+def rail_static(rail: RailModel) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
-    Rolling-constraint kinematics for q = [X_A, Y_A, e_el], qdot = [V_A, edot_el]
+    The rail's coordinates e (n_dof,) at rest under its own weight, no wheel
     """
-def series_contact(law: ContactLaw, stiffness: typing.SupportsFloat | typing.SupportsIndex, G: typing.SupportsFloat | typing.SupportsIndex, delta: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float, float, float]:
+def receptance(rail: RailModel, beam: BeamParams, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], x_response: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], freqs: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.complex128], "[m, n]"]:
     """
-    The contact law in series with a compliance G [m/N] at the approach delta [m]: (N [N], dN/d(delta) [N/m], the law's compression [m], the stored energy [J])
-    """
-def shear_elastic(arg0: ShearSection, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[8, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"], float]:
-    """
-    Shear-deformable element: elastic force Q [N], Jacobian K = dQ/de [N/m], strain energy U [J]
-    """
-def shear_mass(arg0: ShearSection) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[8, 8]"]:
-    """
-    Shear-deformable element mass matrix (8x8) [kg]
+    Receptances (n_freq, n_force * n_resp) [m/N] of the linear track, a unit force at each of x (column e * n_resp + r: response r to force e)
     """
 def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
@@ -1183,47 +1040,21 @@ def static_bodies(vehicle: VehicleParams, y_wheels: typing.Annotated[numpy.typin
     """
     [z_0, phi_0, z_1, phi_1, ...] [m, rad] of the bodies in static equilibrium above wheel centres held at heights y_wheels [m]: the bodies' rows of K_v u = -G (vehicle.hpp)
     """
-def static_solve(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.SupportsFloat | typing.SupportsIndex) -> dict:
-    ...
+def static_solve(rail: RailModel, wheel: WheelParams, contact: ContactParams, x_wheel: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    """
+    Static equilibrium of the wheel at X_A = x_wheel [m] on the rail under its load F + M g: {'e' (n_dof,), 'x_wheel', 'y_wheel', 'contact_s' [m], 'y_contact' [m] (the rail under the load), 'normal_force', 'horizontal_reaction' [N], 'iterations', 'sleeper_z' [m], 'ballast_force' [N]}
+    """
 def static_solve_wheels(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contacts: collections.abc.Sequence[ContactParams], x_wheels: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list:
     """
     Static equilibrium of several wheels on the rail, wheel w at x_wheels[w] under its load F + M g: one static_solve dict per wheel (the same rail e in each)
-    """
-def time_band_factor_solve(rail: RailModel, cq: typing.SupportsFloat | typing.SupportsIndex, cv: typing.SupportsFloat | typing.SupportsIndex, repeats: typing.SupportsInt | typing.SupportsIndex, bordered: bool = False) -> float:
-    """
-    Mean wall time [s] of one factorisation + solve of M + cv C_s + cq K_t (benchmarks)
-    """
-def timoshenko_energy(EI: typing.SupportsFloat | typing.SupportsIndex, kGA: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"]) -> float:
-    """
-    IIE element strain energy [J]
-    """
-def timoshenko_mass(rhoA: typing.SupportsFloat | typing.SupportsIndex, rhoI: typing.SupportsFloat | typing.SupportsIndex, EI: typing.SupportsFloat | typing.SupportsIndex, kGA: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
-    """
-    Consistent IIE element mass (4x4) with rotary inertia
-    """
-def timoshenko_shapes(xi: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex, phi: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[5, 4]"]:
-    """
-    IIE shape functions: rows w, w', w'', psi, psi'; columns [w1, psi1, w2, psi2]
-    """
-def timoshenko_stiffness(EI: typing.SupportsFloat | typing.SupportsIndex, kGA: typing.SupportsFloat | typing.SupportsIndex, l: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
-    """
-    Exact IIE Timoshenko element stiffness (4x4) over [w1, psi1, w2, psi2]
-    """
-def track_modes(rail: RailModel, beam: BeamParams, wheel_mass: typing.SupportsFloat | typing.SupportsIndex, contact_stiffness: typing.SupportsFloat | typing.SupportsIndex, positions: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], list[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]]:
-    """
-    Linear-track modes: (frequencies (n_pos, n_modes) [Hz], shapes per position (ny + 1, n_modes) over the y coordinates then the wheel)
-    """
-def track_static(arg0: RailModel) -> dict:
-    """
-    Static track under its own weight, no wheel: {'e', 'sleeper_z', 'ballast_force', ...}
     """
 def vehicle_matrices(vehicle: VehicleParams, n_wheels: typing.SupportsInt | typing.SupportsIndex) -> dict:
     """
     The vehicle's constant matrices over u = [Y_A per wheel, (z, phi) per body] (vehicle.hpp): {'K' [N/m], 'C' [N s/m]: sum k g g^T, sum c g g^T over the suspensions; 'mass': the bodies' masses [kg] and pitch inertias [kg m^2], the wheels' entries 0; 'G': the bodies' weights and loads [N]}
     """
-def vertical_modes(arg0: RailModel, arg1: typing.SupportsFloat | typing.SupportsIndex, arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], arg4: typing.SupportsInt | typing.SupportsIndex) -> tuple:
+def vertical_modes(rail: RailModel, wheel_mass: typing.SupportsFloat | typing.SupportsIndex, contact_stiffness: typing.SupportsFloat | typing.SupportsIndex, positions: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex) -> tuple:
     """
-    Vertical modes: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
+    Vertical modes of the rail with the wheel (mass M [kg] on the contact spring k [N/m]) at each position [m]: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
     """
 GAUSS_RANGE: tuple = (2, 10)
 MAX_DENSE_EIGEN_DOF: int = 4000
@@ -1231,3 +1062,5 @@ MAX_ELEMENTS: int = 20000
 MAX_SPEED: float = 300.0
 MAX_SUPPORTS: int = 100000
 OUTPUT_FIELDS: tuple = (('t', 's', 'time', False, 'float64'), ('x_wheel', 'm', 'X_A, wheel-centre position (prescribed X_0 + v t)', True, 'float64'), ('y_wheel', 'm', 'Y_A, wheel-centre height', True, 'float64'), ('ydot_wheel', 'm/s', 'dY_A/dt', True, 'float64'), ('theta', 'rad', 'rolling angle', True, 'float64'), ('thetadot', 'rad/s', 'rolling rate', True, 'float64'), ('contact_s', 'm', 's*, rail coordinate of the contact point', True, 'float64'), ('y_contact', 'm', 'y_B = y(s*), rail displacement under the wheel', True, 'float64'), ('normal_force', 'N', 'N, normal contact force (0 without contact)', True, 'float64'), ('tangential_force', 'N', 'lambda, tangential contact force on the wheel', True, 'float64'), ('slip', 'm/s', 'slip velocity t.(V_A - S edot) - rho thetadot', True, 'float64'), ('slip_state', '', '0 no contact, 1 stick, 2 slide', True, 'int32'), ('v_error', '%', "paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100", True, 'float64'), ('phi', 'rad', 'rail obliquity at the contact point', True, 'float64'), ('acc_contact', 'm/s^2', "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss (s'' y_s neglected)", True, 'float64'), ('acc_A', 'm/s^2', "rho cos(phi) theta' v phi_s (docs: Model § Outputs)", True, 'float64'), ('acc_B', 'm/s^2', "rho cos(phi) theta' phi_t", True, 'float64'), ('acc_C', 'm/s^2', 'rho cos(phi) v^2 phi_s^2', True, 'float64'), ('acc_D', 'm/s^2', 'rho cos(phi) phi_t^2', True, 'float64'), ('acc_E', 'm/s^2', '2 rho cos(phi) phi_t v phi_s', True, 'float64'), ('reaction', 'N', 'horizontal force holding X_A = X_0 + v t', True, 'float64'), ('penetration', 'm', 'rho0 - rho (negative: gap)', True, 'float64'), ('energy', 'J', 'total mechanical energy (recorded on request only)', False, 'float64'))
+#: The test-only probes and benchmark hooks of the kernel (not public API, no stubs).
+testing: types.ModuleType

@@ -1,0 +1,45 @@
+// What the linear path's integrator shares with the full path's (full_path.hpp): the run's state,
+// its true accelerations (acc.x: [Y'', N] per wheel, then the bodies') and its system workspace
+// (linear_system.hpp), the watchdog's view of them, the recorder of one output sample and the
+// travelling window's shift of the state.
+#pragma once
+
+#include "linear_system.hpp"
+#include "time_loop.hpp"
+#include "window.hpp"
+
+namespace trackwheel {
+
+class LinearStepper : public Stepper {
+ public:
+  LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOutput& out, const Divergence& div);
+  bool finite() const override { return finite_state(st_); }
+  double vibration_energy() const override;
+  double wheel_height(int w) const override { return st_.wheels[w].y; }
+  // Append the sample of the current state and accelerations at time t [s].
+  void record_sample(double t) override;
+
+ protected:
+  // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
+  // point (window.hpp): the state and the integrator's accelerations accs; true if it moved.
+  // The track is linear, so the departure from the rest state obeys the same equations in
+  // every window position.
+  bool shift_window(double t1, std::initializer_list<Accel*> accs);
+
+  LinearSystem& sys_;
+  SimState& st_;
+  Accel& acc_;
+  SimOutput& out_;
+  const Divergence& div_;
+  WindowFollower win_;
+
+ private:
+  // One wheel's fields of the sample at t; delta: its contact approach [m] (0: rigid).
+  void record_wheel(int w, double t, double& delta);
+  // The total mechanical energy [J] (as the full path's total_energy) at t, with each wheel's
+  // approach delta.
+  double total_energy(double t, const std::vector<double>& delta) const;
+  std::vector<double> delta_;
+};
+
+}  // namespace trackwheel

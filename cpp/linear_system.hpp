@@ -1,0 +1,150 @@
+// The system workspace of the linear path, beside the full path's System (docs: Model § Rail
+// (linearised)): the linear track's constant matrices and their iteration matrix, factorised
+// once, the wheels' couplings and contact laws, the vehicle's and the sleepers' rows, and the
+// Newton pieces over one bordered system.
+//
+// Unknowns: the track's q'' (band, linear_rail.hpp; the sleepers' z'' condensed into it,
+// sleepers.hpp) and the border x = [Y_A'', N] per wheel, then [z_b'', phi_b''] per vehicle body
+// (BorderLayout of layout()). Equations, with y(X_A) = s(X_A) . q:
+//   track   M q'' + C q' + K q = Q_g - sum_w s_w N_w (+ the sleepers' pull)
+//   wheel w M Y_A'' = N - (F + M g) + f_u,w (the suspensions, vehicle.hpp), and its contact row:
+//     MovingForce  N = F + M g (the wheel follows the rail);
+//     MovingMass   Y_A = y(X_A) + rho0 + e - G N (rigid contact; G the element compliance);
+//     Sprung/Hertz N = N_e(delta) + c delta', delta = rho0 + e - Y_A + y(X_A)
+//   (e = r(X_A) + Delta rho(theta): the rail profile and the wheel's out-of-roundness).
+// A Newton correction solves the band once (A = M + cv C + cq K) and the border by its Schur
+// complement, with Z_w = A^-1 s_w from a cache of the element's columns.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <vector>
+
+#include "banded.hpp"
+#include "ga_scheme.hpp"
+#include "linear_rail.hpp"
+#include "linear_track.hpp"
+#include "model.hpp"
+#include "sleepers.hpp"
+#include "state.hpp"
+#include "vehicle.hpp"
+
+namespace trackwheel {
+
+// The linear track at rest: K q = Q_g + f with the sleepers condensed at rest ((cm, cv, cq) =
+// (0, 0, 1), sleepers.hpp), K factorised once. The window's rest state, the start state and the
+// quasi-static line all stand on it.
+class LinearRest {
+ public:
+  LinearRest(const LinearTrack& track, const Sleepers& sleepers);
+  // q = K^-1 (rhs + the sleepers' pull at rest), with z the sleepers' heights under it; rhs is
+  // Q_g less the loads, over q.
+  void solve(Eigen::VectorXd& q, Eigen::VectorXd& z) const;
+  // u = K^-1 s (the track under a unit upward load through s).
+  void solve_in_place(Eigen::VectorXd& u) const { K_.solve_in_place(u); }
+
+ private:
+  const LinearTrack& tr_;
+  Sleepers sl_;
+  BandMatrix K_;
+};
+
+// One wheel's coupling to the linear track at its rail coordinate.
+struct WheelCoupling {
+  Eigen::VectorXd s, ss, sss;  // s(X), s_s(X), s_ss(X) over q
+  // the contact row's dependence on q'' through y(X_A) = s.q (and, for the damper, s.q' and
+  // the convected s_s.q v): u = cs s + css s_s
+  double cs = 0.0, css = 0.0;
+  Eigen::MatrixXd W;  // A^-1 of the four y basis vectors of the element (cached)
+  Eigen::VectorXd Z;  // A^-1 s(X)
+  int cache_el = -1;
+  // the element's fixed-end compliance under the load at X_A (zero unless
+  // ContactParams::element_compliance; contact.hpp)
+  ElementCompliance g;
+  double u_dot(const Eigen::VectorXd& x) const;  // u . x
+};
+
+class LinearSystem {
+ public:
+  LinearSystem(const Model& model, const SimSettings& settings, const LinearOptions& options);
+
+  const Model& model() const { return model_; }
+  const SimSettings& settings() const { return set_; }
+  const LinearOptions& options() const { return opt_; }
+  const LinearTrack& track() const { return tr_; }
+  const Sleepers& sleepers() const { return sl_; }
+  const VehicleRows& vehicle() const { return vehicle_; }
+  int n_wheels() const { return nw_; }
+  int n_bodies() const { return nb_; }
+  // The border x = [Y'', N]_w, then [z'', phi''] per body (Accel::x).
+  BorderLayout layout() const { return {nw_, nb_, 2, -1, 1}; }
+  double static_load(int w) const { return static_load_[w]; }
+  // Wheel w's track coordinate X_A at t [m] and its rail coordinate s = X_A - X_w on a
+  // travelling window of origin X_w (X_A on a fixed rail) [m].
+  double x_at(int w, double t) const { return wheel_x(model_, set_, w, t); }
+  double s_at(int w, double t) const { return x_at(w, t) - origin_; }
+  double origin() const { return origin_; }
+  void set_origin(double x) { origin_ = x; }
+  // MovingForce or MovingMass: no contact law between wheel and rail.
+  bool rigid() const;
+  // The contact law of the wheel model: the bilateral linear spring or Hertz.
+  ContactLaw law() const;
+
+  // The element's fixed-end compliance at the rail coordinate s (zero without
+  // ContactParams::element_compliance): the law acts in series with it (contact.hpp).
+  ElementCompliance compliance_at(double s) const;
+  // The running surfaces' excitation of wheel w at t: e = r(X_A) + Delta rho(psi), the profile
+  // under the wheel centre plus the out-of-roundness at psi = theta = v t / rho0 (the linear
+  // path rolls without slip) [m], and its rate [m/s].
+  double excitation(int w, double t, double& rate) const;
+  // Contact force of a sprung/Hertz wheel at the state and t: N = N_e(delta) + c delta';
+  // dN = dN_e/d delta (0 where the contact is open).
+  double contact_force(int w, double t, const SimState& st, double& dN) const;
+
+  // The start: static equilibrium under the wheels (or the track under its own weight for a
+  // sudden start, options.sudden), the wheels on it (lifted by options.drop_height), the bodies
+  // where their springs carry the static loads, and the accelerations with the initial contact
+  // forces (acc.x holds N per wheel).
+  void start(SimState& st, Accel& acc);
+  // The wheels' couplings at t and their Z = A^-1 s(X_A), the columns cached per element.
+  void couple(double t);
+  const WheelCoupling& coupling(int w) const { return wc_[w]; }
+  // After the window moved: the element caches are stale.
+  void drop_cached_columns();
+  // The constant part of the rail's residual at the predictor p: K q_p + C q'_p - Q_g.
+  void begin_step(const SimState& p);
+  // The negated residual -r of the Newton iteration `it` (it = 0: at x.edd = 0) at the iterate
+  // x and its state s1 over the track's rows, the sleepers' rows condensed into them.
+  void residual(int it, const SimState& s1, const Accel& x, Eigen::VectorXd& r1);
+  // The Newton correction from r1: the track's dq'' (x1), the border's dx (xb) and the
+  // sleepers' dz''; false if the border's Schur complement is singular.
+  bool solve(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& r1,
+             Eigen::VectorXd& x1, Eigen::VectorXd& xb, Eigen::VectorXd& dz);
+
+ private:
+  // Wheel w's border rows: D [dY''; dN] + u^T x1 e_1 = r2 (track rows: A x1 + s dN = r1).
+  void border(int w, double t, const SimState& s1, const Accel& x, Eigen::Matrix2d& D,
+              Eigen::Vector2d& r2);
+  bool solve_border(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& x1,
+                    Eigen::VectorXd& xb);
+
+  const Model& model_;
+  const SimSettings& set_;
+  const LinearOptions opt_;
+  const LinearTrack tr_;
+  const GACoefficients c_;
+  const int nw_, nb_;
+  Sleepers sl_;   // layered supports (sleepers.hpp): z'' condensed into A_
+  BandMatrix A_;  // M + cv C + cq K, factorised once
+  bool damped_;
+  VehicleRows vehicle_;
+  std::vector<double> static_load_;  // [N]
+  std::vector<WheelCoupling> wc_;
+  double origin_ = 0.0;  // window origin X_w [m]
+  // per-step buffers (no allocation in the time loop)
+  Eigen::VectorXd g_, Cq_, Kq_, tmp_, rs_, rhs_;
+  Eigen::MatrixXd S_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+};
+
+}  // namespace trackwheel
