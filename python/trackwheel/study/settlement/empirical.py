@@ -138,9 +138,9 @@ class Sato(_CurveLaw):
         for _ in range(_MAX_NEWTON):
             if not active.any():
                 break
-            value = -a * np.expm1(-b * n) + c * n
-            slope = a * b * np.exp(-b * n) + c
-            with np.errstate(divide="ignore", invalid="ignore"):
+            with np.errstate(divide="ignore", invalid="ignore"):  # inactive: inf, 0 c
+                value = -a * np.expm1(-b * n) + c * n
+                slope = a * b * np.exp(-b * n) + c
                 step = np.where(active, n + (y - value) / slope, n)
             moved = active & (step > n)
             n = np.where(moved, step, n)

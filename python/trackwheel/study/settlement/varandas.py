@@ -100,8 +100,8 @@ class Varandas(SettlementLaw):
         new_levels[empty], new_counts[empty] = 0.0, 0
         if self.level_rtol > 0.0 and levels.shape[1]:
             new_levels = self._snap(levels, new_levels)
-        # the union of the old and the new levels, highest first (stable: the same order for
-        # a sleeper alone and in any batch, whose zero padding sinks to the end)
+        # the union of the old and the new levels, highest first; a batch's zero padding sinks
+        # to the end, and of equal levels the first spans a piece of zero width
         union = np.concatenate([levels, new_levels], axis=1)
         order = np.argsort(-union, axis=1, kind="stable")
         union = np.take_along_axis(union, order, axis=1)
