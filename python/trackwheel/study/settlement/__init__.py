@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from .empirical import HARDENING, Sato, Shenton
+from .empirical import HARDENING, CurveLaw, Sato, Shenton
 from .power_sums import power_sum
 from .state import MAX_CYCLES, SettlementLaw, SettlementState
 from .varandas import Varandas
@@ -39,5 +39,5 @@ def law_from_dict(data: Mapping) -> SettlementLaw:
     return LAWS[name](**params)
 
 
-__all__ = ["HARDENING", "LAWS", "MAX_CYCLES", "Sato", "SettlementLaw", "SettlementState",
-           "Shenton", "Varandas", "law_from_dict", "power_sum"]
+__all__ = ["HARDENING", "LAWS", "MAX_CYCLES", "CurveLaw", "Sato", "SettlementLaw",
+           "SettlementState", "Shenton", "Varandas", "law_from_dict", "power_sum"]

@@ -34,9 +34,12 @@ _MAX_NEWTON = 200
 HARDENING = ("strain", "time")
 
 
-class _CurveLaw(SettlementLaw):
-    """A law S(N; F) with its coefficients per sleeper from F (``_coefficients``), the curve's
-    rise S(N + dN; F) - S(N; F) (``_rise``) and its inverse in N (``_cycles_at``)."""
+class CurveLaw(SettlementLaw):
+    """A settlement law given by a curve S(N; F), the settlement after N cycles of a constant
+    peak ballast force F, and a ``hardening`` rule for a force that varies (module docstring).
+
+    Subclasses give the curve's coefficients per sleeper from F (``_coefficients``), its rise
+    S(N + dN; F) - S(N; F) (``_rise``) and its inverse in N (``_cycles_at``)."""
 
     def _check_common(self):
         for name, value in {
@@ -71,7 +74,7 @@ class _CurveLaw(SettlementLaw):
 
 
 @dataclass(frozen=True)
-class Sato(_CurveLaw):
+class Sato(CurveLaw):
     """Sato (1995): ``S(N) = a (1 - exp(-b N)) + c N``, initial compaction then a linear rate.
 
     Sato, Y. (1995), Japanese studies on deterioration of ballasted track, Vehicle System
@@ -149,7 +152,7 @@ class Sato(_CurveLaw):
 
 
 @dataclass(frozen=True)
-class Shenton(_CurveLaw):
+class Shenton(CurveLaw):
     """Shenton (1985): ``S(N) = k1 N^0.2 + k2 N``, with k1, k2 proportional to the load.
 
     Shenton, M. J. (1985), Ballast deformation and track deterioration, in Track Technology

@@ -1,6 +1,6 @@
 """What every settlement law shares: the per-sleeper state it advances, the interface
-(``initial_state``, ``advance``) and the checks of its inputs (docs: Model § Ballast
-settlement).
+(``initial_state``, ``advance``) and the checks of its inputs
+(docs: Model § Ballast settlement).
 
 A law is a frozen dataclass of its parameters; its state, a :class:`SettlementState`, holds
 per sleeper the settlement so far, the load cycles so far and the law's own history (Varandas:
@@ -152,7 +152,8 @@ class SettlementLaw(abc.ABC):
 
     def constant_load(self, peak_force, cycles) -> np.ndarray:
         """The settlement [m] of fresh sleepers after ``cycles`` cycles of a constant peak
-        ballast force ``peak_force`` [N] (broadcast together): the law's closed form."""
+        ballast force ``peak_force`` [N] (broadcast together; a number for numbers): the law's
+        closed form."""
         force = np.asarray(peak_force, dtype=float)
         count = np.asarray(cycles)
         force, count = np.broadcast_arrays(force, count)
@@ -160,7 +161,7 @@ class SettlementLaw(abc.ABC):
             f, n = peak_inputs(force.reshape(1), count.reshape(1), 1)
         else:
             f, n = peak_inputs(force.ravel(), count.ravel(), force.size)
-        return self._constant_load(f[0], n[0].astype(float)).reshape(force.shape)
+        return self._constant_load(f[0], n[0].astype(float)).reshape(force.shape)[()]
 
     def to_dict(self) -> dict:
         """The law's name and parameters as plain values (``law_from_dict`` reads them)."""

@@ -1,6 +1,6 @@
-"""The load-history settlement law of Varandas, Hölscher and Silva (2014) (docs: Model § Ballast
-settlement): a sleeper settles in a load cycle by an amount that depends on the cycle's peak
-ballast force and on how many earlier cycles reached each force below it.
+"""The load-history settlement law of Varandas, Hölscher and Silva (2014)
+(docs: Model § Ballast settlement): a sleeper settles in a load cycle by an amount that depends
+on the cycle's peak ballast force and on how many earlier cycles reached each force below it.
 
 Sleeper j in cycle n with peak ballast force F_n settles by
 
@@ -113,7 +113,10 @@ class Varandas(SettlementLaw):
         h_new = np.cumsum(new, axis=1)  # and the cycles this step adds there
         scaled = (union / self.reference_force) ** (self.alpha + 1.0)
         weight = scaled - np.concatenate([scaled[:, 1:], np.zeros((n, 1))], axis=1)
-        terms = weight * power_sum(self.beta, h_old + 1.0, h_new)
+        terms = np.zeros_like(weight)
+        reached = h_new > 0  # the pieces this step's peaks reach (elsewhere nothing changes)
+        terms[reached] = weight[reached] * power_sum(self.beta, h_old[reached] + 1.0,
+                                                     h_new[reached])
         total = np.zeros(n)
         for column in terms.T:  # in order, so that padding columns add exact zeros
             total = total + column
