@@ -8,6 +8,8 @@ import argparse
 import dataclasses
 import math
 
+import numpy as np
+
 from ..base.limits import MAX_ELEMENTS
 from ..excitation import Irregularity, WheelFlat, spectra
 from ..scene import Scene, Vehicle
@@ -218,8 +220,9 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
                          "the dip's cusp curves more sharply than the wheel)")
     impact = [o for o, given in (("--wheel-flat", args.wheel_flat is not None),
                                  ("--joint", args.joint is not None)) if given]
-    if impact and scene.supports.damping == 0.0 and scene.contact.damping == 0.0 and (
-            not scene.supports.layered or scene.supports.ballast_damping == 0.0):
+    sv = scene.support_values
+    if impact and not np.any(sv.damping) and scene.contact.damping == 0.0 and (
+            not np.any(sv.ballast_damping)):
         notes.append(f"{' and '.join(impact)} on an undamped track (the paper's: supports and "
                      "contact without damping): nothing dissipates the energy of each impact, "
                      "so the wheel bounces off the rail and later impacts build up on the "

@@ -43,6 +43,11 @@ from ..scenes import (
 )
 
 
+def _k_text(scene: Scene) -> str:
+    """The support (pad) stiffness [MN/m]: one value, or its range over the supports."""
+    return scene.supports.text("stiffness", 1e-6, scene.support_positions)
+
+
 def add(sub) -> None:
     p = sub.add_parser(
         "run", help="simulate one passage and print the headline outputs",
@@ -97,7 +102,7 @@ def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
     veh = scene.active_vehicle
     k_name = "k_p" if scene.supports.layered else "k_s"
     print(f"{veh.n_wheels} wheels, {len(veh.bogies)} bogie(s), car body: "
-          f"{'yes' if veh.car else 'no'}; {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
+          f"{'yes' if veh.car else 'no'}; {k_name} = {_k_text(scene)} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} elements, "
           f"fidelity {st.fidelity}, excitation: {describe(scene)}")
@@ -153,7 +158,7 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
     i_max = int(np.argmax(np.abs(a.dynamic)))
     k_name = "k_p" if scene.supports.layered else "k_s"
-    print(f"{name}, {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
+    print(f"{name}, {k_name} = {_k_text(scene)} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings       : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} "
           f"elements, fidelity {st.fidelity}")
