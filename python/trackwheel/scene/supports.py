@@ -88,7 +88,8 @@ class Supports:
     ballast push only. Both need the kernel's unilateral ballast.
     """
 
-    stiffness: PerSupport = 140e6  #: k_s, vertical stiffness of each support [N/m] (layered: pad k_p)
+    #: k_s, vertical stiffness of each support [N/m] (layered: pad k_p)
+    stiffness: PerSupport = 140e6
     spacing: float = 0.5  #: d_s, support interval [m]
     damping: PerSupport = 0.0  #: c_s, viscous damping of each support [N s/m] (layered: pad c_p)
     positions: tuple[float, ...] | None = None  #: explicit positions X_j [m], or None
