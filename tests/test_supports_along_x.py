@@ -402,7 +402,8 @@ def _waves(beta: float, sign: int):
 
 def two_winkler(EI: float, k1: float, k2: float, P: float, a: float, x) -> np.ndarray:
     """w(x) [m] of an infinite Euler-Bernoulli beam on the foundation k1 [N/m^2] for x < 0 and
-    k2 for x > 0 under the point load P [N] down at x = a (MODEL.md § 13 (a)): on each side
+    k2 for x > 0 under the point load P [N] down at x = a
+    (docs: Model § Supports varying along the track, its known answers): on each side
     EI w'''' + k w = -P delta(x - a); the waves e^{-beta_i |x|}(A cos beta_i x + B sin beta_i x),
     beta_i = (k_i / (4 EI))^(1/4), decaying away from the load; between the step and the load
     all four. w, w', w'', w''' continuous at 0; w, w', w'' continuous and EI w''' jumping by
@@ -490,8 +491,9 @@ def test_a_stiffness_step_on_dense_supports_is_the_beam_on_two_winkler_foundatio
 # ---------------------------------------------------------------------------------------------
 # presets: transitions, hanging sleepers, scatter
 def test_transition_shapes_follow_their_formulas():
-    """MODEL.md § 13: p = p1 + (p2 - p1) s((X - X0) / L_r): step H (1/2 at X0), linear
-    clip(xi + 1/2, 0, 1), cosine (1 - cos(pi clip(xi + 1/2, 0, 1))) / 2; exactly p1 and p2 off
+    """The transition shapes (docs: Model § Supports varying along the track):
+    p = p1 + (p2 - p1) s((X - X0) / L_r): step H (1/2 at X0), linear clip(xi + 1/2, 0, 1),
+    cosine (1 - cos(pi clip(xi + 1/2, 0, 1))) / 2; exactly p1 and p2 off
     the ramp (bit for bit), the mean at X0, monotone, the cosine's slope zero at both ends
     of the ramp (central differences over 1e-6 m: below 1e-6 of the linear ramp's slope)."""
     p1, p2, x0, lr = 50e6, 200e6, 10.0, 4.0
@@ -652,3 +654,66 @@ def test_a_sweep_over_seeds_redraws_the_bed(tmp_path):
     seeds = sorted(__import__("json").loads(p.read_text())["inputs"]["scene"]["supports"]
                    ["stiffness"]["seed"] for p in tmp_path.glob("case-*.json"))
     assert seeds == [1, 2]
+
+
+# ---------------------------------------------------------------------------------------------
+# the command line
+def _cli_scene(argv, track="ballasted"):
+    from trackwheel import cli
+    from trackwheel.cli import scenes
+
+    args = cli.build_parser().parse_args(["run", "--speed-kmh", "100", "--track", track, *argv])
+    return scenes.track_scene(args, args.support_stiffness)
+
+
+def test_the_command_line_builds_the_api_track():
+    """--transition / --scatter / --void give the supports the API builds: the ballast stiffness
+    of --track ballasted, the support stiffness of kato2005; a ramp is linear unless
+    --transition-shape says cosine; the scatter's mean is the transition and its seed --seed."""
+    base = tw.Scene.ballasted_track().supports
+    assert _cli_scene(["--transition", "50e6,200e6,15"]).supports == base.transition(
+        15.0, ballast_stiffness=(50e6, 200e6))
+    assert _cli_scene(["--transition", "50e6,200e6,15,3", "--transition-shape", "cosine",
+                       "--scatter", "0.2", "--seed", "4"]).supports == base.transition(
+        15.0, ramp=3.0, shape="cosine", ballast_stiffness=(50e6, 200e6)).scattered(0.2, seed=4)
+    assert _cli_scene(["--void", "15.1,1e-3", "--void", "3,2e-3"]).supports == base.hanging(
+        [15.1, 3.0], gap=[1e-3, 2e-3])
+    assert _cli_scene(["--transition", "1e8,2e8,2.5,1"], "kato2005").supports == (
+        KATO.supports.transition(2.5, ramp=1.0, shape="linear", stiffness=(1e8, 2e8)))
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--transition", "1e8,2e8"], ["K1,K2,AT[,RAMP]"]),
+    (["--transition", "1e8,-2e8,2.5"], ["--transition: Supports.stiffness at support 4 "
+                                         "(X = 2.5 m) = -50000000.0", "(0, 1e+14] N/m"]),
+    (["--transition-shape", "cosine"], ["--transition-shape needs --transition K1,K2,AT,RAMP"]),
+    (["--transition", "1e8,2e8,2.5", "--support-stiffness", "1e8"],
+     ["give them or --support-stiffness, not both"]),
+    (["--scatter", "20"], ["--scatter: Scatter.cv = 20.0 is outside the allowed range"]),
+    (["--void", "2,1e-3"], ["--void: a void lies between a sleeper and its ballast"]),
+    (["--track", "ballasted", "--void", "15,1e-3", "--x-start", "5.1"],
+     ["need the kernel's unilateral ballast"]),
+    (["--track", "ballasted", "--void", "15,0.5"], ["--void: Voids.gaps = 0.5",
+                                                    "[0.0, 0.1] m"]),
+    (["--seed", "3"], ["--seed need(s) a random --irregularity", "or --scatter"]),
+])
+def test_bad_track_options_are_one_line(argv, words, capsys):
+    from trackwheel import cli
+
+    cheap = ["--n-elements", "20", "--dt", "1e-5", "--x-end", "5.4"]
+    assert cli.main(["run", "--speed-kmh", "100", *argv, *cheap]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "error:" in err
+    for w in words:
+        assert w in err, (w, err)
+
+
+def test_run_prints_the_track_along_x(capsys):
+    from trackwheel import cli
+
+    argv = ["--transition", "100e6,180e6,2.5,1", "--support-damping", "2e4", "--n-elements",
+            "20", "--dt", "2e-5", "--x-end", "1.0"]
+    assert cli.main(["run", "--speed-kmh", "100", *argv]) == 0
+    out = capsys.readouterr().out
+    assert "k_s = 100..180 MN/m" in out
+    assert "track along X  : k_s 100 -> 180 MN/m at X = 2.5 m over 1 m (linear)" in out
