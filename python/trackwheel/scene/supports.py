@@ -297,7 +297,7 @@ class Supports:
             return f"{value * scale:g}"
         if positions is None:
             return "varies along X"
-        arr = self.values(positions).__getattribute__(name)
+        arr = getattr(self.values(positions), name)
         return f"{arr.min() * scale:g}..{arr.max() * scale:g}"
 
     def __repr__(self) -> str:
