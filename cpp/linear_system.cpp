@@ -48,13 +48,25 @@ LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const Lin
         "with sleepers use all coordinates (n_modes=None in trackwheel.simulate)");
   if (tr_.modal && set.window.active())
     throw std::invalid_argument("the travelling window needs all coordinates, not n_modes");
+  factorize_iteration_matrix();
+  for (WheelCoupling& wc : wc_) wc.W.resize(tr_.nq, 4);
+}
+
+void LinearSystem::factorize_iteration_matrix() {
   A_.resize(tr_.nq, tr_.bw);
   A_.set_linear_combination(1.0, tr_.M, c_.cv, tr_.C);
   A_.add_scaled(c_.cq, tr_.K);
   sl_.set_coefficients(1.0, c_.cv, c_.cq);
   sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
-  for (WheelCoupling& wc : wc_) wc.W.resize(tr_.nq, 4);
+}
+
+void LinearSystem::supports_changed() {
+  tr_ = LinearTrack(model_.rail, opt_.n_modes, opt_.beam);
+  sl_ = Sleepers(model_.rail);
+  damped_ = !tr_.C.is_zero();
+  factorize_iteration_matrix();
+  drop_cached_columns();
 }
 
 bool LinearSystem::rigid() const {

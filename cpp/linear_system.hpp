@@ -111,6 +111,10 @@ class LinearSystem {
   const WheelCoupling& coupling(int w) const { return wc_[w]; }
   // After the window moved: the element caches are stale.
   void drop_cached_columns();
+  // The rail's supports changed their properties (a travelling window streams them in,
+  // window.hpp): the track's matrices, the sleepers' rows and the iteration matrix are built
+  // and factorised again, O(n).
+  void supports_changed();
   // The constant part of the rail's residual at the predictor p: K q_p + C q'_p - Q_g.
   void begin_step(const SimState& p);
   // The negated residual -r of the Newton iteration `it` (it = 0: at x.edd = 0) at the iterate
@@ -127,11 +131,12 @@ class LinearSystem {
               Eigen::Vector2d& r2);
   bool solve_border(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& x1,
                     Eigen::VectorXd& xb);
+  void factorize_iteration_matrix();  // A_ = M + cv C + cq K, the sleepers condensed
 
   const Model& model_;
   const SimSettings& set_;
   const LinearOptions opt_;
-  const LinearTrack tr_;
+  LinearTrack tr_;  // rebuilt when the supports change (supports_changed)
   const GACoefficients c_;
   const int nw_, nb_;
   Sleepers sl_;   // layered supports (sleepers.hpp): z'' condensed into A_
