@@ -17,7 +17,7 @@ on the linear path, the factorisations (counts, the same on any machine).
 - ``full 15 m``: the full model over 15 m, 5 repeats (a kilometre of the full model takes
   half an hour; the cost per shift is constant, so the ratio per metre is the same).
 
-Run: ``python benchmarks/window_stream.py`` (about 10 minutes on a busy core); writes
+Run: ``python benchmarks/window_stream.py`` (about 6 minutes on one core); writes
 ``window_stream.csv``.
 """
 
