@@ -181,3 +181,40 @@ def test_kernel_refuses_a_stream_that_does_not_fit(bad, match):
     plan.window.supports = stream
     with pytest.raises(ValueError, match=match):
         _run(plan)
+
+
+def test_public_path_streams_a_transition_with_scatter():
+    """Through trackwheel.simulate: Supports.transition (k_b 105 -> 315 MN/m over a linear
+    1.2 m ramp at X = 29.5 m) with Supports.scattered (cv 0.3, tied to each sleeper's absolute
+    index, so both rails see the same bed) on the window of 20 + 1 + 20 bays against the 60 m
+    fixed rail: the run streams the sleepers it meets (one per shift beyond the start window's)
+    and agrees with the fixed rail as the kernel-level test above asks, contact force and
+    ballast-force envelopes within 1e-3 P over the last 4 m."""
+    sup = tw.Scene.ballasted_track().supports.transition(
+        29.5, ramp=1.2, shape="linear", ballast_stiffness=(105e6, 315e6)).scattered(0.3, seed=4)
+    fixed = dc.replace(tw.Scene.ballasted_track(length=60.0), supports=sup)
+    window = dc.replace(tw.Scene.ballasted_track(window=tw.Window(20, 20)), supports=sup)
+    kw = dict(x_start=20.1, x_end=32.1, fidelity="linear/hertz", progress=False)
+    pw = sim.plan_run(window, V, n_elements=window.rail.n_elements, **kw)
+    stream = pw.window.supports
+    assert len(stream.position) >= len(window.support_positions) + 20
+    np.testing.assert_allclose(stream.ballast_stiffness,
+                               sup.values(stream.position).ballast_stiffness, rtol=0)
+    rf = tw.simulate(fixed, V, n_elements=fixed.rail.n_elements, **kw)
+    rw = tw.simulate(window, V, n_elements=window.rail.n_elements, dt=rf.settings.dt, **kw)
+    stretch = rw.x_wheel >= STRETCH
+    assert np.ptp(rf.normal_force[stretch]) > 0.02 * P_STATIC
+    assert np.abs(rw.normal_force - rf.normal_force)[stretch].max() < 1e-3 * P_STATIC
+    ef = rf.sleeper_envelope()
+    ef = ef[(ef.x >= STRETCH + D) & (ef.x <= rw.x_wheel[-1] - D)].set_index("x")
+    ew = rw.sleeper_envelope()
+    ew = ew.set_index(np.round(ew.x, 9)).loc[np.round(ef.index, 9)]
+    for name in ("ballast_force_max", "ballast_force_min"):
+        assert np.abs(ew[name].to_numpy() - ef[name].to_numpy()).max() < 1e-3 * P_STATIC
+
+
+def test_window_refuses_voids_until_the_kernel_has_them():
+    scene = tw.Scene.ballasted_track(window=tw.Window(10, 10))
+    scene = dc.replace(scene, supports=scene.supports.hanging(9.0, gap=1e-3))
+    with pytest.raises(ValueError, match="unilateral ballast"):
+        tw.simulate(scene, V, x_start=6.1, x_end=10.1, fidelity="linear/hertz", progress=False)

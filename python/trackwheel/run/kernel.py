@@ -68,18 +68,28 @@ def support_params(scene: Scene, origin: float = 0.0) -> _core.SupportParams:
 
 def _supports_at(scene: Scene, x: np.ndarray, position=None) -> _core.SupportParams:
     """The kernel's supports with the properties the scene's supports have at the track
-    coordinates ``x`` [m], placed at ``position`` (None: at ``x``)."""
-    sp = scene.supports  # per-support values: sp.values(x) resolves them (the line to switch)
-    n = len(x)
+    coordinates ``x`` [m] (:meth:`trackwheel.Supports.values`), placed at ``position``
+    (None: at ``x``)."""
+    sv = scene.supports.values(x)
+    unilateral_ballast(sv)
     s = _core.SupportParams()
-    s.position = list(x if position is None else position)
-    s.stiffness = [sp.stiffness] * n
-    s.damping = [sp.damping] * n
-    if sp.layered:
-        s.sleeper_mass = [sp.sleeper_mass] * n
-        s.ballast_stiffness = [sp.ballast_stiffness] * n
-        s.ballast_damping = [sp.ballast_damping] * n
+    s.position = sv.position.tolist() if position is None else np.asarray(position).tolist()
+    s.stiffness = sv.stiffness.tolist()
+    s.damping = sv.damping.tolist()
+    if sv.layered:
+        s.sleeper_mass = sv.sleeper_mass.tolist()
+        s.ballast_stiffness = sv.ballast_stiffness.tolist()
+        s.ballast_damping = sv.ballast_damping.tolist()
     return s
+
+
+def unilateral_ballast(sv) -> None:
+    """Voids and tensionless ballast need the kernel's unilateral ballast: ValueError until it
+    has one."""
+    if sv.unilateral:
+        raise ValueError("Supports.void and Supports.ballast_tensionless need the kernel's "
+                         "unilateral ballast, which this build does not have yet: give void = 0 "
+                         "and ballast_tensionless = False")
 
 
 #: The per-support properties the travelling window streams (the kernel's
@@ -94,6 +104,8 @@ def support_stream(scene: Scene, window, travel: float):
     X_0 = origin + X_0,rail on, X_k = X_0 + k d (every sleeper that joins the window, O(travel
     / d) of them), as a ``_core.SupportParams`` for ``window.supports``; None if every one has
     the same properties (the window's rail is the track, as without streaming)."""
+    if scene.supports.uniform:
+        return None
     d = window.bay
     rail_x = np.asarray(scene.support_positions, dtype=float)
     n = len(rail_x) + int(np.ceil(travel / d - 1e-9)) + 2  # one more shift at each end
