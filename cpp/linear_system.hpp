@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <utility>
 #include <vector>
 
 #include "banded.hpp"
@@ -132,6 +133,9 @@ class LinearSystem {
   bool solve_border(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& x1,
                     Eigen::VectorXd& xb);
   void factorize_iteration_matrix();  // A_ = M + cv C + cq K, the sleepers condensed
+  // The supports' springs and dampers over q: K = K_beam + sum k_j s_j s_j^T (C alike), the
+  // track without them and each support's s_j (its nonzero entries) kept from the first call.
+  void assemble_supports();
 
   const Model& model_;
   const SimSettings& set_;
@@ -150,6 +154,9 @@ class LinearSystem {
   Eigen::VectorXd g_, Cq_, Kq_, tmp_, rs_, rhs_;
   Eigen::MatrixXd S_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  // a streamed window's track without its supports' springs and dampers (assemble_supports)
+  BandMatrix Kbeam_, Cbeam_;
+  std::vector<std::vector<std::pair<int, double>>> support_s_;
 };
 
 }  // namespace trackwheel

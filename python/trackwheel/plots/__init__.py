@@ -17,6 +17,8 @@ Layer 5, one module per topic:
 - :mod:`.excitation` -- :func:`irregularity_profile`, :func:`contact_force`,
   :func:`force_bands`;
 - :mod:`.track` -- :func:`receptance`, :func:`decay_rate`;
+- :mod:`.track_along_x` -- :func:`sleeper_envelope` (each sleeper's force envelope beside the
+  supports' properties along X);
 - :mod:`.periodic` -- :func:`periodic_force` (the steady force over the bay and its
   harmonics), :func:`random_force_bands` (its band RMS under a random profile);
 - :mod:`.common` -- what they share, and :func:`run_label` / :func:`format_dt`, the names of
@@ -34,6 +36,7 @@ from .passage import acceleration_terms, dynamic
 from .periodic import periodic_force, random_force_bands
 from .sweeps import DODGE, speed, support_stiffness
 from .track import decay_rate, receptance
+from .track_along_x import sleeper_envelope
 
 __all__ = [
     "DODGE",
@@ -51,6 +54,7 @@ __all__ = [
     "random_force_bands",
     "receptance",
     "run_label",
+    "sleeper_envelope",
     "speed",
     "support_stiffness",
     "time_step_convergence",

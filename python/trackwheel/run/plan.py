@@ -232,7 +232,13 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     # the full path reads the profile in the rail coordinate s = X - X_w of the start window
     # (the kernel shifts it as the window travels); the linear path reads it at X
     s0 = 0.0 if window is None or linear else window.origin
-    model = kernel.rail_model(scene, ne, profile_end, s0)
+    # the track's supports along the run, streamed into the window (None: all alike); the
+    # start window's rail has those at its place
+    stream = None if window is None else kernel.support_stream(scene, window, speed * t_end)
+    if stream is not None:
+        window.supports = stream
+    model = kernel.rail_model(scene, ne, profile_end, s0,
+                              0.0 if stream is None else window.origin)
     init = None if linear else initial_state(scene, model, speed, x0 - s0, start, drop_height)
     h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
     length = ({"duration": duration} if duration is not None else
