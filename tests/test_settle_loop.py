@@ -195,3 +195,19 @@ def test_bad_input(kw, match):
 def test_single_springs_are_refused():
     with pytest.raises(ValueError, match="layered"):
         tw.settle(tw.Scene.kato2005(), 50.0, 100, progress=False)
+
+
+def test_cli_and_plots(tmp_path, capsys):
+    """``trackwheel settle`` prints the stages and writes the table and the profile; the plots
+    take a history."""
+    from trackwheel import plots
+    from trackwheel.cli.main import main
+
+    out, fig = tmp_path / "s.csv", tmp_path / "s.png"
+    code = main(["settle", "--speed-kmh", "200", "--cycles", "1e4", "--fidelity", "static",
+                 "--length", "18", "--stages", "2", "--open-loop", "--no-progress",
+                 "--out", str(out), "--plot", str(fig)])
+    assert code == 0 and out.exists() and fig.exists()
+    assert "stage" in capsys.readouterr().out
+    h = run(cycles=10**4)
+    assert plots.dynamic_factor_cycles(h).axes and plots.settlement_profile(h, voids=True).axes
