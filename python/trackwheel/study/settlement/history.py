@@ -1,4 +1,4 @@
-"""The settlement loop's results and their store (docs: Model § Ballast settlement, the loop).
+"""The settlement loop's results and their store (docs: Model § The settlement loop).
 
 :class:`SettlementHistory` holds one entry per state of the bed, from the intact track (stage
 0) to the last stage: the cycles and days so far, each settling sleeper's settlement and void,

@@ -1,4 +1,4 @@
-"""``trackwheel.settle``: the settlement loop (docs: Model § Ballast settlement, the loop)."""
+"""``trackwheel.settle``: the settlement loop (docs: Model § The settlement loop)."""
 
 from __future__ import annotations
 

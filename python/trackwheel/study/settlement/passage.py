@@ -1,6 +1,6 @@
 """One passage of the settlement loop: a traffic item run over the (settled) track, and what the
-loop takes from it, every settling sleeper's peak ballast force per axle (docs: Model § Ballast
-settlement, the loop).
+loop takes from it, every settling sleeper's peak ballast force per axle
+(docs: Model § The settlement loop).
 
 :class:`PassageTask` is everything one passage needs, a plain picklable value, so that the
 passages of a stage run on any ``concurrent.futures.Executor``; :func:`run_passage` runs one and

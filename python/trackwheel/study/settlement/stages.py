@@ -1,6 +1,5 @@
 """The stages of the settlement loop: traffic runs over the track, the ballast settles, the
-settled bed goes back into the track, stage by stage (docs: Model § Ballast settlement, the
-loop).
+settled bed goes back into the track, stage by stage (docs: Model § The settlement loop).
 
 :func:`~trackwheel.settle` (:mod:`.loop`) is the entry point; this module holds its parts: the setup (the settling
 sleepers, each item's run, the static deflection that sets the stage length), the bed of a

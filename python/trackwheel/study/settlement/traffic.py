@@ -1,5 +1,5 @@
 """The traffic that settles the ballast: one or more kinds of passage (a vehicle or a wheel
-load at a speed) and how often each runs (docs: Model § Ballast settlement, the loop).
+load at a speed) and how often each runs (docs: Model § The settlement loop).
 
 A :class:`TrafficItem` is one kind of passage: the scene's own wheel or vehicle (or another
 vehicle, or the single wheel under another load) at a forward speed, ``per_day`` passages a
