@@ -29,6 +29,13 @@ bool LinearStepper::shift_window(double t1, std::initializer_list<Accel*> accs) 
   return moved;
 }
 
+bool LinearStepper::finite() const {
+  if (!st_.e.allFinite() || !st_.z.allFinite() || !st_.body.allFinite()) return false;
+  for (const WheelState& ws : st_.wheels)
+    if (!std::isfinite(ws.y)) return false;
+  return true;
+}
+
 double LinearStepper::vibration_energy() const {
   Eigen::VectorXd Mqd;
   sys_.track().M.multiply(st_.edot, Mqd);
@@ -53,7 +60,7 @@ void LinearStepper::record_wheel(int w, double t, double& delta) {
   const Model& model = sys_.model();
   const double v = sys_.settings().speed, r0 = model.wheels[w].radius, Xw = sys_.x_at(w, t);
   const double Y = st_.wheels[w].y, N = acc_.x(sys_.layout().y(w) + 1);
-  Eigen::VectorXd s, ss, sss;
+  Eigen::VectorXd &s = s_, &ss = ss_, &sss = sss_;
   tr.coupling(Xw - sys_.origin(), s, ss, sss);
   const ElementCompliance g = sys_.compliance_at(Xw - sys_.origin());
   const double ys = ss.dot(st_.e), yss = sss.dot(st_.e), yst = ss.dot(st_.edot);

@@ -300,9 +300,14 @@ Eigen::MatrixXd RailModel::mass_dense() const {
 }
 
 Eigen::VectorXd RailModel::to_free(const Eigen::VectorXd& full) const {
-  Eigen::VectorXd f(n_free());
-  for (int i = 0; i < n_free(); ++i) f(i) = full(free_to_full_[i]);
+  Eigen::VectorXd f;
+  to_free(full, f);
   return f;
+}
+
+void RailModel::to_free(const Eigen::VectorXd& full, Eigen::VectorXd& free) const {
+  free.resize(n_free());
+  for (int i = 0; i < n_free(); ++i) free(i) = full(free_to_full_[i]);
 }
 
 void RailModel::add_from_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const {

@@ -114,6 +114,7 @@ class RailModel {
 
   // Gather/scatter between full and free vectors.
   Eigen::VectorXd to_free(const Eigen::VectorXd& full) const;
+  void to_free(const Eigen::VectorXd& full, Eigen::VectorXd& free) const;  // into a buffer
   void add_from_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const;
 
  private:

@@ -138,7 +138,7 @@ class System {
   std::vector<double> static_load_;
   BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
-  Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
+  Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_, free_;
   BorderedSolver solver_;
   Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
   Eigen::MatrixXd Dwb_, Dbw_;

@@ -47,16 +47,33 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
         p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness)
+    return _core.RailModel(p, support_params(scene),
+                           profile.rail_profile(scene, profile_end, profile_shift))
+
+
+def support_params(scene: Scene) -> _core.SupportParams:
+    """The kernel's supports: each property per support, resolved at the supports' positions
+    (:meth:`trackwheel.Supports.values`)."""
+    sv = scene.support_values
+    unilateral_ballast(sv)
     s = _core.SupportParams()
-    pos = scene.support_positions
-    s.position = list(pos)
-    s.stiffness = [scene.supports.stiffness] * len(pos)
-    s.damping = [scene.supports.damping] * len(pos)
-    if scene.supports.layered:
-        s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
-        s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
-        s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
-    return _core.RailModel(p, s, profile.rail_profile(scene, profile_end, profile_shift))
+    s.position = sv.position.tolist()
+    s.stiffness = sv.stiffness.tolist()
+    s.damping = sv.damping.tolist()
+    if sv.layered:
+        s.sleeper_mass = sv.sleeper_mass.tolist()
+        s.ballast_stiffness = sv.ballast_stiffness.tolist()
+        s.ballast_damping = sv.ballast_damping.tolist()
+    return s
+
+
+def unilateral_ballast(sv) -> None:
+    """Voids and tensionless ballast need the kernel's unilateral ballast: ValueError until it
+    has one."""
+    if sv.unilateral:
+        raise ValueError("Supports.void and Supports.ballast_tensionless need the kernel's "
+                         "unilateral ballast, which this build does not have yet: give void = 0 "
+                         "and ballast_tensionless = False")
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:
