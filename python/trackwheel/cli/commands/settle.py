@@ -13,8 +13,14 @@ from ...study.settlement.passage import PASSAGE_LEVELS
 from ...study.settlement.stages import DATUMS, DEFAULT_INCREMENT
 from ..checks import figure_formats, option_error, output_file, speeds_kmh
 from ..formatting import print_notes, save_figure
-from ..options import finite_float, positive_float, positive_int, track_option
-from ..scenes import OptionError, scene_name, track_scene
+from ..options import (
+    along_x_options,
+    finite_float,
+    positive_float,
+    positive_int,
+    track_option,
+)
+from ..scenes import OptionError, along_x_scene, describe_track, scene_name, track_scene
 
 
 def add(sub) -> None:
@@ -56,7 +62,8 @@ def add(sub) -> None:
     p.add_argument("--x-start", type=finite_float, metavar="X", help="passage start [m]")
     p.add_argument("--x-end", type=finite_float, metavar="X", help="passage end [m]")
     track_option(p)
-    p.set_defaults(track="ballasted")
+    along_x_options(p)
+    p.set_defaults(track="ballasted", seed=None)
     p.add_argument("--store", type=Path, metavar="DIR",
                    help="folder keeping each stage (a re-run goes on from the last)")
     p.add_argument("--out", type=Path, metavar="CSV",
@@ -108,7 +115,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         output_file(args.plot, "--plot", parser, figure_formats())
     traffic, law = _traffic(args, parser), _law(args, parser)
     try:
-        scene = track_scene(args)
+        scene = along_x_scene(track_scene(args), args)
     except OptionError as exc:
         parser.error(str(exc))
     try:
@@ -119,7 +126,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
                          progress=not args.no_progress)
     except (TypeError, ValueError) as exc:
         parser.error(option_error(exc))
-    _print(history, scene_name(scene, args), args)
+    along = describe_track(scene)
+    _print(history, scene_name(scene, args) + (f"; {along}" if along else ""), args)
     notes = []
     if args.out is not None:
         history.frame().to_csv(args.out, index=False)
