@@ -55,6 +55,7 @@ from .scene import (
 from .study.analysis import Analysis, amplitude_spectrum, analyse, main_frequency
 from .study.convergence import Convergence, ConvergenceWarning, converged
 from .study.fidelity import adequacy, recommend
+from .study.settlement import settle
 from .study.force_statistics import ForceStatistics, force_statistics
 from .study.steady import SteadyState, steady_state
 from .study.sweep import load_sweep, summarise_seeds, sweep
@@ -138,6 +139,7 @@ __all__ = [
     "static",
     "summarise_seeds",
     "sweep",
+    "settle",
     "Irregularity",
     "Polygon",
     "WheelFlat",

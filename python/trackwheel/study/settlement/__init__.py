@@ -11,10 +11,12 @@ starts a state for n sleepers and advances it by load cycles::
 
 The rooms: :mod:`.state` (the state, the interface, the checks of the inputs),
 :mod:`.varandas` (the load-history law), :mod:`.empirical` (the curve laws of Sato and
-Shenton), :mod:`.power_sums` (partial sums of n^-beta for any number of cycles at once).
-
-The laws need numpy only; they live in the ``study`` layer with the settlement loop that will
-run passages and feed the settled bed back into the track, one room for the whole subject.
+Shenton), :mod:`.power_sums` (partial sums of n^-beta for any number of cycles at once);
+the loop that runs traffic over the track and feeds the settled bed back
+(:func:`trackwheel.settle`): :mod:`.traffic` (what runs), :mod:`.passage` (one passage and
+the peak ballast forces it gives), :mod:`.stages` (the stages' parts: the settling sleepers,
+the bed, the stage length), :mod:`.loop` (``settle`` itself), :mod:`.history` (the results
+and their store).
 """
 
 from __future__ import annotations
@@ -22,8 +24,12 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from .empirical import HARDENING, CurveLaw, Sato, Shenton
+from .history import SettlementHistory
+from .loop import settle
+from .passage import PASSAGE_LEVELS, PassageForces, PassageTask, peak_ballast_forces, run_passage
 from .power_sums import power_sum
 from .state import MAX_CYCLES, SettlementLaw, SettlementState
+from .traffic import Traffic, TrafficItem
 from .varandas import Varandas
 
 #: The laws by their names (the ``law`` of a state and of ``SettlementLaw.to_dict``).
@@ -39,5 +45,7 @@ def law_from_dict(data: Mapping) -> SettlementLaw:
     return LAWS[name](**params)
 
 
-__all__ = ["HARDENING", "LAWS", "MAX_CYCLES", "CurveLaw", "Sato", "SettlementLaw",
-           "SettlementState", "Shenton", "Varandas", "law_from_dict", "power_sum"]
+__all__ = ["HARDENING", "LAWS", "MAX_CYCLES", "PASSAGE_LEVELS", "CurveLaw", "PassageForces",
+           "PassageTask", "Sato", "SettlementHistory", "SettlementLaw", "SettlementState",
+           "Shenton", "Traffic", "TrafficItem", "Varandas", "law_from_dict",
+           "peak_ballast_forces", "power_sum", "run_passage", "settle"]
