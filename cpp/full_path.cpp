@@ -13,14 +13,29 @@ namespace trackwheel {
 FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
                          const Divergence& div)
     : sys_(sys), st_(st), ev_(ev), acc_(acc), out_(out), div_(div) {
+  const RailModel& rail = sys.rail();
+  std::vector<int> identity(rail.n_dof());
+  for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+  supports_ = SupportRecorder(rail, identity);
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
-  const RailModel& rail = sys.rail();
   std::vector<int> map(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
   const StaticResult rest = solve_track_static(rail);
   win_ = WindowFollower(WindowShift(rail, wp, map, rail.n_dof(), sys.sleepers().size()), rest.e,
                         rest.z);
+}
+
+void FullStepper::stream_supports(SupportFeed& feed) {
+  if (!feed.active() || !win_.active()) return;
+  win_.set_restream([this, &feed](long first, Eigen::VectorXd& e_rest, Eigen::VectorXd& z_rest) {
+    if (!feed.feed(first)) return false;
+    sys_.supports_changed();
+    StaticResult rest = solve_track_static(sys_.rail());
+    e_rest = std::move(rest.e);
+    z_rest = std::move(rest.z);
+    return true;
+  });
 }
 
 // What moves is the departure from the rest state (the ANCF x coordinates: the displacement,
@@ -79,6 +94,9 @@ void FullStepper::record_sample(double t) {
     rec.push(Field::reaction, -(we.cf.F(0) + lambda * we.rk.b(0)));
   }
   for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
+  const SimSettings& set = sys_.settings();
+  supports_.record(sys_.rail(), st_.e, st_.edot, st_.z, st_.zdot, win_.first(), sys_.origin(),
+                   set.output_every * set.dt, rec, out_.envelope);
 }
 
 }  // namespace trackwheel

@@ -8,7 +8,13 @@ namespace trackwheel {
 // The window's rest state is the linear track at rest under its own weight (no wheel).
 LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOutput& out,
                              const Divergence& div)
-    : sys_(sys), st_(st), acc_(acc), out_(out), div_(div), delta_(sys.n_wheels()) {
+    : sys_(sys),
+      st_(st),
+      acc_(acc),
+      out_(out),
+      div_(div),
+      supports_(sys.model().rail, sys.track().y_of_full),
+      delta_(sys.n_wheels()) {
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
   const LinearTrack& tr = sys.track();
@@ -16,6 +22,18 @@ LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOut
   LinearRest(tr, sys.sleepers()).solve(q, z);
   win_ = WindowFollower(
       WindowShift(sys.model().rail, wp, tr.y_of_full, tr.nq, sys.sleepers().size()), q, z);
+}
+
+void LinearStepper::stream_supports(SupportFeed& feed) {
+  if (!feed.active() || !win_.active()) return;
+  win_.set_restream([this, &feed](long first, Eigen::VectorXd& e_rest, Eigen::VectorXd& z_rest) {
+    if (!feed.feed(first)) return false;
+    sys_.supports_changed();
+    ++out_.factorizations;
+    e_rest = sys_.track().Qg;
+    LinearRest(sys_.track(), sys_.sleepers()).solve(e_rest, z_rest);
+    return true;
+  });
 }
 
 bool LinearStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
@@ -50,6 +68,9 @@ void LinearStepper::record_sample(double t) {
   for (int w = 0; w < sys_.n_wheels(); ++w) record_wheel(w, t, delta_[w]);
   for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
   if (rec.wants(Field::energy)) rec.push(Field::energy, total_energy(t, delta_));
+  const SimSettings& set = sys_.settings();
+  supports_.record(sys_.model().rail, st_.e, st_.edot, st_.z, st_.zdot, win_.first(), sys_.origin(),
+                   set.output_every * set.dt, rec, out_.envelope);
 }
 
 // The contact stays vertical at X_A: no obliquity at the wheel, the rail's slope y_s enters the

@@ -20,6 +20,10 @@ class LinearStepper : public Stepper {
   double wheel_height(int w) const override { return st_.wheels[w].y; }
   // Append the sample of the current state and accelerations at time t [s].
   void record_sample(double t) override;
+  // The travelling window streams the supports in through feed, which sets them on the run's
+  // own rail (the LinearSystem's): after a change the track, its factorisation and the rest
+  // state follow.
+  void stream_supports(SupportFeed& feed);
 
  protected:
   // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
@@ -34,6 +38,7 @@ class LinearStepper : public Stepper {
   SimOutput& out_;
   const Divergence& div_;
   WindowFollower win_;
+  SupportRecorder supports_;
 
  private:
   // One wheel's fields of the sample at t; delta: its contact approach [m] (0: rigid).

@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <utility>
 #include <vector>
 
 #include "banded.hpp"
@@ -111,6 +112,10 @@ class LinearSystem {
   const WheelCoupling& coupling(int w) const { return wc_[w]; }
   // After the window moved: the element caches are stale.
   void drop_cached_columns();
+  // The rail's supports changed their properties (a travelling window streams them in,
+  // window.hpp): the track's matrices, the sleepers' rows and the iteration matrix are built
+  // and factorised again, O(n).
+  void supports_changed();
   // The constant part of the rail's residual at the predictor p: K q_p + C q'_p - Q_g.
   void begin_step(const SimState& p);
   // The negated residual -r of the Newton iteration `it` (it = 0: at x.edd = 0) at the iterate
@@ -127,11 +132,15 @@ class LinearSystem {
               Eigen::Vector2d& r2);
   bool solve_border(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& x1,
                     Eigen::VectorXd& xb);
+  void factorize_iteration_matrix();  // A_ = M + cv C + cq K, the sleepers condensed
+  // The supports' springs and dampers over q: K = K_beam + sum k_j s_j s_j^T (C alike), the
+  // track without them and each support's s_j (its nonzero entries) kept from the first call.
+  void assemble_supports();
 
   const Model& model_;
   const SimSettings& set_;
   const LinearOptions opt_;
-  const LinearTrack tr_;
+  LinearTrack tr_;  // rebuilt when the supports change (supports_changed)
   const GACoefficients c_;
   const int nw_, nb_;
   Sleepers sl_;   // layered supports (sleepers.hpp): z'' condensed into A_
@@ -145,6 +154,9 @@ class LinearSystem {
   Eigen::VectorXd g_, Cq_, Kq_, tmp_, rs_, rhs_;
   Eigen::MatrixXd S_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  // a streamed window's track without its supports' springs and dampers (assemble_supports)
+  BandMatrix Kbeam_, Cbeam_;
+  std::vector<std::vector<std::pair<int, double>>> support_s_;
 };
 
 }  // namespace trackwheel

@@ -216,10 +216,16 @@ def test_the_periodic_level_refuses_supports_that_vary():
         tw.periodic_response(scene, tw.kmh(200))
 
 
-def test_the_window_refuses_supports_that_vary():
+def test_the_window_refuses_per_support_sequences():
+    """The window streams the track's sleepers in (tests/test_window_stream.py): a function of
+    X is taken, a sequence over the rail's supports is refused."""
     scene = tw.Scene.ballasted_track(window=tw.Window(bays_behind=4, bays_ahead=4))
-    with pytest.raises(ValueError, match="Scene.window needs supports that repeat every bay"):
-        with_supports(scene, ballast_stiffness=lambda x: np.full_like(x, 105e6))
+    with_supports(scene, ballast_stiffness=lambda x: np.full_like(x, 105e6))
+    n = len(scene.support_positions)
+    with pytest.raises(ValueError, match="Scene.window takes each support property as one "
+                                         "value or a function of X.*ballast_stiffness is a "
+                                         "per-support sequence"):
+        with_supports(scene, ballast_stiffness=[105e6] * n)
 
 
 def test_voids_wait_for_the_kernels_unilateral_ballast():

@@ -17,6 +17,8 @@ Layer 5, one module per topic:
 - :mod:`.excitation` -- :func:`irregularity_profile`, :func:`contact_force`,
   :func:`force_bands`;
 - :mod:`.track` -- :func:`receptance`, :func:`decay_rate`;
+- :mod:`.track_along_x` -- :func:`sleeper_envelope` (each sleeper's force envelope beside the
+  supports' properties along X);
 - :mod:`.periodic` -- :func:`periodic_force` (the steady force over the bay and its
   harmonics), :func:`random_force_bands` (its band RMS under a random profile);
 - :mod:`.settlement` -- :func:`settlement_profile` (the settlement along X growing, beside
@@ -38,6 +40,7 @@ from .periodic import periodic_force, random_force_bands
 from .settlement import dynamic_factor_cycles, settlement_profile
 from .sweeps import DODGE, speed, support_stiffness
 from .track import decay_rate, receptance
+from .track_along_x import sleeper_envelope
 
 __all__ = [
     "DODGE",
@@ -57,6 +60,7 @@ __all__ = [
     "receptance",
     "run_label",
     "settlement_profile",
+    "sleeper_envelope",
     "speed",
     "support_stiffness",
     "time_step_convergence",

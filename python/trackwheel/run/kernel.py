@@ -22,11 +22,20 @@ from . import profile
 
 @lru_cache(maxsize=64)
 def rail_model(scene: Scene, n_elements: int | None = None,
-               profile_end: float | None = None, profile_shift: float = 0.0) -> _core.RailModel:
+               profile_end: float | None = None, profile_shift: float = 0.0,
+               support_origin: float = 0.0) -> _core.RailModel:
     """The kernel's rail of ``scene`` on ``n_elements`` (None: the scene's); its profile covers
     the track coordinates [0, ``profile_end``] [m] (None: the rail, [0, L]; a travelling
     window's run covers the track it passes), read at the rail's x = X - ``profile_shift``
-    (the full path's travelling window: the start window's origin X_w [m])."""
+    (the full path's travelling window: the start window's origin X_w [m]); its supports have
+    the properties of the track's at X = ``support_origin`` + x (a travelling window: its
+    origin X_w at the start [m])."""
+    return _core.RailModel(rail_params(scene, n_elements), support_params(scene, support_origin),
+                           profile.rail_profile(scene, profile_end, profile_shift))
+
+
+def rail_params(scene: Scene, n_elements: int | None = None) -> _core.RailParams:
+    """The kernel's rail parameters of ``scene`` on ``n_elements`` (None: the scene's)."""
     r = scene.rail
     p = _core.RailParams()
     p.length = r.length
@@ -47,17 +56,24 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
         p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness)
-    return _core.RailModel(p, support_params(scene),
-                           profile.rail_profile(scene, profile_end, profile_shift))
+    return p
 
 
-def support_params(scene: Scene) -> _core.SupportParams:
-    """The kernel's supports: each property per support, resolved at the supports' positions
-    (:meth:`trackwheel.Supports.values`)."""
-    sv = scene.support_values
+def support_params(scene: Scene, origin: float = 0.0) -> _core.SupportParams:
+    """The kernel's supports of ``scene`` at their rail positions x_j, each property that of
+    the track at X = ``origin`` + x_j [m]."""
+    x = np.asarray(scene.support_positions, dtype=float)
+    return _supports_at(scene, origin + x, position=x)
+
+
+def _supports_at(scene: Scene, x: np.ndarray, position=None) -> _core.SupportParams:
+    """The kernel's supports with the properties the scene's supports have at the track
+    coordinates ``x`` [m] (:meth:`trackwheel.Supports.values`), placed at ``position``
+    (None: at ``x``)."""
+    sv = scene.supports.values(x)
     unilateral_ballast(sv)
     s = _core.SupportParams()
-    s.position = sv.position.tolist()
+    s.position = sv.position.tolist() if position is None else np.asarray(position).tolist()
     s.stiffness = sv.stiffness.tolist()
     s.damping = sv.damping.tolist()
     if sv.layered:
@@ -74,6 +90,30 @@ def unilateral_ballast(sv) -> None:
         raise ValueError("Supports.void and Supports.ballast_tensionless need the kernel's "
                          "unilateral ballast, which this build does not have yet: give void = 0 "
                          "and ballast_tensionless = False")
+
+
+#: The per-support properties the travelling window streams (the kernel's
+#: for_each_support_property): SupportParams' fields other than the positions.
+STREAMED_PROPERTIES = ("stiffness", "damping", "sleeper_mass", "ballast_stiffness",
+                       "ballast_damping")
+
+
+def support_stream(scene: Scene, window, travel: float):
+    """The supports a run on the travelling ``window`` (``_core.WindowParams``) meets over
+    ``travel`` [m] of its rear wheel, one per sleeper from the start window's rear support at
+    X_0 = origin + X_0,rail on, X_k = X_0 + k d (every sleeper that joins the window, O(travel
+    / d) of them), as a ``_core.SupportParams`` for ``window.supports``; None if every one has
+    the same properties (the window's rail is the track, as without streaming)."""
+    if scene.supports.uniform:
+        return None
+    d = window.bay
+    rail_x = np.asarray(scene.support_positions, dtype=float)
+    n = len(rail_x) + int(np.ceil(travel / d - 1e-9)) + 2  # one more shift at each end
+    x = window.origin + rail_x[0] + d * np.arange(n)
+    stream = _supports_at(scene, x)
+    if all(len(set(getattr(stream, f))) <= 1 for f in STREAMED_PROPERTIES):
+        return None
+    return stream
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:

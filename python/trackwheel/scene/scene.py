@@ -19,7 +19,7 @@ from ..base.limits import MAX_ELEMENTS, MAX_STATIC_SAG, ranges_doc
 from ..excitation.irregularity import Irregularity
 from .contact import Contact
 from .rail import AbsorbingEnds, Rail
-from .supports import Supports
+from .supports import PER_SUPPORT, Supports
 from .vehicle import Vehicle
 from .wheel import Wheel
 from .window import Window
@@ -312,10 +312,17 @@ class Scene:
 
 
 def _window_supports(supports: Supports) -> None:
-    """The travelling window shifts its state by whole bays, so its supports must repeat every
-    bay: ValueError for supports that vary along X."""
-    supports.one_value("Scene.window needs supports that repeat every bay (the window shifts "
-                       "its state by whole bays)")
+    """The travelling window streams the track's sleepers in as it moves, so a property that
+    varies along X must be a function of X (a recipe such as Supports.transition's or
+    Supports.scattered's): ValueError for a per-support sequence, which numbers the rail's
+    supports, not the track's sleepers."""
+    seq = [n for n in PER_SUPPORT if isinstance(getattr(supports, n), tuple)]
+    if seq:
+        raise ValueError(f"Scene.window takes each support property as one value or a function "
+                         f"of X (the window streams the track's sleepers in as it moves); "
+                         f"Supports.{', Supports.'.join(seq)} {'is a' if len(seq) == 1 else 'are'}"
+                         f" per-support sequence{'' if len(seq) == 1 else 's'}: give a function "
+                         f"of X (e.g. Supports.transition, Supports.scattered)")
 
 
 Scene.__doc__ += ranges_doc("Scene")
