@@ -1,5 +1,5 @@
-"""The travelling window over a track whose supports differ from bay to bay (docs: Model § The
-travelling window): the kernel streams each sleeper's properties into the window as it moves
+"""The travelling window over a track whose supports differ from bay to bay (docs:
+Model § The travelling window): the kernel streams each sleeper's properties into the window as it moves
 (``WindowParams.supports``, one entry per sleeper the run meets).
 
 Checks: the window over a stiffness transition and over a scattered bed reproduces a long fixed
