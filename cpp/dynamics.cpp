@@ -100,6 +100,7 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
     stepper = std::make_unique<ExplicitRK4>(sys, st, ev, acc, out, div);
   run_time_loop(*stepper, model, set, div, out, progress);
   out.final_state = st;
+  record_ballast(sys.sleepers(), out);
   return out;
 }
 

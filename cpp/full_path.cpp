@@ -13,9 +13,11 @@ namespace trackwheel {
 FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
                          const Divergence& div)
     : sys_(sys), st_(st), ev_(ev), acc_(acc), out_(out), div_(div) {
+  sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
   const RailModel& rail = sys.rail();
+  check_window_voids(rail.supports());
   std::vector<int> map(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
   const StaticResult rest = solve_track_static(rail);

@@ -9,8 +9,10 @@ namespace trackwheel {
 LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOutput& out,
                              const Divergence& div)
     : sys_(sys), st_(st), acc_(acc), out_(out), div_(div), delta_(sys.n_wheels()) {
+  sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
+  check_window_voids(sys.model().rail.supports());
   const LinearTrack& tr = sys.track();
   Eigen::VectorXd q = tr.Qg, z;
   LinearRest(tr, sys.sleepers()).solve(q, z);

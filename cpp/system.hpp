@@ -109,6 +109,9 @@ class System {
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
              Eigen::VectorXd& x2, Eigen::VectorXd& dz);
   const Sleepers& sleepers() const { return sl_; }
+  // The sleepers' unilateral ballast states and their record (sleepers.hpp): residual() sets
+  // them at its iterate, accelerations() by the law at its state.
+  Sleepers& sleepers() { return sl_; }
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the

@@ -56,7 +56,19 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
         s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
         s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
+        unilateral_ballast(scene.supports, len(pos), s)
     return _core.RailModel(p, s, profile.rail_profile(scene, profile_end, profile_shift))
+
+
+def unilateral_ballast(supports, n_supports: int, s: _core.SupportParams) -> None:
+    """The kernel's unilateral ballast into ``s``: the void g_j [m] under each of the
+    ``n_supports`` sleepers (a void > 0 makes that ballast push only) and the tensionless
+    switch (every ballast pushes only)."""
+    void = np.broadcast_to(np.asarray(getattr(supports, "void", 0.0), dtype=float),
+                           (n_supports,))
+    if np.any(void > 0.0):
+        s.void_gap = void.tolist()
+    s.tensionless = bool(getattr(supports, "ballast_tensionless", False))
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:

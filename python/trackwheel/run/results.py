@@ -242,7 +242,10 @@ def _result_doc() -> str:
               "switches), ``stability_limit`` (predicted explicit RK4 limit at the start) [s],",
               "``wall_time`` [s], ``final_state`` (kernel state at the end, for restarts),",
               "``body_z`` [m] and ``body_phi`` [rad] (n_samples, n_bodies): the vehicle's bogies",
-              "then car body (None without bodies; z = 0 where every spring is unstretched)."]
+              "then car body (None without bodies; z = 0 where every spring is unstretched).",
+              "``ballast_events``: a unilateral ballast's open/closed changes over the run",
+              "(voids, tensionless ballast; 0 otherwise); ``ballast_contact_time`` [s]: each",
+              "sleeper's time on its ballast (None without sleepers)."]
     return "\n".join(lines)
 
 
@@ -254,7 +257,9 @@ Result = dataclasses.make_dataclass(
      ("stability_limit", float), ("wall_time", float),
      ("final_state", object, field(repr=False)),
      ("body_z", "np.ndarray | None", field(default=None, repr=False)),
-     ("body_phi", "np.ndarray | None", field(default=None, repr=False))],
+     ("body_phi", "np.ndarray | None", field(default=None, repr=False)),
+     ("ballast_events", int, field(default=0)),
+     ("ballast_contact_time", "np.ndarray | None", field(default=None, repr=False))],
     bases=(_ResultMethods,), frozen=True, repr=False,
     namespace={"__doc__": _result_doc(), "__module__": __name__})
 
@@ -283,4 +288,7 @@ def result_from_kernel(out: dict, scene: Scene, settings: RunSettings, wall_time
     return Result(scene=scene, settings=settings, **arrays, steps=out["steps"],
                   newton_iterations=out["newton_iterations"], state_changes=out["state_changes"],
                   stability_limit=out["stability_limit"], wall_time=wall_time,
-                  final_state=out.get("final_state"))
+                  final_state=out.get("final_state"),
+                  ballast_events=int(out.get("ballast_events", 0)),
+                  ballast_contact_time=(out["ballast_contact_time"]
+                                        if len(out.get("ballast_contact_time", ())) else None))
