@@ -47,6 +47,12 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
         p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness)
+    return _core.RailModel(p, support_params(scene),
+                           profile.rail_profile(scene, profile_end, profile_shift))
+
+
+def support_params(scene: Scene) -> _core.SupportParams:
+    """The kernel's supports of ``scene``, one entry per support."""
     s = _core.SupportParams()
     pos = scene.support_positions
     s.position = list(pos)
@@ -57,7 +63,7 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
         s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
         unilateral_ballast(scene.supports, len(pos), s)
-    return _core.RailModel(p, s, profile.rail_profile(scene, profile_end, profile_shift))
+    return s
 
 
 def unilateral_ballast(supports, n_supports: int, s: _core.SupportParams) -> None:
