@@ -163,3 +163,239 @@ def test_deep_void_is_the_sleeper_without_ballast(supports, fidelity):
     for name in FIELDS:
         x, y = getattr(a, name), getattr(b, name)
         assert np.max(np.abs(y - x)) <= 1e-12 * np.max(np.abs(x)), name
+
+
+# ------------------------------------------------------------------ the iteration matrix
+
+def test_iteration_matrix_with_open_and_closed_sleepers_matches_central_differences(supports):
+    """The generalized-alpha iteration matrix of a damped layered track (pad 2e4, ballast 5e4
+    N s/m) with tensionless ballast and a 1 mm void under sleeper 3 (X = 2 m): the open sleeper
+    has no k_b, c_b in its row, the closed ones have both (the force's damping term included).
+    Column i of J against -(R(x + h e_i) - R(x - h e_i)) / 2h, as in test_system.py (h = 1e3
+    m/s^2 moves a sleeper by ~3e-8 m, far from every threshold: the open sleeper hangs 0.9 mm
+    above its bed, the closed ones are pressed ~1e-5 m into theirs, so no state flips between
+    the probes). Tolerance 1e-6 of each column's largest entry, as there."""
+    supports(void_at({3: 1e-3}, tensionless=True))
+    scene = dc.replace(LAYERED_KATO, supports=dc.replace(
+        LAYERED_KATO.supports, damping=2e4, ballast_damping=5e4))
+    model = _kernel.rail_model(scene, 20)
+    contact = _kernel.contact_params(scene)
+    d = _core.static_solve(model, _kernel.wheel_params(scene), contact, 1.3)
+    closed = np.asarray(d["sleeper_closed"])
+    assert not closed[3] and closed.sum() == len(closed) - 1
+    w = _core.WheelState()
+    w.y, w.s, w.thetadot = d["y_wheel"], d["contact_s"], tw.kmh(300) / scene.wheel.radius
+    w.state = _core.SlipState.stick
+    st = _core.SimState()
+    st.e, st.edot, st.wheels = np.asarray(d["e"]), np.zeros_like(d["e"]), [w]
+    st.z, st.zdot = np.asarray(d["sleeper_z"]), 1e-4 * np.linspace(-1.0, 1.0, len(closed))
+    s = _core.SimSettings()
+    s.speed, s.x_start, s.dt, s.t_end = tw.kmh(300), 1.3, 1e-5, 1e-5
+
+    def R(x=None):
+        return _core.testing.ga_probe(model, [_kernel.wheel_params(scene)], contact, s, st,
+                                      1e-5, x)
+
+    p0 = R()
+    x0, J = p0["start"], p0["matrix"]
+    nf, ns = model.n_free, len(closed)
+    h = np.full(len(x0), 1e3)
+    h[nf + 2] = 1.0  # lambda [N]
+    cols = []
+    for i in range(len(x0)):
+        xp, xm = x0.copy(), x0.copy()
+        xp[i] += h[i]
+        xm[i] -= h[i]
+        cols.append(-(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h[i]))
+    err = np.max(np.abs(J - np.stack(cols, axis=1)), axis=0) / np.max(np.abs(J), axis=0)
+    assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
+    # the open sleeper's diagonal lacks the closed ones' beta' h^2 k_b + gamma' h c_b
+    dz = np.diag(J)[-ns:]
+    assert dz[3] < dz[2] and np.isclose(dz[2], dz[4], rtol=1e-12)
+
+
+# ------------------------------------------------------------------ statics
+
+def active_set_fe(scene, load_x, load, gaps):
+    """An independent static model of the layered track without gravity: Euler-Bernoulli beam
+    (cubic Hermite elements on the scene's mesh, deflection w and slope per node, w = 0 at both
+    ends), pads k_p from the rail to sleeper z_j, ballast k_b from z_j to the ground, unilateral
+    under a void g_j > 0 (the force k_b (-z_j - g_j) while -z_j - g_j > 0, else none), the load
+    P downwards at a node. Active set: solve in the present states, reset each state by the
+    sign of -z_j - g_j, until none changes. Returns (w at the load [m], ballast forces [N])."""
+    r, s = scene.rail, scene.supports
+    ne, L = r.n_elements, r.length
+    le, EI = L / ne, r.bending_stiffness
+    pos = np.asarray(scene.support_positions)
+    nr, ns = 2 * (ne + 1), len(pos)
+    n = nr + ns
+    ke = EI / le**3 * np.array([[12, 6 * le, -12, 6 * le],
+                                [6 * le, 4 * le**2, -6 * le, 2 * le**2],
+                                [-12, -6 * le, 12, -6 * le],
+                                [6 * le, 2 * le**2, -6 * le, 4 * le**2]])
+    K0 = np.zeros((n, n))
+    for e in range(ne):
+        K0[2 * e:2 * e + 4, 2 * e:2 * e + 4] += ke
+    node = np.rint(pos / le).astype(int)
+    assert np.allclose(node * le, pos)  # the supports sit on nodes
+    for j in range(ns):
+        a, z = 2 * node[j], nr + j
+        K0[a, a] += s.stiffness
+        K0[z, z] += s.stiffness
+        K0[a, z] -= s.stiffness
+        K0[z, a] -= s.stiffness
+    f0 = np.zeros(n)
+    f0[2 * int(round(load_x / le))] = -load
+    free = np.ones(n, bool)
+    free[[0, 2 * ne]] = False
+    gaps = np.asarray(gaps, float)
+    closed = np.ones(ns, bool)
+    for _ in range(50):
+        K, f = K0.copy(), f0.copy()
+        for j in np.nonzero(closed)[0]:
+            K[nr + j, nr + j] += s.ballast_stiffness
+            f[nr + j] -= s.ballast_stiffness * gaps[j]  # k_b (-z - g): -k_b g on the right
+        u = np.zeros(n)
+        u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free])
+        z = u[nr:]
+        new = (-z - gaps > 0.0) | (gaps == 0.0)
+        if np.array_equal(new, closed):
+            break
+        closed = new
+    else:
+        raise AssertionError("the active set did not settle")
+    fb = np.where(closed, s.ballast_stiffness * (-z - gaps), 0.0)
+    return u[2 * int(round(load_x / le))], fb
+
+
+@pytest.mark.parametrize("gap", [2e-4, 2e-3])
+def test_statics_of_a_voided_sleeper_against_an_active_set_fe(supports, gap):
+    """The wheel over sleeper 24 with a void under it, gravity off: a 0.2 mm void closes under
+    the load (the rail there sinks 0.5 mm), a 2 mm one stays open; against active_set_fe (the
+    same mesh, its own active-set loop). The kernel's rail is the nonlinear ANCF cable under a
+    wheel on its contact spring: its geometric terms are (y/L_e)^2 ~ 1e-5 and its contact point
+    sits on the rail's normal through the wheel centre: their effects go as the rail's slope
+    squared, ~1e-6 here. Tolerance 1e-5 relative on the rail deflection under the load and 1e-5
+    of the load on the ballast forces of the sleeper and its four neighbours (measured 9e-8 and
+    1.1e-7). The kernel and the FE agree on which sleepers carry the ballast."""
+    scene = dc.replace(BALLASTED, rail_gravity=False)
+    supports(void_at({MID: gap}))
+    r = tw.static(scene, X_MID)
+    y_fe, fb_fe = active_set_fe(scene, X_MID, scene.static_load, [gap if j == MID else 0.0
+                                                                 for j in range(N_SUP)])
+    assert (r.ballast_force[MID] > 0.0) == (gap < 5e-4) == (fb_fe[MID] > 0.0)
+    np.testing.assert_allclose(r.y_contact, y_fe, rtol=1e-5)
+    near = [MID - 2, MID - 1, MID, MID + 1, MID + 2]
+    np.testing.assert_allclose(r.ballast_force[near], fb_fe[near], rtol=0,
+                               atol=1e-5 * scene.static_load)
+
+
+def test_without_gravity_and_wheel_a_voided_sleeper_hangs_in_place(supports):
+    """Gravity off, no wheel: nothing loads the track, so the voided sleeper stays at z = 0
+    with no ballast force, exactly (and the rail with it)."""
+    supports(void_at({MID: 1e-3}))
+    d = _core.testing.track_static(_kernel.rail_model(dc.replace(BALLASTED, rail_gravity=False)))
+    assert np.all(np.asarray(d["sleeper_z"]) == 0.0)
+    assert np.all(np.asarray(d["ballast_force"]) == 0.0)
+    assert not d["sleeper_closed"][MID]
+
+
+def weight_per_sleeper(scene):
+    """The rail's weight over one bay and the sleeper's own [N]."""
+    g = scene.gravity
+    return scene.rail.mass_per_length * g * scene.supports.spacing, scene.supports.sleeper_mass * g
+
+
+def test_the_tracks_weight_closes_a_uniform_void(supports):
+    """A void g = 5 um under every sleeper, gravity on: the track sinks by g onto its bed and
+    then compresses it as the intact track, so away from the rail's pinned ends each sleeper
+    sits at z = -g - (W_r + W_s)/k_b and the rail at z - W_r/k_p (W_r the rail's weight over a
+    bay, W_s the sleeper's). The ends' influence decays as exp(-beta x), beta ~ 1.5/m: at the
+    middle third (>= 10 m from an end) it is < 1e-6; the ANCF rail's nonlinearity at these
+    slopes is far smaller. Tolerance 1e-6 relative (measured in the report)."""
+    g = 5e-6
+    supports(void_at(dict.fromkeys(range(N_SUP), g)))
+    d = _core.testing.track_static(_kernel.rail_model(BALLASTED))
+    Wr, Ws = weight_per_sleeper(BALLASTED)
+    kb, kp = BALLASTED.supports.ballast_stiffness, BALLASTED.supports.stiffness
+    mid = slice(N_SUP // 3, 2 * N_SUP // 3)
+    z = np.asarray(d["sleeper_z"])[mid]
+    assert all(d["sleeper_closed"])
+    np.testing.assert_allclose(z, -g - (Wr + Ws) / kb, rtol=1e-6)
+    np.testing.assert_allclose(np.asarray(d["ballast_force"])[mid], Wr + Ws, rtol=1e-6)
+
+
+def test_the_tracks_weight_closes_part_of_a_void_under_one_sleeper(supports):
+    """One sleeper over a void, gravity on. A 1 mm void: the sleeper hangs on its pad, which
+    carries exactly its weight (z_j = y_j - W_s/k_p to round-off), sinking with the rail by
+    part of the void; its neighbours take its load (their ballast force above the intact
+    track's). A 1 um void, below the 17 um the weight sinks an intact sleeper: the sleeper
+    reaches its bed and carries part of its share (0 < F_b < the intact F_b)."""
+    intact = _core.testing.track_static(_kernel.rail_model(BALLASTED))
+    Wr, Ws = weight_per_sleeper(BALLASTED)
+    kp = BALLASTED.supports.stiffness
+    supports(void_at({MID: 1e-3}))
+    model = _kernel.rail_model(BALLASTED)
+    d = _core.testing.track_static(model)
+    z = d["sleeper_z"][MID]
+    y = model.positions(np.asarray(d["e"]), [X_MID])[0, 1]
+    assert not d["sleeper_closed"][MID] and d["ballast_force"][MID] == 0.0
+    assert -1e-3 < z < intact["sleeper_z"][MID] < 0.0  # sunk further, the void still open
+    np.testing.assert_allclose(z, y - Ws / kp, rtol=1e-9)
+    assert d["ballast_force"][MID + 1] > intact["ballast_force"][MID + 1]
+    supports(void_at({MID: 1e-6}))
+    d = _core.testing.track_static(_kernel.rail_model(BALLASTED))
+    assert d["sleeper_closed"][MID]
+    assert 0.0 < d["ballast_force"][MID] < intact["ballast_force"][MID]
+
+
+# ------------------------------------------------------------------ time domain
+
+def test_full_and_linear_levels_agree_over_a_void_as_on_the_intact_track(supports):
+    """A 200 km/h passage over sleeper 24 with a 0.3 mm void (it closes under the wheel and
+    opens behind it: 2 events), on the full path and the linear level with the same (linear)
+    contact law. Intact, the levels differ by 4e-6 of the static load in the contact force and
+    1.6e-6 of max |y| in the rail under the wheel (measured); over the void by 1.5e-5 and 2e-5
+    (the rail sags into the void: its slope, on which the full model's contact geometry and the
+    ANCF rail's nonlinearity act, is larger). Both cases are held to one tolerance, 1e-4 of
+    the load and of max |y| (test_paths_agree.py holds the intact paths to 1e-3 of the load).
+    The two levels see the same events and each sleeper on its ballast for the same time."""
+    def compare():
+        a = tw.simulate(BALLASTED, tw.kmh(200), fidelity="full", **RUN)
+        b = tw.simulate(BALLASTED, tw.kmh(200), fidelity="linear/sprung", **RUN)
+        assert np.max(np.abs(b.normal_force - a.normal_force)) < 1e-4 * BALLASTED.static_load
+        assert np.max(np.abs(b.y_contact - a.y_contact)) < 1e-4 * np.max(np.abs(a.y_contact))
+        assert a.ballast_events == b.ballast_events
+        np.testing.assert_array_equal(a.ballast_contact_time, b.ballast_contact_time)
+        return a
+
+    intact = compare()
+    assert intact.ballast_events == 0
+    supports(void_at({MID: 3e-4}))
+    voided = compare()
+    assert voided.ballast_events == 2  # closed under the wheel, open again behind it
+    assert 0.0 < voided.ballast_contact_time[MID] < voided.ballast_contact_time[MID + 1]
+    # the void is felt: the wheel rides 0.13 mm lower over it
+    assert voided.y_contact.min() < intact.y_contact.min() - 1e-4
+
+
+@pytest.mark.parametrize("integrator", ["generalized_alpha", "explicit"])
+def test_energy_balance_over_a_void(supports, integrator):
+    """Undamped layered supports (test_layered.py's energy balance) with a 0.12 mm void under
+    sleeper 2 (X = 1.5 m), which the passing wheel closes: the unilateral spring stores
+    (1/2) k_b max(-z - g, 0)^2, a potential with a continuous slope, so it is conservative and
+    the total energy changes only by the driving reaction's work. Generalized-alpha with
+    rho_inf = 1 (the trapezoidal rule) steps over the kink in the force with an O(h^2) error
+    (measured 1.3e-8, 3.4e-9, 6.9e-10 of max |W| at dt = 5, 2.5, 1.25 us, as intact: 2.6e-9 at
+    2.5 us); RK4 at 0.5 us. Tolerance 1e-6 of max |W|, as there."""
+    supports(void_at({2: 1.2e-4}))
+    v = tw.kmh(100)
+    dt = 2.5e-6 if integrator == "generalized_alpha" else 5e-7
+    r = tw.simulate(LAYERED_KATO, v, x_end=1.0, dt=dt, n_elements=20, rho_inf=1.0, energy=True,
+                    integrator=integrator)
+    assert r.ballast_events >= 1
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (r.reaction[1:] + r.reaction[:-1]) * v
+                                            * np.diff(r.t))])
+    assert np.max(np.abs(work)) > 1.0
+    np.testing.assert_allclose(r.energy - r.energy[0], work, rtol=0,
+                               atol=1e-6 * np.max(np.abs(work)))
