@@ -399,3 +399,34 @@ def test_energy_balance_over_a_void(supports, integrator):
     assert np.max(np.abs(work)) > 1.0
     np.testing.assert_allclose(r.energy - r.energy[0], work, rtol=0,
                                atol=1e-6 * np.max(np.abs(work)))
+
+
+# ------------------------------------------------------------------ eigen and receptance
+
+def test_modes_and_receptance_drop_the_ballast_of_an_open_sleeper(supports):
+    """Linearised about the track's static state under its weight: sleeper 3 over a 1 mm void
+    hangs (open), so the modes and the receptance are those of the track with k_b = c_b = 0
+    there (the same matrices: equal to round-off, tolerance 1e-10 relative); a 1 um void, which
+    the weight closes, keeps the ballast: the intact track's. And the hanging sleeper is felt:
+    the receptance above it at 10 Hz (quasi-static) is larger than the intact track's."""
+    scene = dc.replace(LAYERED_KATO, supports=dc.replace(LAYERED_KATO.supports,
+                                                         ballast_damping=4e4))
+    freqs = [10.0, 150.0, 600.0]
+    X = scene.support_positions[3]
+
+    def linearised():
+        return (tw.eigen(scene, [1.3], 6).frequencies,
+                tw.receptance(scene, X, freqs))
+
+    f_int, a_int = linearised()
+    supports(no_ballast_at(3))
+    f_nb, a_nb = linearised()
+    supports(void_at({3: 1e-3}))
+    f_v, a_v = linearised()
+    np.testing.assert_allclose(f_v, f_nb, rtol=1e-10)
+    np.testing.assert_allclose(a_v, a_nb, rtol=1e-10)
+    assert abs(a_v[0]) > 1.05 * abs(a_int[0])
+    supports(void_at({3: 1e-6}))
+    f_c, a_c = linearised()
+    np.testing.assert_allclose(f_c, f_int, rtol=1e-10)
+    np.testing.assert_allclose(a_c, a_int, rtol=1e-10)
