@@ -315,13 +315,16 @@ def test_the_tracks_weight_closes_a_uniform_void(supports):
     slopes is far smaller. Tolerance 1e-6 relative (measured in the report)."""
     g = 5e-6
     supports(void_at(dict.fromkeys(range(N_SUP), g)))
-    d = _core.testing.track_static(_kernel.rail_model(BALLASTED))
+    model = _kernel.rail_model(BALLASTED)
+    d = _core.testing.track_static(model)
     Wr, Ws = weight_per_sleeper(BALLASTED)
     kb, kp = BALLASTED.supports.ballast_stiffness, BALLASTED.supports.stiffness
     mid = slice(N_SUP // 3, 2 * N_SUP // 3)
     z = np.asarray(d["sleeper_z"])[mid]
+    y = model.positions(np.asarray(d["e"]), list(BALLASTED.support_positions[mid]))[:, 1]
     assert all(d["sleeper_closed"])
     np.testing.assert_allclose(z, -g - (Wr + Ws) / kb, rtol=1e-6)
+    np.testing.assert_allclose(y, z - Wr / kp, rtol=1e-6)
     np.testing.assert_allclose(np.asarray(d["ballast_force"])[mid], Wr + Ws, rtol=1e-6)
 
 
