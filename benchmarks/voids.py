@@ -37,8 +37,8 @@ def voided(s):
 
 
 def use(edit):
-    def support_params(scene):
-        s = _support_params(scene)
+    def support_params(scene, *args, **kwargs):
+        s = _support_params(scene, *args, **kwargs)
         if edit:
             edit(s)
         return s

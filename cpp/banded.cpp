@@ -106,8 +106,13 @@ void BorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
     x2.resize(0);
     return;
   }
-  x2 = schur_.solve(r2 - C_ * x1);
-  x1 -= Z_ * x2;
+  // the products into buffers, evaluated as the expressions r2 - C x1 and x1 -= Z x2 would
+  // (into a temporary each): the same operations without an allocation per solve
+  cx_.noalias() = C_ * x1;
+  rhs_ = r2 - cx_;
+  x2 = schur_.solve(rhs_);
+  zx_.noalias() = Z_ * x2;
+  x1 -= zx_;
 }
 
 }  // namespace trackwheel

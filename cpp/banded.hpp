@@ -60,6 +60,7 @@ class BorderedSolver {
   Eigen::MatrixXd C_;
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
   int m_ = 0;
+  mutable Eigen::VectorXd cx_, rhs_, zx_;  // buffers of solve
 };
 
 }  // namespace trackwheel

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "banded.hpp"
 #include "explicit_rk4.hpp"
@@ -69,11 +70,21 @@ std::string stability_cause(const SimSettings& set, double limit, double omega_m
 
 }  // namespace
 
-SimOutput simulate(const Model& model, const SimSettings& set, const SimState& initial,
+SimOutput simulate(const Model& model_in, const SimSettings& set, const SimState& initial,
                    const ProgressFn& progress) {
   check_settings(set);
-  check_model(model);
-  check_initial(model, initial);
+  check_model(model_in);
+  check_initial(model_in, initial);
+  // a travelling window that streams the supports in sets them on the run's own rail
+  const bool streams = set.window.streams();
+  std::optional<RailModel> own_rail;
+  SupportFeed feed;
+  if (streams) {
+    own_rail.emplace(model_in.rail);
+    feed = SupportFeed(set.window, *own_rail);
+  }
+  const Model model =
+      streams ? Model{*own_rail, model_in.wheels, model_in.contact, model_in.vehicle} : model_in;
   System sys(model, set);
   SimOutput out;
   SimState st = initial;
@@ -88,8 +99,14 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
     ys.push_back(st.wheels[w].y);
   }
   // a sleeper between pad and ballast can be stiffer than anything in the rail
-  const double omega_max =
+  double omega_max =
       std::max(highest_frequency(model, st.e, xs, ys), Sleepers(model.rail).highest_frequency());
+  if (streams) {  // the stiffest sleeper the window will carry
+    const SupportParams& k = set.window.supports;
+    for (std::size_t j = 0; j < k.sleeper_mass.size(); ++j)
+      omega_max = std::max(
+          omega_max, std::sqrt((k.stiffness[j] + k.ballast_stiffness[j]) / k.sleeper_mass[j]));
+  }
   out.stability_limit = explicit_stability_limit(omega_max);
   const Divergence div(set, [&] { return stability_cause(set, out.stability_limit, omega_max); });
 
@@ -98,6 +115,7 @@ SimOutput simulate(const Model& model, const SimSettings& set, const SimState& i
     stepper = std::make_unique<GeneralizedAlpha>(sys, st, ev, acc, out, div);
   else
     stepper = std::make_unique<ExplicitRK4>(sys, st, ev, acc, out, div);
+  stepper->stream_supports(feed);
   run_time_loop(*stepper, model, set, div, out, progress);
   out.final_state = st;
   record_ballast(sys.sleepers(), out);

@@ -13,16 +13,31 @@ namespace trackwheel {
 FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOutput& out,
                          const Divergence& div)
     : sys_(sys), st_(st), ev_(ev), acc_(acc), out_(out), div_(div) {
+  const RailModel& rail = sys.rail();
+  std::vector<int> identity(rail.n_dof());
+  for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
+  supports_ = SupportRecorder(rail, identity);
   sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
-  const RailModel& rail = sys.rail();
   check_window_voids(rail.supports());
   std::vector<int> map(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
   const StaticResult rest = solve_track_static(rail);
   win_ = WindowFollower(WindowShift(rail, wp, map, rail.n_dof(), sys.sleepers().size()), rest.e,
                         rest.z);
+}
+
+void FullStepper::stream_supports(SupportFeed& feed) {
+  if (!feed.active() || !win_.active()) return;
+  win_.set_restream([this, &feed](long first, Eigen::VectorXd& e_rest, Eigen::VectorXd& z_rest) {
+    if (!feed.feed(first)) return false;
+    sys_.supports_changed();
+    StaticResult rest = solve_track_static(sys_.rail());
+    e_rest = std::move(rest.e);
+    z_rest = std::move(rest.z);
+    return true;
+  });
 }
 
 // What moves is the departure from the rest state (the ANCF x coordinates: the displacement,
@@ -33,8 +48,11 @@ bool FullStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   double rear = sys_.x_at(0, t1);
   for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.x_at(w, t1));
   double origin = sys_.origin();
+  const long first = win_.first();
   const bool moved = win_.follow(rear, origin, st_, accs);
   sys_.set_origin(origin);
+  // a unilateral ballast's states move with their sleepers
+  if (moved) sys_.sleepers().shift(static_cast<int>(win_.first() - first));
   return moved;
 }
 
@@ -81,6 +99,9 @@ void FullStepper::record_sample(double t) {
     rec.push(Field::reaction, -(we.cf.F(0) + lambda * we.rk.b(0)));
   }
   for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
+  const SimSettings& set = sys_.settings();
+  supports_.record(sys_.rail(), st_.e, st_.edot, st_.z, st_.zdot, win_.first(), sys_.origin(),
+                   set.output_every * set.dt, rec, out_.envelope);
 }
 
 }  // namespace trackwheel

@@ -20,6 +20,9 @@ class FullStepper : public Stepper {
   double wheel_height(int w) const override { return st_.wheels[w].y; }
   // Append the sample of the current state, evaluation and accelerations at time t [s].
   void record_sample(double t) override;
+  // The travelling window streams the supports in through feed, which sets them on the run's
+  // own rail (the System's): after a change the System's sleepers and the rest state follow.
+  void stream_supports(SupportFeed& feed);
 
  protected:
   // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
@@ -33,6 +36,7 @@ class FullStepper : public Stepper {
   SimOutput& out_;
   const Divergence& div_;
   WindowFollower win_;
+  SupportRecorder supports_;
 };
 
 }  // namespace trackwheel

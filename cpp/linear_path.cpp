@@ -8,7 +8,13 @@ namespace trackwheel {
 // The window's rest state is the linear track at rest under its own weight (no wheel).
 LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOutput& out,
                              const Divergence& div)
-    : sys_(sys), st_(st), acc_(acc), out_(out), div_(div), delta_(sys.n_wheels()) {
+    : sys_(sys),
+      st_(st),
+      acc_(acc),
+      out_(out),
+      div_(div),
+      supports_(sys.model().rail, sys.track().y_of_full),
+      delta_(sys.n_wheels()) {
   sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
@@ -20,15 +26,36 @@ LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOut
       WindowShift(sys.model().rail, wp, tr.y_of_full, tr.nq, sys.sleepers().size()), q, z);
 }
 
+void LinearStepper::stream_supports(SupportFeed& feed) {
+  if (!feed.active() || !win_.active()) return;
+  win_.set_restream([this, &feed](long first, Eigen::VectorXd& e_rest, Eigen::VectorXd& z_rest) {
+    if (!feed.feed(first)) return false;
+    sys_.supports_changed();
+    ++out_.factorizations;
+    e_rest = sys_.track().Qg;
+    LinearRest(sys_.track(), sys_.sleepers()).solve(e_rest, z_rest);
+    return true;
+  });
+}
+
 bool LinearStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   if (!win_.active()) return false;
   double rear = sys_.x_at(0, t1);
   for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.x_at(w, t1));
   double origin = sys_.origin();
+  const long first = win_.first();
   const bool moved = win_.follow(rear, origin, st_, accs);
   sys_.set_origin(origin);
   if (moved) sys_.drop_cached_columns();
+  if (moved) sys_.shift_ballast(static_cast<int>(win_.first() - first));
   return moved;
+}
+
+bool LinearStepper::finite() const {
+  if (!st_.e.allFinite() || !st_.z.allFinite() || !st_.body.allFinite()) return false;
+  for (const WheelState& ws : st_.wheels)
+    if (!std::isfinite(ws.y)) return false;
+  return true;
 }
 
 double LinearStepper::vibration_energy() const {
@@ -45,6 +72,9 @@ void LinearStepper::record_sample(double t) {
   for (int w = 0; w < sys_.n_wheels(); ++w) record_wheel(w, t, delta_[w]);
   for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
   if (rec.wants(Field::energy)) rec.push(Field::energy, total_energy(t, delta_));
+  const SimSettings& set = sys_.settings();
+  supports_.record(sys_.model().rail, st_.e, st_.edot, st_.z, st_.zdot, win_.first(), sys_.origin(),
+                   set.output_every * set.dt, rec, out_.envelope);
 }
 
 // The contact stays vertical at X_A: no obliquity at the wheel, the rail's slope y_s enters the
@@ -55,7 +85,7 @@ void LinearStepper::record_wheel(int w, double t, double& delta) {
   const Model& model = sys_.model();
   const double v = sys_.settings().speed, r0 = model.wheels[w].radius, Xw = sys_.x_at(w, t);
   const double Y = st_.wheels[w].y, N = acc_.x(sys_.layout().y(w) + 1);
-  Eigen::VectorXd s, ss, sss;
+  Eigen::VectorXd &s = s_, &ss = ss_, &sss = sss_;
   tr.coupling(Xw - sys_.origin(), s, ss, sss);
   const ElementCompliance g = sys_.compliance_at(Xw - sys_.origin());
   const double ys = ss.dot(st_.e), yss = sss.dot(st_.e), yst = ss.dot(st_.edot);

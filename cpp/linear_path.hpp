@@ -13,11 +13,17 @@ namespace trackwheel {
 class LinearStepper : public Stepper {
  public:
   LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOutput& out, const Divergence& div);
-  bool finite() const override { return finite_state(st_); }
+  // The positions only (the track, sleepers, bodies and wheel heights): a non-finite rate
+  // reaches them within the step, and the check runs every step.
+  bool finite() const override;
   double vibration_energy() const override;
   double wheel_height(int w) const override { return st_.wheels[w].y; }
   // Append the sample of the current state and accelerations at time t [s].
   void record_sample(double t) override;
+  // The travelling window streams the supports in through feed, which sets them on the run's
+  // own rail (the LinearSystem's): after a change the track, its factorisation and the rest
+  // state follow.
+  void stream_supports(SupportFeed& feed);
 
  protected:
   // Moves the track one bay back in the window while the rearmost wheel at t1 is past the hold
@@ -32,6 +38,7 @@ class LinearStepper : public Stepper {
   SimOutput& out_;
   const Divergence& div_;
   WindowFollower win_;
+  SupportRecorder supports_;
 
  private:
   // One wheel's fields of the sample at t; delta: its contact approach [m] (0: rigid).
@@ -40,6 +47,7 @@ class LinearStepper : public Stepper {
   // approach delta.
   double total_energy(double t, const std::vector<double>& delta) const;
   std::vector<double> delta_;
+  Eigen::VectorXd s_, ss_, sss_;  // a wheel's coupling at the sample (buffers)
 };
 
 }  // namespace trackwheel

@@ -93,25 +93,34 @@ struct LinearTrack {
   // The element under X and its w shape functions (Hermite for Euler-Bernoulli).
   BeamPoint point(double X) const { return beam_point(*rail, beam, X); }
 
-  // s(X), s_s(X), s_ss(X) over q: y(X) = s . q etc.
+  // s(X), s_s(X), s_ss(X) over q: y(X) = s . q etc. Over the y coordinates the vectors are
+  // filled in place (the time loop calls this every step: no allocation once they are sized).
   void coupling(double X, Eigen::VectorXd& s, Eigen::VectorXd& ss, Eigen::VectorXd& sss) const {
     const BeamPoint bp = point(X);
-    Eigen::VectorXd y = Eigen::VectorXd::Zero(ny), ys = y, yss = y;
+    if (modal) {
+      Eigen::VectorXd y, ys, yss;
+      y_coupling(bp, y, ys, yss);
+      s = Phi.transpose() * y;
+      ss = Phi.transpose() * ys;
+      sss = Phi.transpose() * yss;
+    } else {
+      y_coupling(bp, s, ss, sss);
+    }
+  }
+
+ private:
+  // The w shape functions of the element at bp over the y coordinates.
+  void y_coupling(const BeamPoint& bp, Eigen::VectorXd& y, Eigen::VectorXd& ys,
+                  Eigen::VectorXd& yss) const {
+    y.setZero(ny);
+    ys.setZero(ny);
+    yss.setZero(ny);
     for (int a = 0; a < 4; ++a) {
       const int k = y_of_full[4 * bp.element + 2 * a + 1];
       if (k < 0) continue;
       y(k) = bp.n[a];
       ys(k) = bp.ns[a];
       yss(k) = bp.nss[a];
-    }
-    if (modal) {
-      s = Phi.transpose() * y;
-      ss = Phi.transpose() * ys;
-      sss = Phi.transpose() * yss;
-    } else {
-      s = y;
-      ss = ys;
-      sss = yss;
     }
   }
 };

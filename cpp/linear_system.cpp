@@ -1,5 +1,6 @@
 #include "linear_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -63,6 +64,11 @@ LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const Lin
         "with sleepers use all coordinates (n_modes=None in trackwheel.simulate)");
   if (tr_.modal && set.window.active())
     throw std::invalid_argument("the travelling window needs all coordinates, not n_modes");
+  factorize_iteration_matrix();
+  for (WheelCoupling& wc : wc_) wc.W.resize(tr_.nq, 4);
+}
+
+void LinearSystem::factorize_iteration_matrix() {
   A_.resize(tr_.nq, tr_.bw);
   A_.set_linear_combination(1.0, tr_.M, c_.cv, tr_.C);
   A_.add_scaled(c_.cq, tr_.K);
@@ -70,17 +76,64 @@ LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const Lin
   if (sl_.unilateral()) A0_ = A_;
   sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
-  for (WheelCoupling& wc : wc_) wc.W.resize(tr_.nq, 4);
+}
+
+// Only the supports change: rebuilding the whole track would assemble the beam's elements again
+// (the ANCF tangent at the reference, the costly part); the beam's part is kept instead.
+void LinearSystem::assemble_supports() {
+  const RailModel& rail = model_.rail;
+  const SupportParams& sp = rail.supports();
+  if (support_s_.empty()) {
+    SupportParams bare = sp;
+    std::fill(bare.stiffness.begin(), bare.stiffness.end(), 0.0);
+    std::fill(bare.damping.begin(), bare.damping.end(), 0.0);
+    const LinearTrack beam(RailModel(rail.params(), bare), opt_.n_modes, opt_.beam);
+    Kbeam_ = beam.K;
+    Cbeam_ = beam.C;
+    Eigen::VectorXd s, ss, sss;
+    for (double x : sp.position) {
+      tr_.coupling(x, s, ss, sss);
+      std::vector<std::pair<int, double>> nz;
+      for (int i = 0; i < tr_.nq; ++i)
+        if (s(i) != 0.0) nz.emplace_back(i, s(i));
+      support_s_.push_back(std::move(nz));
+    }
+  }
+  tr_.K = Kbeam_;
+  tr_.C = Cbeam_;
+  for (std::size_t j = 0; j < support_s_.size(); ++j)
+    for (const auto& [a, wa] : support_s_[j])
+      for (const auto& [b, wb] : support_s_[j]) {
+        tr_.K.add(a, b, sp.stiffness[j] * wa * wb);
+        tr_.C.add(a, b, sp.damping[j] * wa * wb);
+      }
+}
+
+void LinearSystem::supports_changed() {
+  assemble_supports();
+  sl_.take_properties(model_.rail);
+  damped_ = !tr_.C.is_zero();
+  factorize_iteration_matrix();
+  drop_cached_columns();
 }
 
 int LinearSystem::update_ballast(const SimState& s1) {
   const int changed = sl_.update_states(s1.z, &s1.zdot);
-  if (changed == 0) return 0;
+  if (changed > 0) refactorize_ballast();
+  return changed;
+}
+
+void LinearSystem::shift_ballast(int k) {
+  if (!sl_.unilateral() || k <= 0) return;
+  sl_.shift(k);
+  refactorize_ballast();
+}
+
+void LinearSystem::refactorize_ballast() {
   A_ = A0_;
   sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
   drop_cached_columns();
-  return changed;
 }
 
 bool LinearSystem::rigid() const {

@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <utility>
 #include <vector>
 
 #include "banded.hpp"
@@ -115,6 +116,10 @@ class LinearSystem {
   const WheelCoupling& coupling(int w) const { return wc_[w]; }
   // After the window moved: the element caches are stale.
   void drop_cached_columns();
+  // The rail's supports changed their properties (a travelling window streams them in,
+  // window.hpp): the track's matrices, the sleepers' rows and the iteration matrix are built
+  // and factorised again, O(n).
+  void supports_changed();
   // The constant part of the rail's residual at the predictor p: K q_p + C q'_p - Q_g.
   void begin_step(const SimState& p);
   // The negated residual -r of the Newton iteration `it` (it = 0: at x.edd = 0) at the iterate
@@ -128,19 +133,27 @@ class LinearSystem {
   // frozen in this step excepted); if any changed, the iteration matrix is refactorised in the
   // new states and the wheels' cached columns dropped (couple() again). Returns the changes.
   int update_ballast(const SimState& s1);
+  // The travelling window moved k bays: the sleepers' states move with it (Sleepers::shift) and
+  // the iteration matrix is refactorised in them.
+  void shift_ballast(int k);
   Sleepers& sleepers() { return sl_; }
 
  private:
   // Wheel w's border rows: D [dY''; dN] + u^T x1 e_1 = r2 (track rows: A x1 + s dN = r1).
   void border(int w, double t, const SimState& s1, const Accel& x, Eigen::Matrix2d& D,
               Eigen::Vector2d& r2);
+  void refactorize_ballast();  // A_ in the sleepers' present states
   bool solve_border(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& x1,
                     Eigen::VectorXd& xb);
+  void factorize_iteration_matrix();  // A_ = M + cv C + cq K, the sleepers condensed
+  // The supports' springs and dampers over q: K = K_beam + sum k_j s_j s_j^T (C alike), the
+  // track without them and each support's s_j (its nonzero entries) kept from the first call.
+  void assemble_supports();
 
   const Model& model_;
   const SimSettings& set_;
   const LinearOptions opt_;
-  const LinearTrack tr_;
+  LinearTrack tr_;  // rebuilt when the supports change (supports_changed)
   const GACoefficients c_;
   const int nw_, nb_;
   Sleepers sl_;    // layered supports (sleepers.hpp): z'' condensed into A_
@@ -155,6 +168,9 @@ class LinearSystem {
   Eigen::VectorXd g_, Cq_, Kq_, tmp_, rs_, rhs_;
   Eigen::MatrixXd S_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  // a streamed window's track without its supports' springs and dampers (assemble_supports)
+  BandMatrix Kbeam_, Cbeam_;
+  std::vector<std::vector<std::pair<int, double>>> support_s_;
 };
 
 }  // namespace trackwheel

@@ -1,5 +1,6 @@
 #include "linear_track.hpp"
 
+#include <optional>
 #include <stdexcept>
 
 #include "linear_alpha.hpp"
@@ -7,10 +8,19 @@
 
 namespace trackwheel {
 
-SimOutput simulate_linear(const Model& model, const SimSettings& set, const LinearOptions& opt,
+SimOutput simulate_linear(const Model& model_in, const SimSettings& set, const LinearOptions& opt,
                           const ProgressFn& progress) {
   check_settings(set);
-  check_model(model);
+  check_model(model_in);
+  // a travelling window that streams the supports in sets them on the run's own rail
+  std::optional<RailModel> own_rail;
+  SupportFeed feed;
+  if (set.window.streams()) {
+    own_rail.emplace(model_in.rail);
+    feed = SupportFeed(set.window, *own_rail);
+  }
+  const Model model =
+      own_rail ? Model{*own_rail, model_in.wheels, model_in.contact, model_in.vehicle} : model_in;
   if (model.n_bodies() > 0 && opt.wheel_model == WheelModel::MovingForce)
     throw std::invalid_argument(
         "a vehicle with bodies needs wheel dynamics: wheel_model moving_mass, sprung or hertz, "
@@ -24,6 +34,7 @@ SimOutput simulate_linear(const Model& model, const SimSettings& set, const Line
     return "the time step " + format3(set.dt) + " s is too large for the contact";
   });
   LinearAlpha stepper(sys, st, acc, out, div);
+  stepper.stream_supports(feed);
   run_time_loop(stepper, model, set, div, out, progress);
   record_ballast(sys.sleepers(), out);
   return out;

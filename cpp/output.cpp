@@ -1,6 +1,8 @@
 #include "output.hpp"
 
+#include <algorithm>
 #include <string_view>
+#include <utility>
 
 namespace trackwheel {
 
@@ -32,28 +34,118 @@ const std::array<FieldInfo, kFieldCount>& output_fields() {
       {"reaction", "N", "horizontal force holding X_A = X_0 + v t", true, false},
       {"penetration", "m", "rho0 - rho (negative: gap)", true, false},
       {"energy", "J", "total mechanical energy (recorded on request only)", false, false},
+      {"rail_seat_force", "N",
+       "rail-seat force of each support, the pad's compression -(k_p (y - z) + c_p (y' - z')) "
+       "(single springs: -(k_s y + c_s y'))",
+       false, false, true},
+      {"ballast_force", "N",
+       "ballast force under each sleeper, the bed's compression -(k_b z + c_b z') (single "
+       "springs: the spring's force)",
+       false, false, true},
+      {"sleeper_z", "m", "each sleeper's displacement z (up positive; 0 for single springs)", false,
+       false, true},
   }};
   return table;
 }
 
-void Recording::start(int n_wheels, bool energy, std::size_t expected_samples) {
+namespace {
+std::size_t per_sample(const FieldInfo& f, int n_wheels, int n_supports) {
+  return f.per_wheel ? n_wheels : (f.per_support ? n_supports : 1);
+}
+}  // namespace
+
+bool Recording::wants(Field f) const {
+  if (f == Field::energy) return energy_;
+  return !output_fields()[static_cast<int>(f)].per_support || n_supports_ > 0;
+}
+
+void Recording::start(int n_wheels, bool energy, std::size_t expected_samples, int n_supports) {
   n_wheels_ = n_wheels;
   energy_ = energy;
+  n_supports_ = n_supports;
   const auto& table = output_fields();
   for (int f = 0; f < kFieldCount; ++f) {
     cols_[f].clear();
     if (!wants(static_cast<Field>(f))) continue;
-    cols_[f].reserve(expected_samples * (table[f].per_wheel ? n_wheels : 1));
+    cols_[f].reserve(expected_samples * per_sample(table[f], n_wheels, n_supports));
   }
 }
 
-std::size_t bytes_per_sample(int n_wheels, bool energy) {
+std::size_t bytes_per_sample(int n_wheels, bool energy, int n_supports) {
   std::size_t b = 0;
   for (const FieldInfo& f : output_fields()) {
     if (!energy && std::string_view(f.name) == "energy") continue;
-    b += (f.integer ? 4 : 8) * (f.per_wheel ? n_wheels : 1);
+    b += (f.integer ? 4 : 8) * per_sample(f, n_wheels, n_supports);
   }
   return b;
+}
+
+const std::array<EnvelopeInfo, kEnvelopeFieldCount>& envelope_fields() {
+  static const std::array<EnvelopeInfo, kEnvelopeFieldCount> table = {{
+      {"x", "m", "X_j, the support's track coordinate"},
+      {"ballast_force_max", "N", "largest ballast force (compression positive)"},
+      {"ballast_force_min", "N", "smallest ballast force (negative: the bed pulls)"},
+      {"rail_seat_force_max", "N", "largest rail-seat force (compression positive)"},
+      {"rail_seat_force_min", "N", "smallest rail-seat force (negative: the pad pulls)"},
+      {"sleeper_z_min", "m", "the sleeper's largest downward displacement, min z"},
+      {"contact_time", "s", "time the ballast carried load (ballast force > 0)"},
+      {"observed_time", "s", "time the support was in the rail (a travelling window's share)"},
+  }};
+  return table;
+}
+
+void SupportEnvelope::observe(long k, double X, double Fb, double Fp, double z, double dt_sample) {
+  const auto i = static_cast<std::size_t>(k);
+  if (i >= size()) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const double fresh[kEnvelopeFieldCount] = {X, -inf, inf, -inf, inf, inf, 0.0, 0.0};
+    for (int f = 0; f < kEnvelopeFieldCount; ++f) cols_[f].resize(i + 1, fresh[f]);
+  }
+  auto col = [&](EnvelopeField f) -> double& { return cols_[static_cast<int>(f)][i]; };
+  col(EnvelopeField::ballast_force_max) = std::max(col(EnvelopeField::ballast_force_max), Fb);
+  col(EnvelopeField::ballast_force_min) = std::min(col(EnvelopeField::ballast_force_min), Fb);
+  col(EnvelopeField::rail_seat_force_max) = std::max(col(EnvelopeField::rail_seat_force_max), Fp);
+  col(EnvelopeField::rail_seat_force_min) = std::min(col(EnvelopeField::rail_seat_force_min), Fp);
+  col(EnvelopeField::sleeper_z_min) = std::min(col(EnvelopeField::sleeper_z_min), z);
+  // the place where a voided sleeper's time on its bed is counted: the ballast carries load
+  if (Fb > 0.0) col(EnvelopeField::contact_time) += dt_sample;
+  col(EnvelopeField::observed_time) += dt_sample;
+}
+
+SupportRecorder::SupportRecorder(const RailModel& rail, std::vector<int> map)
+    : map_(std::move(map)) {
+  for (double x : rail.supports().position) pt_.push_back(rail.locate(x));
+}
+
+double SupportRecorder::y(int j, const Eigen::VectorXd& u) const {
+  double v = 0.0;
+  for (int a = 0; a < 4; ++a) {
+    const int i = map_[pt_[j].dof0() + 2 * a + 1];
+    if (i >= 0) v += pt_[j].h.n[a] * u(i);
+  }
+  return v;
+}
+
+void SupportRecorder::record(const RailModel& rail, const Eigen::VectorXd& u,
+                             const Eigen::VectorXd& udot, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& zdot, long first, double origin,
+                             double dt_sample, Recording& rec, SupportEnvelope& env) const {
+  const SupportParams& sp = rail.supports();
+  const bool layered = z.size() == size() && !sp.sleeper_mass.empty();
+  const bool histories = rec.wants(Field::rail_seat_force);
+  for (int j = 0; j < size(); ++j) {
+    const double yj = y(j, u), ydj = y(j, udot);
+    const double zj = layered ? z(j) : 0.0, zdj = layered ? zdot(j) : 0.0;
+    const double Fp = -(sp.stiffness[j] * (yj - zj) + sp.damping[j] * (ydj - zdj));
+    // the ballast law (a void's unilateral law replaces it here)
+    const double Fb = layered ? -(sp.ballast_stiffness[j] * zj + sp.ballast_damping[j] * zdj) : Fp;
+    if (histories) {
+      rec.push(Field::rail_seat_force, Fp);
+      rec.push(Field::ballast_force, Fb);
+      rec.push(Field::sleeper_z, zj);
+    }
+    env.observe(first + j, origin + sp.position[j], Fb, Fp, zj, dt_sample);
+  }
 }
 
 void record_acc_terms(Recording& rec, double rc, double thetadot, double v, double phi_s,

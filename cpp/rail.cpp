@@ -138,19 +138,8 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   M_.resize(n_free(), kHalfBandwidth);
   for (int el = 0; el < p_.n_elements; ++el) add_element_block(el, Me_, 1.0, M_);
 
-  // supports: k_s S_y^T S_y at X_j (on or between nodes)
-  Ks_.resize(n_free(), kHalfBandwidth);
-  Cs_.resize(n_free(), kHalfBandwidth);
-  for (size_t j = 0; j < ns; ++j) {
-    const MeshPoint mp = locate(sup_.position[j]);
-    support_points_.push_back(mp);
-    Mat8 Sy = Mat8::Zero();
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) Sy(2 * a + 1, 2 * b + 1) = mp.h.n[a] * mp.h.n[b];
-    add_element_block(mp.element, Sy, sup_.stiffness[j], Ks_);
-    add_element_block(mp.element, Sy, sup_.damping[j], Cs_);
-  }
-  add_absorbing_ends();
+  for (size_t j = 0; j < ns; ++j) support_points_.push_back(locate(sup_.position[j]));
+  assemble_supports();
 
   // consistent gravity load -int rhoA g S_y^T ds (the shear element's w functions have the
   // same integrals as the Hermite functions: the phi terms integrate to zero)
@@ -159,6 +148,30 @@ RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Prof
   const double nint[4] = {0.5 * l, l * l / 12.0, 0.5 * l, -l * l / 12.0};
   for (int el = 0; el < p_.n_elements; ++el)
     for (int a = 0; a < 4; ++a) Qg_(4 * el + 2 * a + 1) -= p_.rhoA * p_.gravity * nint[a];
+}
+
+// supports: k_s S_y^T S_y at X_j (on or between nodes), then the end zones' dampers
+void RailModel::assemble_supports() {
+  Ks_.resize(n_free(), kHalfBandwidth);
+  Cs_.resize(n_free(), kHalfBandwidth);
+  absorbing_.clear();
+  for (size_t j = 0; j < support_points_.size(); ++j) {
+    const MeshPoint& mp = support_points_[j];
+    Mat8 Sy = Mat8::Zero();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) Sy(2 * a + 1, 2 * b + 1) = mp.h.n[a] * mp.h.n[b];
+    add_element_block(mp.element, Sy, sup_.stiffness[j], Ks_);
+    add_element_block(mp.element, Sy, sup_.damping[j], Cs_);
+  }
+  add_absorbing_ends();
+}
+
+void RailModel::set_support_properties(const SupportParams& s) {
+  require(s.position == sup_.position,
+          "set_support_properties: the supports must keep their positions");
+  check_inputs(p_, s);
+  sup_ = s;
+  assemble_supports();
 }
 
 // C_e = int (c(X) S_y^T S_y + c_x(X) S_x^T S_x) dX over the part of each element inside an end
@@ -322,9 +335,14 @@ Eigen::MatrixXd RailModel::mass_dense() const {
 }
 
 Eigen::VectorXd RailModel::to_free(const Eigen::VectorXd& full) const {
-  Eigen::VectorXd f(n_free());
-  for (int i = 0; i < n_free(); ++i) f(i) = full(free_to_full_[i]);
+  Eigen::VectorXd f;
+  to_free(full, f);
   return f;
+}
+
+void RailModel::to_free(const Eigen::VectorXd& full, Eigen::VectorXd& free) const {
+  free.resize(n_free());
+  for (int i = 0; i < n_free(); ++i) free(i) = full(free_to_full_[i]);
 }
 
 void RailModel::add_from_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const {

@@ -72,6 +72,17 @@ struct SupportParams {
   bool any_unilateral() const;
 };
 
+// f(v) for every per-support property vector of s (every field but the positions): the fields
+// a travelling window streams (window.hpp). A new per-support field is added here too.
+template <class S, class F>
+void for_each_support_property(S& s, F f) {
+  f(s.stiffness);
+  f(s.damping);
+  f(s.sleeper_mass);
+  f(s.ballast_stiffness);
+  f(s.ballast_damping);
+}
+
 // Where a material point s lies in the mesh.
 struct MeshPoint {
   int element = 0;  // element index
@@ -106,6 +117,12 @@ class RailModel {
   Eigen::Vector2d curvature_vector(const Eigen::VectorXd& e, const MeshPoint& p) const;  // r_ss
 
   const Mat8& element_mass() const { return Me_; }
+  // The supports' properties replaced by those of s (the same positions; checked as at
+  // construction): the spring and damper bands are re-assembled, O(n). Only a run's own copy of
+  // the rail changes so, as its travelling window streams the track's properties in
+  // (window.hpp); the rail is otherwise immutable.
+  void set_support_properties(const SupportParams& s);
+
   const BandMatrix& mass() const { return M_; }                // free x free [kg]
   const BandMatrix& support_stiffness() const { return Ks_; }  // free x free [N/m]
   // support dampers + absorbing end zones, free x free [N s/m]
@@ -125,6 +142,7 @@ class RailModel {
 
   // Gather/scatter between full and free vectors.
   Eigen::VectorXd to_free(const Eigen::VectorXd& full) const;
+  void to_free(const Eigen::VectorXd& full, Eigen::VectorXd& free) const;  // into a buffer
   void add_from_free(const Eigen::VectorXd& free, Eigen::VectorXd& full) const;
 
  private:
@@ -143,6 +161,7 @@ class RailModel {
   Eigen::VectorXd Qg_;
   void add_element_block(int el, const Mat8& Ke, double scale, BandMatrix& K) const;
   void add_absorbing_ends();
+  void assemble_supports();                    // Ks_, Cs_ from sup_ and the end zones
   HermiteValues centre_line(double xi) const;  // the element's centre-line functions at xi
   void element_elastic(const Vec8& ee, Vec8* Q, Mat8* K, double* U) const;
 };

@@ -65,6 +65,37 @@ int Sleepers::update_states(const Eigen::VectorXd& z, const Eigen::VectorXd* zdo
   return changed;
 }
 
+void Sleepers::take_properties(const RailModel& rail) {
+  const SupportParams& s = rail.supports();
+  if (!is_layered(s) || static_cast<int>(s.sleeper_mass.size()) != size())
+    throw std::logic_error("Sleepers::take_properties: another set of supports");
+  m_ = s.sleeper_mass;
+  kp_ = s.stiffness;
+  cp_ = s.damping;
+  kb_ = s.ballast_stiffness;
+  cb_ = s.ballast_damping;
+  for (int j = 0; j < size(); ++j) set_coefficient(j);
+}
+
+void Sleepers::shift(int k) {
+  if (k <= 0 || !any_unilateral_) return;
+  const int n = size();
+  for (int j = 0; j < n; ++j) {
+    if (j + k < n) {
+      closed_[j] = closed_[j + k];
+      committed_[j] = committed_[j + k];
+      flips_[j] = flips_[j + k];
+      contact_time_(j) = contact_time_(j + k);
+    } else {
+      closed_[j] = committed_[j] = gap_[j] == 0.0;
+      flips_[j] = 0;
+      contact_time_(j) = 0.0;
+    }
+    set_coefficient(j);
+  }
+  ++version_;
+}
+
 void Sleepers::begin_step() { std::fill(flips_.begin(), flips_.end(), 0); }
 
 void Sleepers::init_states(const Eigen::VectorXd& z) {

@@ -79,6 +79,13 @@ class Sleepers {
   // A changed state changes the condensation: the count of changes so far (a matrix factorised
   // at another count is stale).
   long version() const { return version_; }
+  // A travelling window streamed new properties into the rail's supports (the same
+  // positions): the sleepers take them, keeping their states and record.
+  void take_properties(const RailModel& rail);
+  // The travelling window moved k bays back: sleeper j takes the state, flips and record of
+  // sleeper j + k; the k fresh sleepers at the front join at rest (closed where they touch their
+  // bed, no event, no time on it yet).
+  void shift(int k);
   // The run's record: events (state changes between committed steps), how many sleepers were
   // frozen, and each sleeper's time on its ballast [s].
   void reset_record();  // at the start state

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "rail.hpp"
+
 namespace trackwheel {
 
 enum class Integrator { GeneralizedAlpha = 0, ExplicitRK4 = 1 };
@@ -17,7 +19,13 @@ struct WindowParams {
   int elements_per_bay = 0;  // n_e,bay [-]
   double origin = 0.0;       // X_w at t = 0: the track coordinate of s = 0 [m]
   double hold = 0.0;         // s at which the rearmost wheel triggers a shift [m]
+  // The track's supports along the run, one per physical sleeper k at X_k = X_0 + k bay from
+  // the start window's rear support on (every per-support field, for_each_support_property):
+  // streamed into the window's supports as it moves. Empty: the supports of the rail, every
+  // bay alike.
+  SupportParams supports;
   bool active() const { return bay > 0.0; }
+  bool streams() const { return active() && !supports.position.empty(); }
 };
 
 // Numerical settings of one run (the physics is in Model).
@@ -37,6 +45,9 @@ struct SimSettings {
   bool reuse_jacobian = true;  // modified Newton: keep the factorised matrix while it converges
   long progress_every = 2000;  // steps between progress callbacks [-]
   WindowParams window;         // the travelling window (inactive by default)
+  // record each support's forces and sleeper displacement per kept sample (output.hpp; a fixed
+  // rail: the window keeps the envelope along the track only)
+  bool record_supports = false;
 };
 
 // Throws std::invalid_argument for settings no integrator can run (dt, t_end, output_every,

@@ -158,8 +158,10 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
                       Eigen::VectorXd& r1, Eigen::VectorXd& r2) {
   for (int w = 0; w < nw_; ++w) lam_(w) = acc.x(kBorderPerWheel * w + kLambda);
   forces(st, ev, lam_, fr_, fb_);
-  rail().mass().multiply(rail().to_free(acc.edd), Medd_);
-  r1 = rail().to_free(fr_) - Medd_;
+  rail().to_free(acc.edd, free_);
+  rail().mass().multiply(free_, Medd_);
+  rail().to_free(fr_, free_);
+  r1 = free_ - Medd_;
   r2.resize(n_border());
   for (int w = 0; w < nw_; ++w) {
     const int o = kBorderPerWheel * w;

@@ -112,6 +112,10 @@ class System {
   // The sleepers' unilateral ballast states and their record (sleepers.hpp): residual() sets
   // them at its iterate, accelerations() by the law at its state.
   Sleepers& sleepers() { return sl_; }
+  // The rail's supports changed their properties (a travelling window streams them in,
+  // window.hpp): the sleepers' rows follow (their ballast states and record kept); the next
+  // matrix must refresh its rail part.
+  void supports_changed() { sl_.take_properties(rail()); }
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the
@@ -141,7 +145,7 @@ class System {
   std::vector<double> static_load_;
   BandMatrix Mfac_, J_, Jrail_;
   Eigen::MatrixXd Bb_, Cb_, Db_;
-  Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_;
+  Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_, free_;
   BorderedSolver solver_;
   Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
   Eigen::MatrixXd Dwb_, Dbw_;

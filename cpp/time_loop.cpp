@@ -22,6 +22,10 @@ void check_settings(const SimSettings& set) {
   if (set.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
   if (!(set.rho_inf >= 0.0 && set.rho_inf <= 1.0))
     throw std::invalid_argument("rho_inf must be in [0, 1]");
+  if (set.record_supports && set.window.active())
+    throw std::invalid_argument(
+        "record_supports needs a fixed rail: a travelling window keeps each support's envelope "
+        "along the track");
   if (!(set.speed >= 0.0 && set.speed <= limits::kMaxSpeed))
     throw std::invalid_argument("speed must be in [0, " + format3(limits::kMaxSpeed) + "] m/s");
 }
@@ -76,8 +80,10 @@ void watch(Stepper& s, long n, const Watchdog& wd, const Divergence& div) {
 void run_time_loop(Stepper& s, const Model& model, const SimSettings& set, const Divergence& div,
                    SimOutput& out, const ProgressFn& progress) {
   const long n_steps = n_steps_of(set);
+  const int n_supports = static_cast<int>(model.rail.supports().position.size());
   out.rec.start(model.n_wheels(), set.record_energy,
-                static_cast<std::size_t>(n_steps / set.output_every + 2));
+                static_cast<std::size_t>(n_steps / set.output_every + 2),
+                set.record_supports ? n_supports : 0);
   out.rec.start_bodies(model.n_bodies());
   const Watchdog wd = watchdog_of(model, s);
   s.record_sample(0.0);

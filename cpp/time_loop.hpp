@@ -33,7 +33,8 @@ std::string format3(double x);
 // Output of a run: the recorded fields and the counters.
 struct SimOutput {
   Recording rec;
-  long steps = 0;  // time steps taken
+  SupportEnvelope envelope;  // every support the run saw, along the track
+  long steps = 0;            // time steps taken
   long newton_iterations = 0;
   long factorizations = 0;  // Newton matrix factorisations (generalized-alpha)
   long state_changes = 0;   // slip/contact state switches, summed over wheels

@@ -66,15 +66,88 @@ void WindowShift::apply(const std::vector<int>& src, Eigen::VectorXd& v, Eigen::
     v(static_cast<Eigen::Index>(k)) = src[k] >= 0 ? buf(src[k]) : 0.0;
 }
 
+SupportFeed::SupportFeed(const WindowParams& p, RailModel& rail) : stream_(p.supports) {
+  if (!p.streams()) return;
+  const SupportParams& sup = rail.supports();
+  const std::size_t ns = sup.position.size(), nk = stream_.position.size();
+  const double tol = 1e-9 * p.bay;
+  if (ns == 0) throw std::invalid_argument("window: a support stream needs a rail with supports");
+  if (nk < ns)
+    throw std::invalid_argument("window: the support stream has " + std::to_string(nk) +
+                                " supports, fewer than the window's " + std::to_string(ns));
+  for (std::size_t k = 0; k < nk; ++k) {
+    const double X = p.origin + sup.position[0] + static_cast<double>(k) * p.bay;
+    if (std::abs(stream_.position[k] - X) > tol * (1.0 + static_cast<double>(k)))
+      throw std::invalid_argument("window: support stream entry " + std::to_string(k) +
+                                  " is at X = " + format3(stream_.position[k]) +
+                                  " m; the window's supports stand at X = " + format3(X) + " m");
+  }
+  // each property the rail has, the stream has for every support, and no other
+  std::vector<std::size_t> sizes;
+  for_each_support_property(sup, [&](const std::vector<double>& v) { sizes.push_back(v.size()); });
+  std::size_t i = 0;
+  for_each_support_property(stream_, [&](const std::vector<double>& v) {
+    if (v.size() != (sizes[i++] > 0 ? nk : 0))
+      throw std::invalid_argument(
+          "window: the support stream must give each property of the rail's supports (and no "
+          "other: sleepers on both or neither) once per support position");
+  });
+  // the values in the rail's ranges (rail.cpp), the first bad one named by its X
+  auto check = [&](const std::vector<double>& v, const char* name, bool positive) {
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (!(std::isfinite(v[k]) && (positive ? v[k] > 0.0 : v[k] >= 0.0)))
+        throw std::invalid_argument("window: support stream " + std::string(name) + " = " +
+                                    format3(v[k]) + " at X = " + format3(stream_.position[k]) +
+                                    " m (entry " + std::to_string(k) + ") must be " +
+                                    (positive ? "> 0" : ">= 0"));
+  };
+  check(stream_.stiffness, "stiffness", false);
+  check(stream_.damping, "damping", false);
+  check(stream_.sleeper_mass, "sleeper_mass", true);
+  check(stream_.ballast_stiffness, "ballast_stiffness", true);
+  check(stream_.ballast_damping, "ballast_damping", false);
+  window_ = sup;
+  rail_ = &rail;
+  feed(0);
+}
+
+bool SupportFeed::feed(long first) {
+  if (!active()) return false;
+  const std::size_t ns = window_.position.size(), k0 = static_cast<std::size_t>(first);
+  if (k0 + ns > stream_.position.size())
+    throw std::runtime_error(
+        "window: the support stream ends at X = " + format3(stream_.position.back()) +
+        " m, before the window's front support");
+  bool changed = false;
+  std::vector<const std::vector<double>*> from;
+  for_each_support_property(stream_, [&](const std::vector<double>& v) { from.push_back(&v); });
+  std::size_t i = 0;
+  for_each_support_property(window_, [&](std::vector<double>& v) {
+    const std::vector<double>& src = *from[i++];
+    for (std::size_t j = 0; j < v.size() && j < ns; ++j) {
+      const double x = src[k0 + j];
+      if (v[j] != x) {
+        v[j] = x;
+        changed = true;
+      }
+    }
+  });
+  if (changed) rail_->set_support_properties(window_);
+  return changed;
+}
+
 bool WindowFollower::follow(double rear_x, double& origin, SimState& st,
-                            std::initializer_list<Accel*> accs) const {
+                            std::initializer_list<Accel*> accs, bool* changed) {
   if (!active()) return false;
   const WindowParams& wp = shift_.params();
   bool moved = false;
   while (rear_x - origin >= wp.hold) {
-    shift_.shift(st.e, &e_rest_);
+    // the departures from rest move; the state then stands on the rest of the moved window
+    st.e -= e_rest_;
+    shift_.shift(st.e);
     shift_.shift(st.edot);
-    shift_.shift_sleepers(st.z, &z_rest_);
+    if (st.z.size() > 0) st.z -= z_rest_;
+    shift_.shift_sleepers(st.z);
     shift_.shift_sleepers(st.zdot);
     for (WheelState& ws : st.wheels) ws.s -= wp.bay;
     for (Accel* a : accs) {
@@ -82,6 +155,10 @@ bool WindowFollower::follow(double rear_x, double& origin, SimState& st,
       shift_.shift_sleepers(a->zdd);
     }
     origin += wp.bay;
+    ++first_;
+    if (restream_ && restream_(first_, e_rest_, z_rest_) && changed != nullptr) *changed = true;
+    st.e += e_rest_;
+    if (st.z.size() > 0) st.z += z_rest_;
     moved = true;
   }
   return moved;

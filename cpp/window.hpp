@@ -1,16 +1,20 @@
 // The travelling window (docs: Model § The travelling window).
 //
-// A track periodic in its sleeper bay d_s is simulated on a fixed rail of n_b bays that travels
+// A track with a constant sleeper bay d_s is simulated on a fixed rail of n_b bays that travels
 // with the wheels: the rail's local coordinate s in [0, L] is the track coordinate X = X_w + s,
 // X_w the window origin (a multiple of d_s). When the rearmost wheel passes s = hold, the state
 // moves one bay back in the rail (coordinate i takes the value of coordinate i + 4 n_e,bay, the
 // same node one bay ahead; sleeper j that of the sleeper d_s ahead), the rear bay leaves, the
-// front bay joins at zero and X_w grows by d_s. The stepper shifts departures from the track's
-// rest state, so zero is the fresh bay at rest. The matrices over the window do not change: the
-// rail, its supports and its end zones are the same after the shift.
+// front bay joins at rest and X_w grows by d_s. The stepper shifts departures from the track's
+// rest state, so zero is the fresh bay at rest. On a track periodic in its bay the matrices over
+// the window do not change. A track whose supports differ from bay to bay streams them in
+// (SupportFeed): after each shift support j takes the properties of the physical sleeper now
+// at its place, the rail's support bands and the sleepers' rows are re-assembled and the rest
+// state is solved again; where no property changed nothing is rebuilt.
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <initializer_list>
 #include <utility>
 #include <vector>
@@ -55,25 +59,60 @@ class WindowShift {
   static void apply(const std::vector<int>& src, Eigen::VectorXd& v, Eigen::VectorXd& buf);
 };
 
+// The supports' properties streamed into a travelling window: the track's supports one per
+// physical sleeper k (WindowParams::supports, k = 0 the start window's rear support), set on
+// the run's own rail, whose support j is physical sleeper first + j.
+class SupportFeed {
+ public:
+  SupportFeed() = default;
+  // Throws std::invalid_argument unless the stream's supports are spaced by the bay from the
+  // rail's rear support at X = origin + X_0, carry the rail's layers and valid values, and
+  // cover the start window. Sets the start window's properties on rail.
+  SupportFeed(const WindowParams& p, RailModel& rail);
+  bool active() const { return rail_ != nullptr; }
+  // Sets the properties of the window whose rear support is physical sleeper `first` on the
+  // rail; true if any changed. Throws std::runtime_error beyond the stream's end.
+  bool feed(long first);
+
+ private:
+  SupportParams stream_, window_;
+  RailModel* rail_ = nullptr;
+};
+
 // A stepper's travelling window (both paths): the shift maps and the rest state whose departures
 // move, the track at rest under its own weight without a wheel (so the fresh bay joins at rest
 // and the window's ends keep their own sag).
 class WindowFollower {
  public:
+  // Called after each shift with the physical index of the rail's support 0: sets the moved
+  // window's supports (SupportFeed) and, if any property changed, the rest state of the
+  // changed track (e_rest, z_rest), returning true; false leaves the rest state.
+  using Restream =
+      std::function<bool(long first, Eigen::VectorXd& e_rest, Eigen::VectorXd& z_rest)>;
   WindowFollower() = default;
-  WindowFollower(WindowShift shift, Eigen::VectorXd e_rest, Eigen::VectorXd z_rest)
-      : shift_(std::move(shift)), e_rest_(std::move(e_rest)), z_rest_(std::move(z_rest)) {}
+  WindowFollower(WindowShift shift, Eigen::VectorXd e_rest, Eigen::VectorXd z_rest,
+                 Restream restream = nullptr)
+      : shift_(std::move(shift)),
+        e_rest_(std::move(e_rest)),
+        z_rest_(std::move(z_rest)),
+        restream_(std::move(restream)) {}
   bool active() const { return shift_.active(); }
+  void set_restream(Restream r) { restream_ = std::move(r); }
+  // The physical index of the rail's support 0: the shifts so far (0 on a fixed rail).
+  long first() const { return first_; }
   // While the rearmost wheel, at the track coordinate rear_x [m], is at or past the hold point
   // of the window of origin X_w = origin [m]: moves the state one bay back (the departures of e
   // and z from rest, their rates, each wheel's contact warm start s), each of accs likewise (e''
-  // and z'' as they are) and origin one bay on. True if it moved.
-  bool follow(double rear_x, double& origin, SimState& st,
-              std::initializer_list<Accel*> accs) const;
+  // and z'' as they are) and origin one bay on, streaming the supports in after each shift.
+  // True if it moved; changed: whether a support's properties changed.
+  bool follow(double rear_x, double& origin, SimState& st, std::initializer_list<Accel*> accs,
+              bool* changed = nullptr);
 
  private:
   WindowShift shift_;
   Eigen::VectorXd e_rest_, z_rest_;
+  Restream restream_;
+  long first_ = 0;
 };
 
 }  // namespace trackwheel

@@ -3,6 +3,7 @@ drawn without pyplot's global state."""
 
 from __future__ import annotations
 
+import dataclasses as dc
 import subprocess
 import sys
 
@@ -519,3 +520,20 @@ def test_vehicle_run_figure_is_against_the_wheel_position_as_for_one_wheel():
     assert ax_n.get_xlabel().startswith("wheel position X [m]")
     for i, line in enumerate(ax_n.get_lines()):
         np.testing.assert_array_equal(line.get_xdata(), r.wheel(i).x_wheel)
+
+
+def test_sleeper_envelope_shows_the_envelope_beside_the_supports():
+    """The figure's lines are the envelope's columns and the supports' values at the same X,
+    read through Supports.values (a transition: the stiff side's k_b after it)."""
+    sup = tw.Scene.ballasted_track().supports.transition(
+        7.5, ramp=1.2, shape="linear", ballast_stiffness=(105e6, 210e6))
+    scene = dc.replace(tw.Scene.ballasted_track(length=15.0), supports=sup)
+    r = tw.simulate(scene, tw.kmh(100), x_start=6.0, x_end=9.0, fidelity="linear/hertz",
+                    progress=False)
+    fig = plots.sleeper_envelope(r)
+    lines = {ln.get_gid(): ln for ax in fig.axes for ln in ax.get_lines()}
+    df = r.sleeper_envelope()
+    np.testing.assert_allclose(lines["ballast max"].get_ydata(), 1e-3 * df.ballast_force_max)
+    np.testing.assert_allclose(lines["sleeper z min"].get_ydata(), 1e3 * df.sleeper_z_min)
+    kb = lines["k_b"].get_ydata()
+    assert kb[0] == pytest.approx(105.0) and kb[-1] == pytest.approx(210.0)

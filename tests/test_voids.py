@@ -42,8 +42,8 @@ def supports(monkeypatch):
     original = _kernel.support_params
 
     def edit(f):
-        def support_params(scene):
-            s = original(scene)
+        def support_params(scene, *args, **kwargs):
+            s = original(scene, *args, **kwargs)
             f(s)
             return s
         monkeypatch.setattr(_kernel, "support_params", support_params)

@@ -24,9 +24,16 @@ py::dict output_to_dict(SimOutput&& o) {
   py::dict d;
   const auto& table = output_fields();
   const py::ssize_t nw = o.rec.n_wheels();
+  const py::ssize_t n_samples = static_cast<py::ssize_t>(o.rec.n_samples());
   for (int f = 0; f < kFieldCount; ++f) {
     std::vector<double>& col = o.rec.column(f);
     const py::ssize_t n = static_cast<py::ssize_t>(col.size());
+    if (table[f].per_support) {  // (n_samples, n_supports), or None when not recorded
+      const py::ssize_t ns = o.rec.n_supports();
+      d[table[f].name] =
+          ns > 0 ? as_array(std::move(col)).attr("reshape")(n_samples, ns) : py::object(py::none());
+      continue;
+    }
     py::array arr;
     if (table[f].integer) {
       std::vector<int32_t> ints(col.begin(), col.end());
@@ -51,6 +58,13 @@ py::dict output_to_dict(SimOutput&& o) {
       }
     d["body_z"] = z;
     d["body_phi"] = phi;
+  }
+  {  // each support's envelope along the track, one array per envelope field
+    py::dict env;
+    const auto& info = envelope_fields();
+    for (int f = 0; f < kEnvelopeFieldCount; ++f)
+      env[info[f].name] = as_array(std::move(o.envelope.column(f)));
+    d["support_envelope"] = env;
   }
   d["steps"] = o.steps;
   d["newton_iterations"] = o.newton_iterations;

@@ -10,12 +10,29 @@ namespace trackwheel::bindings {
 
 namespace {
 
-// The output table as (name, unit, doc, per_wheel, dtype) rows.
+// The output table's per-sample and per-wheel rows as (name, unit, doc, per_wheel, dtype).
 py::tuple output_table() {
   py::list rows;
   for (const FieldInfo& f : output_fields())
-    rows.append(
-        py::make_tuple(f.name, f.unit, f.doc, f.per_wheel, f.integer ? "int32" : "float64"));
+    if (!f.per_support)
+      rows.append(
+          py::make_tuple(f.name, f.unit, f.doc, f.per_wheel, f.integer ? "int32" : "float64"));
+  return py::tuple(rows);
+}
+
+// The output table's per-support rows as (name, unit, doc).
+py::tuple support_table() {
+  py::list rows;
+  for (const FieldInfo& f : output_fields())
+    if (f.per_support) rows.append(py::make_tuple(f.name, f.unit, f.doc));
+  return py::tuple(rows);
+}
+
+// The support envelope's fields as (name, unit, doc).
+py::tuple envelope_table() {
+  py::list rows;
+  for (const EnvelopeInfo& f : envelope_fields())
+    rows.append(py::make_tuple(f.name, f.unit, f.doc));
   return py::tuple(rows);
 }
 
@@ -61,6 +78,9 @@ void bind_state(py::module_& m) {
       .def_readwrite("newton_tol", &SimSettings::newton_tol)
       .def_readwrite("reuse_jacobian", &SimSettings::reuse_jacobian)
       .def_readwrite("record_energy", &SimSettings::record_energy)
+      .def_readwrite("record_supports", &SimSettings::record_supports,
+                     "record each support's forces and sleeper displacement per kept sample "
+                     "(a fixed rail)")
       .def_readwrite("progress_every", &SimSettings::progress_every)
       .def_readwrite("window", &SimSettings::window, "the travelling window (a copy: assign it)");
   py::class_<WheelState>(m, "WheelState")
@@ -104,12 +124,16 @@ void bind_dynamics(py::module_& m) {
   });
 
   m.attr("OUTPUT_FIELDS") = output_table();
+  m.attr("SUPPORT_FIELDS") = support_table();
+  m.attr("ENVELOPE_FIELDS") = envelope_table();
   m.def("simulate", &simulate_full, py::arg("rail"), py::arg("wheels"), py::arg("contact"),
         py::arg("settings"), py::arg("initial"), py::arg("progress") = py::none(),
         py::arg("vehicle") = VehicleParams(),
         "Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every "
         "settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns "
-        "{field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and "
+        "{field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)), "
+        "every SUPPORT_FIELDS row ((n_samples, n_supports) if settings.record_supports, else "
+        "None), support_envelope ({ENVELOPE_FIELDS name: (n_supports_seen,)}), "
         "the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, "
         "newton_iterations, factorizations, state_changes, stability_limit, final_state");
   m.def("highest_frequency", &highest_frequency_of,

@@ -54,7 +54,10 @@ void bind_vehicle(py::module_& m) {
       .def_readwrite("bay", &WindowParams::bay, "sleeper bay d_s [m]; 0: no window")
       .def_readwrite("elements_per_bay", &WindowParams::elements_per_bay, "[-]")
       .def_readwrite("origin", &WindowParams::origin, "track coordinate of s = 0 at t = 0 [m]")
-      .def_readwrite("hold", &WindowParams::hold, "s of the rearmost wheel at a shift [m]");
+      .def_readwrite("hold", &WindowParams::hold, "s of the rearmost wheel at a shift [m]")
+      .def_readwrite("supports", &WindowParams::supports,
+                     "the track's supports streamed into the window, one per sleeper from the "
+                     "start window's rear support on (a copy: assign it); empty: the rail's");
   m.def("vehicle_matrices", &vehicle_matrices_dict, py::arg("vehicle"), py::arg("n_wheels"),
         "The vehicle's constant matrices over u = [Y_A per wheel, (z, phi) per body] "
         "(vehicle.hpp): {'K' [N/m], 'C' [N s/m]: sum k g g^T, sum c g g^T over the suspensions; "

@@ -42,15 +42,20 @@ from .scene import (
     CarBody,
     Contact,
     Rail,
+    Scatter,
     Scene,
+    SupportValues,
     Supports,
+    Transition,
     Vehicle,
+    Voids,
     Wheel,
     Window,
 )
 from .study.analysis import Analysis, amplitude_spectrum, analyse, main_frequency
 from .study.convergence import Convergence, ConvergenceWarning, converged
 from .study.fidelity import adequacy, recommend
+from .study.settlement import settle
 from .study.force_statistics import ForceStatistics, force_statistics
 from .study.steady import SteadyState, steady_state
 from .study.sweep import load_sweep, summarise_seeds, sweep
@@ -59,6 +64,7 @@ from .study.sweep import load_sweep, summarise_seeds, sweep
 #: trackwheel.simulate`` (or ``from trackwheel.eigen import rail_frequencies``) keeps working,
 #: and gives the module itself (the same object: its names, its monkeypatchable globals).
 #: ``trackwheel.scene``, ``.plots``, ``.reproduce`` and ``.cli`` are packages at their old paths.
+#: ``trackwheel.settlement`` (the settlement laws) is a short path of the same kind.
 FLAT_MODULES = {
     "irregularity": "excitation",
     "spectra": "excitation.spectra",
@@ -75,6 +81,7 @@ FLAT_MODULES = {
     "convergence": "study.convergence",
     "fidelity": "study.fidelity",
     "sweep": "study.sweep",
+    "settlement": "study.settlement",
 }
 for _old, _new in FLAT_MODULES.items():
     _module = _importlib.import_module(f"{__name__}.{_new}")
@@ -106,6 +113,10 @@ __all__ = [
     "StabilityWarning",
     "StaticResult",
     "Supports",
+    "SupportValues",
+    "Transition",
+    "Scatter",
+    "Voids",
     "Wheel",
     "Window",
     "SteadyState",
@@ -128,6 +139,7 @@ __all__ = [
     "static",
     "summarise_seeds",
     "sweep",
+    "settle",
     "Irregularity",
     "Polygon",
     "WheelFlat",

@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import typing
 import types
-__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_line', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'ENVELOPE_FIELDS', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SUPPORT_FIELDS', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_line', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
 class RailParams:
     exact_curvature: bool
     pin_far_end: bool
@@ -557,6 +557,14 @@ class WindowParams:
     @origin.setter
     def origin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @property
+    def supports(self) -> SupportParams:
+        """
+        the track's supports streamed into the window, one per sleeper from the start window's rear support on (a copy: assign it); empty: the rail's
+        """
+    @supports.setter
+    def supports(self, arg0: SupportParams) -> None:
+        ...
 class Integrator:
     """
     Members:
@@ -692,6 +700,14 @@ class SimSettings:
         ...
     @progress_every.setter
     def progress_every(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def record_supports(self) -> bool:
+        """
+        record each support's forces and sleeper displacement per kept sample (a fixed rail)
+        """
+    @record_supports.setter
+    def record_supports(self, arg0: bool) -> None:
         ...
     @property
     def rho_inf(self) -> float:
@@ -1046,7 +1062,7 @@ def receptance(rail: RailModel, beam: BeamParams, x: collections.abc.Sequence[ty
     """
 def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)) and the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
+    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)), every SUPPORT_FIELDS row ((n_samples, n_supports) if settings.record_supports, else None), support_envelope ({ENVELOPE_FIELDS name: (n_supports_seen,)}), the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
     """
 def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
@@ -1072,11 +1088,13 @@ def vertical_modes(rail: RailModel, wheel_mass: typing.SupportsFloat | typing.Su
     """
     Vertical modes of the rail with the wheel (mass M [kg] on the contact spring k [N/m]) at each position [m]: (frequencies (n_pos, n_modes) [Hz], shapes (n_pos, n_dof + 1 + n_sleepers, n_modes))
     """
+ENVELOPE_FIELDS: tuple = (('x', 'm', "X_j, the support's track coordinate"), ('ballast_force_max', 'N', 'largest ballast force (compression positive)'), ('ballast_force_min', 'N', 'smallest ballast force (negative: the bed pulls)'), ('rail_seat_force_max', 'N', 'largest rail-seat force (compression positive)'), ('rail_seat_force_min', 'N', 'smallest rail-seat force (negative: the pad pulls)'), ('sleeper_z_min', 'm', "the sleeper's largest downward displacement, min z"), ('contact_time', 's', 'time the ballast carried load (ballast force > 0)'), ('observed_time', 's', "time the support was in the rail (a travelling window's share)"))
 GAUSS_RANGE: tuple = (2, 10)
 MAX_DENSE_EIGEN_DOF: int = 4000
 MAX_ELEMENTS: int = 20000
 MAX_SPEED: float = 300.0
 MAX_SUPPORTS: int = 100000
 OUTPUT_FIELDS: tuple = (('t', 's', 'time', False, 'float64'), ('x_wheel', 'm', 'X_A, wheel-centre position (prescribed X_0 + v t)', True, 'float64'), ('y_wheel', 'm', 'Y_A, wheel-centre height', True, 'float64'), ('ydot_wheel', 'm/s', 'dY_A/dt', True, 'float64'), ('theta', 'rad', 'rolling angle', True, 'float64'), ('thetadot', 'rad/s', 'rolling rate', True, 'float64'), ('contact_s', 'm', 's*, rail coordinate of the contact point', True, 'float64'), ('y_contact', 'm', 'y_B = y(s*), rail displacement under the wheel', True, 'float64'), ('normal_force', 'N', 'N, normal contact force (0 without contact)', True, 'float64'), ('tangential_force', 'N', 'lambda, tangential contact force on the wheel', True, 'float64'), ('slip', 'm/s', 'slip velocity t.(V_A - S edot) - rho thetadot', True, 'float64'), ('slip_state', '', '0 no contact, 1 stick, 2 slide', True, 'int32'), ('v_error', '%', "paper's eq. 28, (dX/dt - rho dtheta/dt)/(dX/dt) 100", True, 'float64'), ('phi', 'rad', 'rail obliquity at the contact point', True, 'float64'), ('acc_contact', 'm/s^2', "vertical acceleration of the contact point d2 y_B/dt2 = S_y e'' + 2 s' S_y,s e' + s'^2 y_ss (s'' y_s neglected)", True, 'float64'), ('acc_A', 'm/s^2', "rho cos(phi) theta' v phi_s (docs: Model § Outputs)", True, 'float64'), ('acc_B', 'm/s^2', "rho cos(phi) theta' phi_t", True, 'float64'), ('acc_C', 'm/s^2', 'rho cos(phi) v^2 phi_s^2', True, 'float64'), ('acc_D', 'm/s^2', 'rho cos(phi) phi_t^2', True, 'float64'), ('acc_E', 'm/s^2', '2 rho cos(phi) phi_t v phi_s', True, 'float64'), ('reaction', 'N', 'horizontal force holding X_A = X_0 + v t', True, 'float64'), ('penetration', 'm', 'rho0 - rho (negative: gap)', True, 'float64'), ('energy', 'J', 'total mechanical energy (recorded on request only)', False, 'float64'))
+SUPPORT_FIELDS: tuple = (('rail_seat_force', 'N', "rail-seat force of each support, the pad's compression -(k_p (y - z) + c_p (y' - z')) (single springs: -(k_s y + c_s y'))"), ('ballast_force', 'N', "ballast force under each sleeper, the bed's compression -(k_b z + c_b z') (single springs: the spring's force)"), ('sleeper_z', 'm', "each sleeper's displacement z (up positive; 0 for single springs)"))
 #: The test-only probes and benchmark hooks of the kernel (not public API, no stubs).
 testing: types.ModuleType

@@ -121,6 +121,8 @@ RANGES: dict[str, Range] = {
     "Supports.sleeper_mass": _positive(1e5, "kg", "half a sleeper 100-200 kg; a slab a few t"),
     "Supports.ballast_stiffness": _positive(1e14, "N/m", "ballast 3e7-3e8 per half sleeper"),
     "Supports.ballast_damping": Range(0.0, 1e10, "N s/m", "ballast 3e4-1e5"),
+    "Supports.void": Range(0.0, 0.1, "m", "a hanging sleeper's gap: 0.5-5 mm; gaps are in m, "
+                           "1 mm is 1e-3"),
     "Wheel.mass": _positive(1e5, "kg", "half a wheelset ~900 kg"),
     "Wheel.radius": Range(1e-3, 10.0, "m", "scale models to 20 m wheels (rail: 0.3-0.6 m)"),
     "Wheel.load": Range(0.0, 1e8, "N", "a 30 t axle: 150 kN per wheel"),

@@ -32,7 +32,9 @@ Track (every command but reproduce; docs: Model § Layered supports and the sect
 ``--track kato2005|ballasted`` (``--length L`` [m] for the ballasted preset), ``--beam
 euler|timoshenko`` and ``--shear-coefficient K``; every ``--fidelity`` level takes the beam
 theory (the full and ancf/... levels the shear-deformable ANCF rail, the linear/... levels the
-linear Timoshenko beam).
+linear Timoshenko beam). ``run`` and ``sweep`` take a track varying along X (docs: Model §
+Supports varying along the track): ``--transition K1,K2,AT[,RAMP]``, ``--scatter CV`` and
+``--void AT,GAP``.
 
 Layer 7, the face: :mod:`.main` (the parser and the entry point), :mod:`.commands` (one module
 per sub-command), :mod:`.options` (argument types and shared option groups), :mod:`.scenes`

@@ -171,6 +171,40 @@ def track_option(p: argparse.ArgumentParser, length_default: str = "30",
 
 
 
+def transition_spec(text: str) -> list[float]:
+    """``K1,K2,AT[,RAMP]`` -> [K1, K2, AT, RAMP] (RAMP 0 if not given)."""
+    parts = text.split(",")
+    if len(parts) not in (3, 4):
+        raise argparse.ArgumentTypeError(f"expected K1,K2,AT[,RAMP] (N/m, N/m, m, m), e.g. "
+                                         f"50e6,200e6,15,3; got {text!r}")
+    return [finite_float(x.strip()) for x in parts] + ([0.0] if len(parts) == 3 else [])
+
+
+def void_spec(text: str) -> list[float]:
+    return floats(text, 2, "AT,GAP in m, e.g. 15,1e-3")
+
+
+def along_x_options(p: argparse.ArgumentParser) -> None:
+    """--transition, --transition-shape, --scatter and --void: a track whose supports vary
+    along X (docs: Model § Supports varying along the track)."""
+    g = p.add_argument_group("track varying along X (the property: the ballast stiffness k_b "
+                             "of --track ballasted, the support stiffness k_s of kato2005; "
+                             "docs: Model § Supports varying along the track)")
+    g.add_argument("--transition", type=transition_spec, metavar="K1,K2,AT[,RAMP]",
+                   help="the property changes from K1 to K2 [N/m] at X = AT [m], over a ramp "
+                        "of RAMP [m] centred on AT (default 0: a step)")
+    g.add_argument("--transition-shape", choices=("linear", "cosine"),
+                   help="the ramp's shape with RAMP > 0 (default linear)")
+    g.add_argument("--scatter", type=positive_float, metavar="CV",
+                   help="lognormal scatter of the property from sleeper to sleeper with "
+                        "coefficient of variation CV (e.g. 0.2; its mean the preset's value or "
+                        "the --transition), drawn with --seed (default 0); --seeds (sweep) "
+                        "redraws it per seed")
+    g.add_argument("--void", type=void_spec, action="append", metavar="AT,GAP",
+                   help="a gap of GAP [m] between the sleeper nearest X = AT [m] and its "
+                        "ballast (a hanging sleeper; --track ballasted; repeat for several)")
+
+
 def damping_options(p: argparse.ArgumentParser, contact: bool = True) -> None:
     """--support-damping (and, with ``contact``, --contact-damping): viscous damping of the
     supports (the rail pads of --track ballasted) and of the wheel/rail contact [N s/m]."""

@@ -1,6 +1,7 @@
 """The scene a command runs, from its options: the --track preset (with --length, --beam,
---shear-coefficient, --shear-modulus and a support stiffness), the --vehicle and the excitation (--irregularity,
---seed, --wavelengths, --joint, --wheel-flat, --patch-filter)."""
+--shear-coefficient, --shear-modulus, a support stiffness and the track along X: --transition,
+--scatter, --void), the --vehicle and the excitation (--irregularity, --seed, --wavelengths,
+--joint, --wheel-flat, --patch-filter)."""
 
 from __future__ import annotations
 
@@ -8,9 +9,11 @@ import argparse
 import dataclasses
 import math
 
+import numpy as np
+
 from ..base.limits import MAX_ELEMENTS
 from ..excitation import Irregularity, WheelFlat, spectra
-from ..scene import Scene, Vehicle
+from ..scene import Scatter, Scene, Transition, Vehicle, Voids
 from .checks import option_error
 from .options import TRACKS, floats
 
@@ -45,7 +48,67 @@ def track_scene(args: argparse.Namespace, stiffness: float | None = None,
                 scene.contact, damping=args.contact_damping))
     except ValueError as exc:
         raise OptionError(option_error(exc)) from None
-    return scene
+    return along_x_scene(scene, args, stiffness)
+
+
+def along_x_scene(scene: Scene, args: argparse.Namespace, stiffness=None) -> Scene:
+    """``scene`` with the supports of --transition, --scatter and --void (where the command
+    has them): the ballast stiffness of layered supports, the support stiffness of single
+    springs. Raises OptionError."""
+    transition = getattr(args, "transition", None)
+    scatter, voids = getattr(args, "scatter", None), getattr(args, "void", None)
+    if getattr(args, "transition_shape", None) and not (transition and transition[3] > 0.0):
+        raise OptionError("--transition-shape needs --transition K1,K2,AT,RAMP with RAMP > 0")
+    if transition is None and scatter is None and not voids:
+        return scene
+    sup = scene.supports
+    name = "ballast_stiffness" if sup.layered else "stiffness"
+    if name == "stiffness" and stiffness is not None and (transition or scatter):
+        raise OptionError("--transition and --scatter set the support stiffness along X of "
+                          "--track kato2005: give them or --support-stiffness, not both")
+    option = "--transition"
+    try:
+        if transition is not None:
+            k1, k2, at, ramp = transition
+            shape = "step" if ramp == 0.0 else (args.transition_shape or "linear")
+            sup = sup.transition(at, ramp=ramp, shape=shape, **{name: (k1, k2)})
+        if scatter is not None:
+            option = "--scatter"
+            sup = sup.scattered(scatter, seed=args.seed or 0, property=name)
+        for at, gap in voids or ():
+            option = "--void"
+            if not sup.layered:
+                raise ValueError("a void lies between a sleeper and its ballast: use --track "
+                                 "ballasted")
+            sup = sup.hanging(at, gap=gap)
+        return dataclasses.replace(scene, supports=sup)
+    except ValueError as exc:  # named by the library's field: the option sets that field
+        raise OptionError(f"{option}: {exc}") from None
+
+
+def describe_track(scene: Scene, seeds=None) -> str | None:
+    """One line naming how the supports vary along X (None if they do not); with ``seeds``
+    (a sweep's --seeds) the scatter is named by those realisations."""
+    sup = scene.supports
+    if sup.uniform:
+        return None
+    words = []
+    for name, symbol in (("stiffness", "k_p" if sup.layered else "k_s"),
+                         ("ballast_stiffness", "k_b")):
+        value = getattr(sup, name)
+        scatter = value if isinstance(value, Scatter) else None
+        mean = scatter.mean if scatter else value
+        if isinstance(mean, Transition):
+            ramp = (f" over {mean.ramp:g} m ({mean.shape})" if mean.ramp > 0.0 else "")
+            words.append(f"{symbol} {mean.before / 1e6:g} -> {mean.after / 1e6:g} MN/m at "
+                         f"X = {mean.at:g} m{ramp}")
+        if scatter:
+            drawn = seed_text(seeds) if seeds else f"seed {scatter.seed}"
+            words.append(f"{symbol} scattered, cv {scatter.cv:g} ({drawn})")
+    if isinstance(sup.void, Voids):
+        words += [f"void {g * 1e3:g} mm under the sleeper at X = {x:g} m"
+                  for x, g in zip(sup.void.positions, sup.void.gaps)]
+    return ", ".join(words) or "supports vary along X"
 
 
 def scene_name(scene: Scene, args: argparse.Namespace) -> str:
@@ -165,15 +228,19 @@ def profile(args: argparse.Namespace) -> Irregularity | None:
             raise OptionError(f"{text}: {msg}") from None
     irr = sum(parts) if parts else None
     n_random = 0 if irr is None else irr.n_random
-    if n_random == 0 and (args.seed is not None or args.wavelengths is not None
-                          or getattr(args, "seeds", None)):
-        used = [o for o, val in (("--seed", args.seed), ("--wavelengths", args.wavelengths),
+    scatter = getattr(args, "scatter", None) is not None
+    if n_random == 0 and args.wavelengths is not None:
+        raise OptionError("--wavelengths needs a random --irregularity (fra:N, german:low|high, "
+                          "china or iso3095)")
+    if n_random == 0 and not scatter and (args.seed is not None
+                                          or getattr(args, "seeds", None)):
+        used = [o for o, val in (("--seed", args.seed),
                                  ("--seeds", getattr(args, "seeds", None))) if val is not None]
         raise OptionError(f"{' and '.join(used)} need(s) a random --irregularity "
-                           "(fra:N, german:low|high, china or iso3095)")
+                           "(fra:N, german:low|high, china or iso3095) or --scatter")
+    if args.seed is not None and args.seed < 0:
+        raise OptionError(f"--seed {args.seed}: allowed range 0 .. 2^63 - 1")
     if n_random:
-        if args.seed is not None and args.seed < 0:
-            raise OptionError(f"--seed {args.seed}: allowed range 0 .. 2^63 - 1")
         irr = irr.reseeded(args.seed or 0)
     if args.joint is not None:
         depth, length, at = args.joint
@@ -218,8 +285,9 @@ def excited_scene(scene: Scene, args: argparse.Namespace) -> tuple[Scene, list[s
                          "the dip's cusp curves more sharply than the wheel)")
     impact = [o for o, given in (("--wheel-flat", args.wheel_flat is not None),
                                  ("--joint", args.joint is not None)) if given]
-    if impact and scene.supports.damping == 0.0 and scene.contact.damping == 0.0 and (
-            not scene.supports.layered or scene.supports.ballast_damping == 0.0):
+    sv = scene.support_values
+    if impact and not np.any(sv.damping) and scene.contact.damping == 0.0 and (
+            not np.any(sv.ballast_damping)):
         notes.append(f"{' and '.join(impact)} on an undamped track (the paper's: supports and "
                      "contact without damping): nothing dissipates the energy of each impact, "
                      "so the wheel bounces off the rail and later impacts build up on the "

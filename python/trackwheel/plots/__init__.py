@@ -17,8 +17,13 @@ Layer 5, one module per topic:
 - :mod:`.excitation` -- :func:`irregularity_profile`, :func:`contact_force`,
   :func:`force_bands`;
 - :mod:`.track` -- :func:`receptance`, :func:`decay_rate`;
+- :mod:`.track_along_x` -- :func:`sleeper_envelope` (each sleeper's force envelope beside the
+  supports' properties along X);
 - :mod:`.periodic` -- :func:`periodic_force` (the steady force over the bay and its
   harmonics), :func:`random_force_bands` (its band RMS under a random profile);
+- :mod:`.settlement` -- :func:`settlement_profile` (the settlement along X growing, beside
+  the support stiffness), :func:`dynamic_factor_cycles` (the settlement loop,
+  :func:`trackwheel.settle`);
 - :mod:`.common` -- what they share, and :func:`run_label` / :func:`format_dt`, the names of
   runs in legends and tables.
 
@@ -32,14 +37,17 @@ from .excitation import contact_force, force_bands, irregularity_profile
 from .modes import eigen, mode_shapes
 from .passage import acceleration_terms, dynamic
 from .periodic import periodic_force, random_force_bands
+from .settlement import dynamic_factor_cycles, settlement_profile
 from .sweeps import DODGE, speed, support_stiffness
 from .track import decay_rate, receptance
+from .track_along_x import sleeper_envelope
 
 __all__ = [
     "DODGE",
     "acceleration_terms",
     "contact_force",
     "decay_rate",
+    "dynamic_factor_cycles",
     "dynamic",
     "eigen",
     "element_convergence",
@@ -51,6 +59,8 @@ __all__ = [
     "random_force_bands",
     "receptance",
     "run_label",
+    "settlement_profile",
+    "sleeper_envelope",
     "speed",
     "support_stiffness",
     "time_step_convergence",

@@ -40,6 +40,10 @@ _ACC_STYLE = {
 }
 
 
+def _k_text(scene) -> str:
+    """The supports' stiffness [MN/m] for a title: one value, or its range over the supports."""
+    return scene.supports.text("stiffness", 1e-6, scene.support_positions)
+
 
 def acceleration_terms(results, *, against: str = "position", title: str | None = None
                        ) -> Figure:
@@ -78,7 +82,7 @@ def acceleration_terms(results, *, against: str = "position", title: str | None 
             if name == "acc_C":
                 text += " (wide, under D)"
             ax.plot(x, getattr(r, name), color=f"C{k}", label=text, **_ACC_STYLE[name])
-        head = (f"{speed_kmh(r):g} km/h, k_s = {r.scene.supports.stiffness / 1e6:g} MN/m")
+        head = (f"{speed_kmh(r):g} km/h, k_s = {_k_text(r.scene)} MN/m")
         ax_l.set_title(f"{head}: terms A, B", loc="left", fontsize="medium")
         ax_r.set_title(f"{head}: terms C, D, E", loc="left", fontsize="medium")
         for ax in (ax_l, ax_r):
@@ -181,7 +185,7 @@ def dynamic(result, analysis=None, *, eigen: EigenResult | None = None, n_modes:
     legend_above(ax_f, ncols=2)
     for ax in (ax_y, ax_d, ax_f):
         ax.grid(True, alpha=0.3)
-    fig.suptitle(f"{speed_kmh(result):g} km/h, k_s = {result.scene.supports.stiffness / 1e6:g}"
+    fig.suptitle(f"{speed_kmh(result):g} km/h, k_s = {_k_text(result.scene)}"
                  f" MN/m, {run_label(result, dt=True, n_elements=True)}")
     return fig
 

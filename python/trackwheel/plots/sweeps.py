@@ -147,8 +147,8 @@ def speed(df, eigen: EigenResult | None = None, *, n_modes: int = 4) -> Figure:
     if eigen is not None:
         n_modes = check_n_modes(eigen, n_modes)
         k_eig = eigen.scene.supports.stiffness
-        other = [k for k in df[STIFFNESS].unique()
-                 if abs(k - k_eig) > 1e-9 * k_eig]
+        other = [] if callable(k_eig) or isinstance(k_eig, tuple) else [
+            k for k in df[STIFFNESS].unique() if abs(k - k_eig) > 1e-9 * k_eig]
         if other:
             raise ValueError(f"eigen was computed for k_s = {k_eig:g} N/m but the table has "
                              f"k_s = {other[0]:g} N/m; give eigen for the table's scene")

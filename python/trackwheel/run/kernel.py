@@ -22,11 +22,20 @@ from . import profile
 
 @lru_cache(maxsize=64)
 def rail_model(scene: Scene, n_elements: int | None = None,
-               profile_end: float | None = None, profile_shift: float = 0.0) -> _core.RailModel:
+               profile_end: float | None = None, profile_shift: float = 0.0,
+               support_origin: float = 0.0) -> _core.RailModel:
     """The kernel's rail of ``scene`` on ``n_elements`` (None: the scene's); its profile covers
     the track coordinates [0, ``profile_end``] [m] (None: the rail, [0, L]; a travelling
     window's run covers the track it passes), read at the rail's x = X - ``profile_shift``
-    (the full path's travelling window: the start window's origin X_w [m])."""
+    (the full path's travelling window: the start window's origin X_w [m]); its supports have
+    the properties of the track's at X = ``support_origin`` + x (a travelling window: its
+    origin X_w at the start [m])."""
+    return _core.RailModel(rail_params(scene, n_elements), support_params(scene, support_origin),
+                           profile.rail_profile(scene, profile_end, profile_shift))
+
+
+def rail_params(scene: Scene, n_elements: int | None = None) -> _core.RailParams:
+    """The kernel's rail parameters of ``scene`` on ``n_elements`` (None: the scene's)."""
     r = scene.rail
     p = _core.RailParams()
     p.length = r.length
@@ -47,34 +56,68 @@ def rail_model(scene: Scene, n_elements: int | None = None,
         p.absorbing_length = r.absorbing_ends.length
         p.absorbing_damping = r.absorbing_damping
         p.absorbing_axial_damping = r.absorbing_ends.axial_c_max(r.axial_stiffness)
-    return _core.RailModel(p, support_params(scene),
-                           profile.rail_profile(scene, profile_end, profile_shift))
+    return p
 
 
-def support_params(scene: Scene) -> _core.SupportParams:
-    """The kernel's supports of ``scene``, one entry per support."""
+def support_params(scene: Scene, origin: float = 0.0) -> _core.SupportParams:
+    """The kernel's supports of ``scene`` at their rail positions x_j, each property that of
+    the track at X = ``origin`` + x_j [m]."""
+    x = np.asarray(scene.support_positions, dtype=float)
+    return _supports_at(scene, origin + x, position=x)
+
+
+def _supports_at(scene: Scene, x: np.ndarray, position=None) -> _core.SupportParams:
+    """The kernel's supports with the properties the scene's supports have at the track
+    coordinates ``x`` [m] (:meth:`trackwheel.Supports.values`), placed at ``position``
+    (None: at ``x``)."""
+    sv = scene.supports.values(x)
     s = _core.SupportParams()
-    pos = scene.support_positions
-    s.position = list(pos)
-    s.stiffness = [scene.supports.stiffness] * len(pos)
-    s.damping = [scene.supports.damping] * len(pos)
-    if scene.supports.layered:
-        s.sleeper_mass = [scene.supports.sleeper_mass] * len(pos)
-        s.ballast_stiffness = [scene.supports.ballast_stiffness] * len(pos)
-        s.ballast_damping = [scene.supports.ballast_damping] * len(pos)
-        unilateral_ballast(scene.supports, len(pos), s)
+    s.position = sv.position.tolist() if position is None else np.asarray(position).tolist()
+    s.stiffness = sv.stiffness.tolist()
+    s.damping = sv.damping.tolist()
+    if sv.layered:
+        s.sleeper_mass = sv.sleeper_mass.tolist()
+        s.ballast_stiffness = sv.ballast_stiffness.tolist()
+        s.ballast_damping = sv.ballast_damping.tolist()
+        unilateral_ballast(sv, s)
     return s
 
 
-def unilateral_ballast(supports, n_supports: int, s: _core.SupportParams) -> None:
-    """The kernel's unilateral ballast into ``s``: the void g_j [m] under each of the
-    ``n_supports`` sleepers (a void > 0 makes that ballast push only) and the tensionless
-    switch (every ballast pushes only)."""
-    void = np.broadcast_to(np.asarray(getattr(supports, "void", 0.0), dtype=float),
-                           (n_supports,))
-    if np.any(void > 0.0):
-        s.void_gap = void.tolist()
-    s.tensionless = bool(getattr(supports, "ballast_tensionless", False))
+def unilateral_ballast(sv, s: _core.SupportParams) -> None:
+    """The kernel's unilateral ballast into ``s`` from the resolved supports ``sv``: the void
+    g_j [m] under each sleeper (only if some is > 0: a void makes that ballast push only) and
+    the tensionless switch (every ballast pushes only)."""
+    if np.any(sv.void > 0.0):
+        s.void_gap = np.asarray(sv.void, dtype=float).tolist()
+    s.tensionless = bool(sv.ballast_tensionless)
+
+
+#: The per-support properties the travelling window streams (the kernel's
+#: for_each_support_property): SupportParams' fields other than the positions.
+STREAMED_PROPERTIES = ("stiffness", "damping", "sleeper_mass", "ballast_stiffness",
+                       "ballast_damping")
+
+
+def support_stream(scene: Scene, window, travel: float):
+    """The supports a run on the travelling ``window`` (``_core.WindowParams``) meets over
+    ``travel`` [m] of its rear wheel, one per sleeper from the start window's rear support at
+    X_0 = origin + X_0,rail on, X_k = X_0 + k d (every sleeper that joins the window, O(travel
+    / d) of them), as a ``_core.SupportParams`` for ``window.supports``; None if every one has
+    the same properties (the window's rail is the track, as without streaming)."""
+    if scene.supports.uniform:
+        return None
+    d = window.bay
+    rail_x = np.asarray(scene.support_positions, dtype=float)
+    n = len(rail_x) + int(np.ceil(travel / d - 1e-9)) + 2  # one more shift at each end
+    x = window.origin + rail_x[0] + d * np.arange(n)
+    stream = _supports_at(scene, x)
+    if any(g > 0.0 for g in stream.void_gap):
+        raise ValueError("the travelling window does not take voids (Supports.void > 0 at a "
+                         "sleeper it meets): run the voided track on a fixed rail "
+                         "(tensionless ballast without voids is fine)")
+    if all(len(set(getattr(stream, f))) <= 1 for f in STREAMED_PROPERTIES):
+        return None
+    return stream
 
 
 def beam_params(scene: Scene) -> _core.BeamParams:

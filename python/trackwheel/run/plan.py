@@ -65,6 +65,8 @@ class RunPlan:
     newton_tol: float  #: [m]
     rolling: bool  #: the rolling flag as given (the linear kernel path has no constraint)
     window: object = None  #: _core.WindowParams of a travelling window, or None
+    #: record each support's forces per kept sample (a fixed rail)
+    support_forces: bool = False
 
     @property
     def linear(self) -> bool:
@@ -162,14 +164,15 @@ def _steps(dt: float, t_end: float, dt_default: bool, speed: float, length: dict
     return n_steps
 
 
-def _output_every(output_every, n_steps: int, energy: bool) -> int:
+def _output_every(output_every, n_steps: int, energy: bool, n_supports: int = 0) -> int:
     """``output_every`` checked (default: at most DEFAULT_MAX_SAMPLES samples) against the
-    output size limit MAX_OUTPUT_BYTES (the sample size from the kernel's output table)."""
+    output size limit MAX_OUTPUT_BYTES (the sample size from the kernel's output table, with
+    the per-support fields of ``n_supports`` recorded supports)."""
     if output_every is None:
         output_every = max(1, math.ceil(n_steps / DEFAULT_MAX_SAMPLES))
     output_every = v.integer("output_every", output_every, low=1, high=2**31 - 1)
     n_samples = n_steps // output_every + 1
-    per_sample = sample_bytes(energy)
+    per_sample = sample_bytes(energy, n_supports)
     if n_samples * per_sample > MAX_OUTPUT_BYTES:
         raise ValueError(
             f"output_every = {output_every} keeps {n_samples} samples "
@@ -181,7 +184,7 @@ def _output_every(output_every, n_steps: int, energy: bool) -> int:
 
 def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, x_end, duration,
             output_every, rho_inf, baumgarte, rolling, start, drop_height, energy, fidelity,
-            n_modes, max_newton, newton_tol, distance=None) -> RunPlan:
+            n_modes, max_newton, newton_tol, distance=None, support_forces=False) -> RunPlan:
     """Validate the arguments of :func:`simulate`, resolve its defaults (the same derived mesh
     and step at every fidelity level) and rewrite the scene for the fidelity level."""
     if not isinstance(scene, Scene):
@@ -216,6 +219,11 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     if scene.window is not None and n_modes is not None:
         raise ValueError("Scene.window needs all coordinates: n_modes = None")
     energy = v.boolean("energy", energy)
+    support_forces = v.boolean("support_forces", support_forces)
+    if support_forces and scene.window is not None:
+        raise ValueError("support_forces=True needs a fixed rail: on a travelling window the "
+                         "supports change identity as it moves; each support's envelope along "
+                         "the track is kept anyway (Result.sleeper_envelope())")
     warn_unresolved_mesh(scene, ne, stacklevel=4)  # here, resolve, simulate, the caller
     scene = _scene_for(scene, fidelity)
     window = None if scene.window is None else window_params(scene, ne, x0)
@@ -224,13 +232,20 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
     # the full path reads the profile in the rail coordinate s = X - X_w of the start window
     # (the kernel shifts it as the window travels); the linear path reads it at X
     s0 = 0.0 if window is None or linear else window.origin
-    model = kernel.rail_model(scene, ne, profile_end, s0)
+    # the track's supports along the run, streamed into the window (None: all alike); the
+    # start window's rail has those at its place
+    stream = None if window is None else kernel.support_stream(scene, window, speed * t_end)
+    if stream is not None:
+        window.supports = stream
+    model = kernel.rail_model(scene, ne, profile_end, s0,
+                              0.0 if stream is None else window.origin)
     init = None if linear else initial_state(scene, model, speed, x0 - s0, start, drop_height)
     h = _time_step(scene, dt, integrator, linear, model, init, x0 - s0)
     length = ({"duration": duration} if duration is not None else
               {"distance": distance} if distance is not None else {"x_end": x0 + speed * t_end})
     n_steps = _steps(h, t_end, dt is None, speed, length)
-    output_every = _output_every(output_every, n_steps, energy)
+    output_every = _output_every(output_every, n_steps, energy,
+                                 len(scene.support_positions) if support_forces else 0)
     settings = RunSettings(
         integrator=integrator, dt=h, n_elements=ne, speed=speed, x_start=x0,
         t_end=n_steps * h, output_every=output_every, rho_inf=rho_inf, baumgarte=baumgarte,
@@ -238,4 +253,4 @@ def resolve(scene: Scene, speed: float, *, integrator, dt, n_elements, x_start, 
         n_modes=n_modes)
     return RunPlan(scene=scene, settings=settings, model=model, init=init, n_steps=n_steps,
                    energy=energy, max_newton=max_newton, newton_tol=newton_tol,
-                   rolling=rolling, window=window)
+                   rolling=rolling, window=window, support_forces=support_forces)

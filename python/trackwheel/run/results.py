@@ -4,7 +4,9 @@ used), :class:`Result` (a run) and the static solution's fields.
 - :data:`OUTPUT_FIELDS`: the kernel's output table, one row per recorded array (defined once in
   ``cpp/output.cpp``): Result's array fields, their documentation and the output-size estimate;
   :func:`result_from_kernel` is the only place that turns the kernel's dict into a Result.
-  Adding an output is one row in C++.
+  Adding an output is one row in C++. :data:`SUPPORT_FIELDS` are the same table's per-support
+  rows (recorded on request), :data:`ENVELOPE_FIELDS` the fields of each support's envelope
+  along the track (:meth:`Result.sleeper_envelope`).
 - :data:`SETTINGS_FIELDS`: RunSettings' fields with their units (the sweep tables' settings
   columns take theirs from here).
 - :data:`STATIC_FIELDS`: the fields of a static solution (``trackwheel.static``,
@@ -23,12 +25,20 @@ from .. import _core
 from ..base.fields import Quantity, dataclass_fields, generated_doc
 from ..scene import Scene
 
-__all__ = ["OUTPUT_FIELDS", "SETTINGS_FIELDS", "STATIC_FIELDS", "Result", "RunSettings",
-           "result_from_kernel", "sample_bytes", "static_from_kernel"]
+__all__ = ["ENVELOPE_FIELDS", "OUTPUT_FIELDS", "SETTINGS_FIELDS", "STATIC_FIELDS",
+           "SUPPORT_FIELDS", "Result", "RunSettings", "result_from_kernel", "sample_bytes",
+           "static_from_kernel"]
 
 #: The kernel's output table, one row per recorded field: (name, unit, doc, per_wheel, dtype).
 OUTPUT_FIELDS: tuple[tuple[str, str, str, bool, str], ...] = tuple(
     tuple(f) for f in _core.OUTPUT_FIELDS)
+#: The output table's per-support rows (name, unit, doc): float64 arrays (n_samples,
+#: n_supports) over the rail's supports, recorded with ``simulate(..., support_forces=True)``.
+SUPPORT_FIELDS: tuple[tuple[str, str, str], ...] = tuple(tuple(f) for f in _core.SUPPORT_FIELDS)
+#: The fields of each support's envelope along the track (name, unit, doc), one entry per
+#: support the run saw: the columns of :meth:`Result.sleeper_envelope`.
+ENVELOPE_FIELDS: tuple[tuple[str, str, str], ...] = tuple(
+    tuple(f) for f in _core.ENVELOPE_FIELDS)
 
 #: The settings a run used, after its defaults were resolved: the fields of RunSettings.
 SETTINGS_FIELDS: tuple[Quantity, ...] = (
@@ -183,6 +193,29 @@ class _ResultMethods:
                                        x_start=self.settings.x_start + veh.positions[i])
         return dataclasses.replace(self, scene=scene, settings=settings, **cols)
 
+    def sleeper_envelope(self):
+        """Each support's envelope along the track (docs: Model § Outputs) as a pandas
+        DataFrame, one row per support the run saw in the order of X (on a travelling window
+        every sleeper that passed through it), the extremes over the kept samples while the
+        support was in the rail; forces in N with compression positive, displacements in m up
+        positive, times in s (``df.attrs["units"]`` maps each column to its unit; the columns
+        are :data:`ENVELOPE_FIELDS`, listed below).
+
+        ``contact_time`` counts the kept samples whose ballast force is > 0 (intact ballast:
+        every sample unless the sleeper lifts off a tensionless bed; a sleeper over a void:
+        the time it carries load), each standing for ``output_every`` x ``dt``; so does
+        ``observed_time`` for every sample the support was in the rail. Single-spring supports
+        report the spring's force as both forces and a zero displacement.
+
+        Columns:
+        """
+        import pandas as pd
+
+        df = pd.DataFrame({name: np.asarray(self.support_envelope[name])
+                           for name, _u, _d in ENVELOPE_FIELDS})
+        df.attrs["units"] = {name: unit for name, unit, _d in ENVELOPE_FIELDS}
+        return df
+
     def __repr__(self) -> str:
         s = self.settings
         n = self.t.size
@@ -196,6 +229,10 @@ class _ResultMethods:
             (f"  normal force: {self.normal_force.min():.4g} .. {self.normal_force.max():.4g} N, "
              f"lost contact: {'yes' if lost else 'no'}"),
         ] + _slide_lines(self))
+
+
+_ResultMethods.sleeper_envelope.__doc__ += "\n" + "\n".join(
+    f"        - ``{n}`` [{u}]: {d}" for n, u, d in ENVELOPE_FIELDS) + "\n"
 
 
 #: Rim speed |theta'| rho0 [m/s] below which a wheel counts as locked (Result.locked): a
@@ -242,7 +279,15 @@ def _result_doc() -> str:
               "switches), ``stability_limit`` (predicted explicit RK4 limit at the start) [s],",
               "``wall_time`` [s], ``final_state`` (kernel state at the end, for restarts),",
               "``body_z`` [m] and ``body_phi`` [rad] (n_samples, n_bodies): the vehicle's bogies",
-              "then car body (None without bodies; z = 0 where every spring is unstretched).",
+              "then car body (None without bodies; z = 0 where every spring is unstretched).", "",
+              "Per-support arrays (:data:`SUPPORT_FIELDS`), (n_samples, n_supports) over the",
+              "rail's supports in the order of X, recorded with",
+              "``simulate(..., support_forces=True)`` on a fixed rail (else None):", ""]
+    for name, unit, doc in SUPPORT_FIELDS:
+        lines.append(f"- ``{name}`` [{unit}]: {doc}")
+    lines += ["", "``support_envelope``: each support's envelope along the track, {name: array}",
+              "over :data:`ENVELOPE_FIELDS` (also on a travelling window, one entry per sleeper",
+              "that passed): :meth:`sleeper_envelope` as a DataFrame.", "",
               "``ballast_events``: a unilateral ballast's open/closed changes over the run",
               "(voids, tensionless ballast; 0 otherwise); ``ballast_contact_time`` [s]: each",
               "sleeper's time on its ballast (None without sleepers)."]
@@ -258,16 +303,19 @@ Result = dataclasses.make_dataclass(
      ("final_state", object, field(repr=False)),
      ("body_z", "np.ndarray | None", field(default=None, repr=False)),
      ("body_phi", "np.ndarray | None", field(default=None, repr=False)),
+     *[(f[0], "np.ndarray | None", field(default=None, repr=False)) for f in SUPPORT_FIELDS],
+     ("support_envelope", "dict | None", field(default=None, repr=False)),
      ("ballast_events", int, field(default=0)),
      ("ballast_contact_time", "np.ndarray | None", field(default=None, repr=False))],
     bases=(_ResultMethods,), frozen=True, repr=False,
     namespace={"__doc__": _result_doc(), "__module__": __name__})
 
 
-def sample_bytes(energy: bool) -> int:
-    """Bytes one kept sample of a one-wheel run takes, from the output table."""
+def sample_bytes(energy: bool, n_supports: int = 0) -> int:
+    """Bytes one kept sample of a one-wheel run takes, from the output table, with the
+    per-support fields of ``n_supports`` recorded supports."""
     return sum(4 if dtype.startswith("int") else 8 for name, _u, _d, _w, dtype in OUTPUT_FIELDS
-               if energy or name != "energy")
+               if energy or name != "energy") + 8 * len(SUPPORT_FIELDS) * n_supports
 
 
 def result_from_kernel(out: dict, scene: Scene, settings: RunSettings, wall_time: float,
@@ -285,6 +333,11 @@ def result_from_kernel(out: dict, scene: Scene, settings: RunSettings, wall_time
     arrays["body_phi"] = out["body_phi"] if nb else None
     if not energy:
         arrays["energy"] = None
+    for name, _unit, _doc in SUPPORT_FIELDS:
+        arrays[name] = out.get(name)
+    env = out.get("support_envelope")
+    arrays["support_envelope"] = None if env is None else {
+        name: np.asarray(env[name]) for name, _u, _d in ENVELOPE_FIELDS}
     return Result(scene=scene, settings=settings, **arrays, steps=out["steps"],
                   newton_iterations=out["newton_iterations"], state_changes=out["state_changes"],
                   stability_limit=out["stability_limit"], wall_time=wall_time,

@@ -67,7 +67,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
              start: str = "static", drop_height: float = 0.0,
              progress: bool | None = None, energy: bool = False,
              fidelity: str = "full", n_modes: int | None = None, max_newton: int = 25,
-             newton_tol: float = 1e-11, distance: float | None = None) -> Result:
+             newton_tol: float = 1e-11, distance: float | None = None,
+             support_forces: bool = False) -> Result:
     """Simulate the wheel passing over the rail at constant forward ``speed`` [m/s].
 
     Parameters
@@ -130,6 +131,11 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
         (F + M g) Y_A and of the torque (-T theta). Conserved without damping when the wheel does
         not move forward (the driving reaction does work when it does); sliding friction
         (lambda times the slip velocity) and a brake (-T_b |theta'| while it turns) dissipate.
+    support_forces : also record every support's rail-seat force, ballast force and sleeper
+        displacement per kept sample, arrays (n_samples, n_supports) (``Result.ballast_force``
+        etc., :data:`~trackwheel.run.results.SUPPORT_FIELDS`); a fixed rail only. Every run
+        keeps each support's envelope along the track (``Result.sleeper_envelope()``), on a
+        travelling window too.
 
     Raises
     ------
@@ -140,7 +146,8 @@ def simulate(scene: Scene, speed: float, *, integrator: str = "generalized_alpha
                    x_start=x_start, x_end=x_end, duration=duration, output_every=output_every,
                    rho_inf=rho_inf, baumgarte=baumgarte, rolling=rolling, start=start,
                    drop_height=drop_height, energy=energy, fidelity=fidelity, n_modes=n_modes,
-                   max_newton=max_newton, newton_tol=newton_tol, distance=distance)
+                   max_newton=max_newton, newton_tol=newton_tol, distance=distance,
+                   support_forces=support_forces)
     return execute(plan, progress)
 
 
@@ -185,6 +192,7 @@ def kernel_settings(plan: RunPlan) -> _core.SimSettings:
     s.max_newton = plan.max_newton
     s.newton_tol = plan.newton_tol
     s.record_energy = plan.energy
+    s.record_supports = plan.support_forces
     if plan.window is not None:
         s.window = plan.window
     return s

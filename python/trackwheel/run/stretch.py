@@ -41,9 +41,11 @@ def end_clearance(scene: Scene) -> float:
     beta = (k_f / 4 EI)^(1/4), so at ln(1 / END_DECAY) / beta it is below END_DECAY of its
     peak (and the end's reaction changes the deflection under the wheel by about END_DECAY^2).
     4.8 m on the ballasted preset, 3.8 m on the paper's track; infinite on a rail without
-    supports."""
+    supports. Supports that vary along X: the softest one's k_f (its bowl reaches furthest)."""
     n = len(scene.support_positions)
-    k_f = scene.supports.static_stiffness * n / scene.rail.length
+    # supports that vary along X: the softest support's bowl, the widest
+    k_f = float(np.min(scene.support_values.static_stiffness, initial=np.inf)) * n / (
+        scene.rail.length) if n else 0.0
     if k_f <= 0.0:
         return math.inf
     beta = (k_f / (4.0 * scene.rail.bending_stiffness)) ** 0.25

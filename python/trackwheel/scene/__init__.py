@@ -3,7 +3,9 @@
 Layer 2: it knows the base layer and the excitation it carries. One module per part:
 
 - :mod:`.rail` -- :class:`Rail` and its :class:`AbsorbingEnds`;
-- :mod:`.supports` -- :class:`Supports` (single springs, or pad, sleeper and ballast layers);
+- :mod:`.supports` -- :class:`Supports` (single springs, or pad, sleeper and ballast layers),
+  each property one value, one per support or a function of X; :mod:`.support_fields` -- the
+  recipes of such functions (:class:`Transition`, :class:`Scatter`, :class:`Voids`);
 - :mod:`.wheel` -- :class:`Wheel`; :mod:`.contact` -- :class:`Contact`;
 - :mod:`.window` -- the travelling :class:`Window`;
 - :mod:`.vehicle` -- :class:`Vehicle` with its :class:`Bogie` frames and :class:`CarBody`;
@@ -26,7 +28,8 @@ from .rail import (
     Rail,
 )
 from .scene import GRAVITY, Scene
-from .supports import Supports
+from .support_fields import Scatter, Transition, Voids
+from .supports import SupportValues, Supports
 from .vehicle import Bogie, CarBody, Vehicle
 from .wheel import Wheel
 from .window import Window
@@ -45,9 +48,13 @@ __all__ = [
     "CarBody",
     "Contact",
     "Rail",
+    "Scatter",
     "Scene",
+    "SupportValues",
     "Supports",
+    "Transition",
     "Vehicle",
+    "Voids",
     "Wheel",
     "Window",
     "kmh",

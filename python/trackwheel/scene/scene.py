@@ -12,12 +12,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, fields, replace
 
+import numpy as np
+
 from ..base import validate as v
 from ..base.limits import MAX_ELEMENTS, MAX_STATIC_SAG, ranges_doc
 from ..excitation.irregularity import Irregularity
 from .contact import Contact
 from .rail import AbsorbingEnds, Rail
-from .supports import Supports
+from .supports import PER_SUPPORT, Supports
 from .vehicle import Vehicle
 from .wheel import Wheel
 from .window import Window
@@ -77,7 +79,8 @@ class Scene:
             raise ValueError("Wheel.load = 0 N with Scene.gravity = 0 m/s^2 leaves the wheel "
                              "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
                              "Scene.gravity > 0")
-        self.supports.resolve(self.rail.length)  # supports must lie on the rail
+        # supports must lie on the rail, with valid properties at each
+        self.supports.check_at(self.supports.resolve(self.rail.length))
         if self.window is not None:
             self._check_window()
         self._check_sag()
@@ -85,12 +88,23 @@ class Scene:
     def _check_sag(self):
         sag = self.static_sag
         if sag > MAX_STATIC_SAG:
-            s = self.supports
-            what = (f"Supports.sleeper_mass = {s.sleeper_mass:g} kg on "
-                    f"Supports.ballast_stiffness = {s.ballast_stiffness:g} N/m" if s.layered
-                    and s.sleeper_mass * self.gravity / s.ballast_stiffness > MAX_STATIC_SAG
-                    else f"Supports.stiffness = {s.stiffness:g} N/m every {s.spacing:g} m"
-                    if s.positions is None or s.positions else "no supports")
+            s, sv = self.supports, self.support_values
+            where = "" if s.uniform else " at support {j} (X = {x:g} m)"
+            if s.layered and sv.position.size and np.max(
+                    sleeper := sv.sleeper_mass * self.gravity / sv.ballast_stiffness
+                    ) > MAX_STATIC_SAG:
+                j = int(np.argmax(sleeper))
+                what = (f"Supports.sleeper_mass = {sv.sleeper_mass[j]:g} kg on "
+                        f"Supports.ballast_stiffness = {sv.ballast_stiffness[j]:g} N/m"
+                        + where.format(j=j, x=sv.position[j]))
+            elif s.positions is None or s.positions:
+                j = int(np.argmin(sv.static_stiffness))
+                what = (f"Supports.stiffness = {sv.stiffness[j]:g} N/m"
+                        + (f" on Supports.ballast_stiffness = {sv.ballast_stiffness[j]:g} N/m"
+                           if s.layered else "")
+                        + f" every {s.spacing:g} m" + where.format(j=j, x=sv.position[j]))
+            else:
+                what = "no supports"
             raise ValueError(
                 f"the track sags about {sag:.3g} m under its own weight and the wheel load "
                 f"({what}, Rail.length = {self.rail.length:g} m, EI = "
@@ -107,6 +121,7 @@ class Scene:
         if self.supports.positions is not None:
             raise ValueError("Scene.window needs equal supports every Supports.spacing: leave "
                              "Supports.positions None")
+        _window_supports(self.supports)
         d = self.supports.spacing
         rear, front = self.active_vehicle.span
         L = w.length(front - rear, d)
@@ -269,24 +284,45 @@ class Scene:
         q = r.mass_per_length * g if self.rail_gravity else 0.0
         P = max(self.active_vehicle.static_loads(g))
         EI, L = r.bending_stiffness, r.length
-        n = len(self.support_positions)
+        sv = self.support_values
+        n = sv.position.size
         # bridging, the rail carries the sleepers too (they hang from the pads)
-        q_s = n * s.sleeper_mass * g / L if s.layered else 0.0
+        q_s = float(np.sum(sv.sleeper_mass)) * g / L if s.layered else 0.0
         bridge = 5.0 * (q + q_s) * L**4 / (384.0 * EI) + P * L**3 / (48.0 * EI)
         if n == 0:
             return bridge
-        kf = s.static_stiffness * n / L
+        kf = float(np.min(sv.static_stiffness)) * n / L
         beta = (kf / (4.0 * EI)) ** 0.25
         winkler = q / kf + P * beta / (2.0 * kf)
         if s.layered:
-            winkler += s.sleeper_mass * g / s.ballast_stiffness
+            winkler += float(np.max(sv.sleeper_mass * g / sv.ballast_stiffness))
         return min(winkler, bridge)
 
     @property
     def winkler_modulus(self) -> float:
         """Equivalent foundation modulus k_f = k_s / d_s [N/m^2] (docs: Model § Validation);
-        layered supports: their static series stiffness per spacing."""
+        layered supports: their static series stiffness per spacing. Supports the same
+        everywhere only (ValueError otherwise)."""
         return self.supports.static_stiffness / self.supports.spacing
+
+    @property
+    def support_values(self):
+        """The supports' properties at their positions X_j (:meth:`Supports.values`)."""
+        return self.supports.values(self.support_positions)
+
+
+def _window_supports(supports: Supports) -> None:
+    """The travelling window streams the track's sleepers in as it moves, so a property that
+    varies along X must be a function of X (a recipe such as Supports.transition's or
+    Supports.scattered's): ValueError for a per-support sequence, which numbers the rail's
+    supports, not the track's sleepers."""
+    seq = [n for n in PER_SUPPORT if isinstance(getattr(supports, n), tuple)]
+    if seq:
+        raise ValueError(f"Scene.window takes each support property as one value or a function "
+                         f"of X (the window streams the track's sleepers in as it moves); "
+                         f"Supports.{', Supports.'.join(seq)} {'is a' if len(seq) == 1 else 'are'}"
+                         f" per-support sequence{'' if len(seq) == 1 else 's'}: give a function "
+                         f"of X (e.g. Supports.transition, Supports.scattered)")
 
 
 Scene.__doc__ += ranges_doc("Scene")

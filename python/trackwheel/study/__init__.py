@@ -10,5 +10,6 @@ Layer 4: it knows the layers below and calls the kernel only through ``run``.
 - :mod:`.steady` -- the bay-periodic steady state of a run;
 - :mod:`.convergence` -- automatic refinement of the time step and the mesh;
 - :mod:`.fidelity` -- the model levels side by side, and the one a scene needs;
-- :mod:`.sweep` -- parameter sweeps in parallel, resumable from a store.
+- :mod:`.sweep` -- parameter sweeps in parallel, resumable from a store;
+- :mod:`.settlement` -- ballast settlement laws per sleeper (``trackwheel.settlement``).
 """

@@ -74,7 +74,7 @@ def cluster_note(scene: Scene, freqs: np.ndarray) -> str | None:
         if j - i >= 2 and (best is None or j - i > best[1] - best[0]):
             best = (i, j)
         i = j + 1
-    if best is None:
+    if best is None or not scene.supports.uniform:  # the closed form is the uniform track's
         return None
     i, j = best
     f0, what = cut_on_frequency(scene)

@@ -23,6 +23,7 @@ from ...study.force_statistics import defect_position
 from ..checks import option_error, output_options, speeds_kmh
 from ..formatting import print_notes, print_warnings, wall_time_text
 from ..options import (
+    along_x_options,
     damping_options,
     excitation_options,
     finite_float,
@@ -36,11 +37,17 @@ from ..scenes import (
     VEHICLES,
     OptionError,
     describe,
+    describe_track,
     excited_scene,
     scene_name,
     track_scene,
     vehicle_scene,
 )
+
+
+def _k_text(scene: Scene) -> str:
+    """The support (pad) stiffness [MN/m]: one value, or its range over the supports."""
+    return scene.supports.text("stiffness", 1e-6, scene.support_positions)
 
 
 def add(sub) -> None:
@@ -61,6 +68,7 @@ def add(sub) -> None:
                    help="support stiffness k_s [N/m] (default 140e6; with --track ballasted "
                         "the rail pad's, default 180e6)")
     track_option(p)
+    along_x_options(p)
     p.add_argument("--vehicle", choices=VEHICLES, default="single",
                    help="single: the paper's wheel under its constant load; quarter-car: "
                         "Vehicle.quarter_car() (wheel, primary, bogie, secondary, body); "
@@ -97,10 +105,12 @@ def _print_vehicle_run(scene: Scene, speed_kmh: float, r, x_d) -> None:
     veh = scene.active_vehicle
     k_name = "k_p" if scene.supports.layered else "k_s"
     print(f"{veh.n_wheels} wheels, {len(veh.bogies)} bogie(s), car body: "
-          f"{'yes' if veh.car else 'no'}; {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
+          f"{'yes' if veh.car else 'no'}; {k_name} = {_k_text(scene)} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} elements, "
           f"fidelity {st.fidelity}, excitation: {describe(scene)}")
+    if (track := describe_track(scene)) is not None:
+        print(f"  track    : {track}")
     x = np.asarray(r.x_wheel)
     print(f"  run      : wheel 0 X = {x[0, 0]:.4g} -> {x[-1, 0]:.4g} m, wheel "
           f"{veh.n_wheels - 1} X = {x[0, -1]:.4g} -> {x[-1, -1]:.4g} m"
@@ -153,7 +163,7 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
     x0, x1 = float(r.x_wheel[0]), float(r.x_wheel[-1])
     i_max = int(np.argmax(np.abs(a.dynamic)))
     k_name = "k_p" if scene.supports.layered else "k_s"
-    print(f"{name}, {k_name} = {scene.supports.stiffness / 1e6:g} MN/m, "
+    print(f"{name}, {k_name} = {_k_text(scene)} MN/m, "
           f"v = {speed_kmh:g} km/h ({kmh(speed_kmh):.2f} m/s)")
     print(f"  settings       : {st.integrator}, dt = {st.dt:.3g} s, {st.n_elements} "
           f"elements, fidelity {st.fidelity}")
@@ -164,6 +174,8 @@ def _print_run(scene: Scene, speed_kmh: float, r, a, name: str = "Scene.kato2005
              "transient"
              if whole else "clear of the rail's ends and the start-up transient") + ")")
     print(f"  excitation     : {describe(scene)}")
+    if (track := describe_track(scene)) is not None:
+        print(f"  track along X  : {track}")
     print(f"  amplitude      : {a.amplitude * 1e6:.3f} µm  (max |d|, d = y_B - y_qs; at "
           f"X = {a.x_wheel[i_max]:.3f} m)")
     print(f"  main frequency : {a.main_frequency:.1f} Hz  (resolution "

@@ -15,6 +15,7 @@ from ...study.sweep import summarise_seeds, sweep
 from ..checks import option_error, output_file, speeds_kmh, writable_folder
 from ..formatting import print_notes, print_warnings
 from ..options import (
+    along_x_options,
     damping_options,
     excitation_options,
     finite_float,
@@ -23,7 +24,7 @@ from ..options import (
     simulate_options,
     track_option,
 )
-from ..scenes import OptionError, describe, excited_scene, track_scene
+from ..scenes import OptionError, describe, describe_track, excited_scene, track_scene
 
 
 def add(sub) -> None:
@@ -42,6 +43,7 @@ def add(sub) -> None:
                    help="support stiffnesses k_s [N/m] (default 140e6; with --track ballasted "
                         "the rail pad's, default 180e6)")
     track_option(p)
+    along_x_options(p)
     p.add_argument("--store", type=Path, required=True, metavar="DIR",
                    help="folder keeping one record per finished case (created if missing)")
     p.add_argument("--out", type=Path, metavar="CSV", help="also write the table to this file")
@@ -65,13 +67,16 @@ _N_MIN, _N_MAX, _FACTOR, _LOST = (_OUT[n] for n in ("min_contact_force", "max_co
 _SEED, _ERROR, _SPEED = (label(n) for n in ("seed", "error", "speed"))
 
 
-def _print_sweep(df, store: Path, excitation: str) -> None:
+def _print_sweep(df, store: Path, excitation: str, track: str | None = None) -> None:
     print(f"excitation: {excitation}")
+    if track is not None:
+        print(f"track along X: {track}")
     auto = df.attrs.get("fidelity_auto")
     if auto:
+        k = auto["sample_support_stiffness"]
         print(f"--fidelity auto: {auto['chosen']} (adequate within {auto['tol']:g} on "
               f"{auto['sample_speed'] * 3.6:g} km/h, "
-              f"{auto['sample_support_stiffness'] / 1e6:g} MN/m)")
+              + ("the scene's supports)" if k is None else f"{k / 1e6:g} MN/m)"))
     seeded = bool(df[_SEED].notna().any())
     n_range = f"{_N_MAX.symbol} min..max [{_N_MAX.display[0]}]"
     print("  ".join(f"{q.header:>{_width(fmt)}}" for q, fmt in _TABLE) + "  "
@@ -103,7 +108,7 @@ def _print_seed_summary(df) -> None:
     """The 5th / 50th / 95th percentiles over the seeds of the largest force and the dynamic
     factor, per speed (and support stiffness, if the sweep has several)."""
     stiffness = SUPPORT_STIFFNESS.label
-    by = _SPEED if df[stiffness].nunique() == 1 else [_SPEED, stiffness]
+    by = _SPEED if df[stiffness].nunique(dropna=False) == 1 else [_SPEED, stiffness]
     summary = summarise_seeds(df, [_N_MAX.label, _FACTOR.label], by=by)
     print("over the seeds (5th / 50th / 95th percentile):")
     for key, row in summary.iterrows():
@@ -156,13 +161,13 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
                        **simulate_kwargs(args), **extra)
     except SweepFailedError as exc:
         print_warnings(caught, "sweep")
-        _print_sweep(exc.table, args.store, describe(scene, seeds))
+        _print_sweep(exc.table, args.store, describe(scene, seeds), describe_track(scene, seeds))
         print(f"trackwheel sweep: {exc}", file=sys.stderr)
         return 1
     except (ValueError, TypeError) as exc:
         parser.error(option_error(exc))
     print_warnings(caught, "sweep")
-    _print_sweep(df, args.store, describe(scene, seeds))
+    _print_sweep(df, args.store, describe(scene, seeds), describe_track(scene, seeds))
     if args.out is not None:
         try:
             df.to_csv(args.out, index=False)

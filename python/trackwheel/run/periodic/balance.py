@@ -35,6 +35,11 @@ def periodic_track(scene: Scene) -> PeriodicTrack:
         raise ValueError("the periodic level needs a track periodic in its sleeper bay: equal "
                          "supports every Supports.spacing (Supports.positions must be None, got "
                          f"{len(sup.positions)} explicit positions)")
+    sup.one_value("the periodic level needs supports that repeat every bay")
+    if sup.unilateral:
+        raise ValueError("the periodic level is linear: Supports.void and "
+                         "Supports.ballast_tensionless make the ballast push only; give void = 0 "
+                         "and ballast_tensionless = False, or run a time-domain level")
     track = PeriodicTrack(
         bay=sup.spacing, bending_stiffness=rail.bending_stiffness,
         mass_per_length=rail.mass_per_length,

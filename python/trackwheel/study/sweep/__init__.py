@@ -18,7 +18,15 @@ Seeds (the realisation axis): with ``seeds=[s, ...]`` the case scene's irregular
 ``scene.irregularity.reseeded(s)`` (:meth:`trackwheel.Irregularity.reseeded`): its first random
 part is drawn with seed s, random part k >= 1 with ``derived_seed(s, k)``, deterministic parts
 (sines, joints, measured samples) are kept. The reseeded profile is part of the case scene, so
-it is in the inputs hash: each realisation is its own record and a re-run resumes.
+it is in the inputs hash: each realisation is its own record and a re-run resumes. Scattered
+supports (:meth:`trackwheel.Supports.scattered`) are reseeded by the same rule
+(:meth:`trackwheel.Supports.reseeded`).
+
+Supports that vary along X enter the hash by value: a sequence as its values, a recipe
+(:class:`trackwheel.Transition`, :class:`~trackwheel.Scatter`, :class:`~trackwheel.Voids`) as
+its fields and ``kind``; any other function of X is tabulated at the case's supports first
+(:meth:`trackwheel.Supports.tabulated`: what the kernel sees on a fixed rail), so the case
+pickles for the workers and its record names the values it ran with.
 
 Store format (``store=DIR``)
 ----------------------------

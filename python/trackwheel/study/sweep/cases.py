@@ -27,16 +27,29 @@ SIMULATE_PARAMS = {name: p.default for name, p in inspect.signature(simulate).pa
                    if p.kind is inspect.Parameter.KEYWORD_ONLY}
 
 
-def case_scene(scene: Scene, stiffness: float, seed: int | None = None) -> Scene:
-    """``scene`` with the support stiffness ``stiffness`` [N/m] and, with a ``seed``, its
-    irregularity's random parts drawn afresh (:meth:`trackwheel.Irregularity.reseeded`)."""
+def case_scene(scene: Scene, stiffness: float | None, seed: int | None = None) -> Scene:
+    """``scene`` with the support stiffness ``stiffness`` [N/m] (None: the scene's own), a
+    support property given as a function of X tabulated at the supports (so the case pickles
+    and is stored by value) and, with a ``seed``, its irregularity's random parts and its
+    scattered supports drawn afresh (:meth:`trackwheel.Irregularity.reseeded`,
+    :meth:`trackwheel.Supports.reseeded`)."""
+    supports = scene.supports
     with warnings.catch_warnings():  # the sweep warns once about implausible stiffnesses
         warnings.simplefilter("ignore", PlausibilityWarning)
-        scene = dataclasses.replace(scene, supports=dataclasses.replace(scene.supports,
-                                                                        stiffness=stiffness))
-    if seed is None:
+        if stiffness is not None:
+            supports = dataclasses.replace(supports, stiffness=stiffness)
+    if scene.window is None:
+        supports = supports.tabulated(scene.support_positions)
+    if seed is not None and supports.n_random:
+        supports = supports.reseeded(seed)
+    irr = scene.irregularity
+    if seed is not None and irr is not None and irr.n_random:
+        irr = irr.reseeded(seed)
+    if supports is scene.supports and irr is scene.irregularity:
         return scene
-    return dataclasses.replace(scene, irregularity=scene.irregularity.reseeded(seed))
+    with warnings.catch_warnings():  # the sweep warns once about implausible stiffnesses
+        warnings.simplefilter("ignore", PlausibilityWarning)
+        return dataclasses.replace(scene, supports=supports, irregularity=irr)
 
 
 def error_row(scene: Scene, kwargs: dict, message: str, wall: float) -> dict:

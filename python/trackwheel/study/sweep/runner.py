@@ -37,14 +37,20 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     Parameters
     ----------
     scene : the base Scene; each case replaces ``scene.supports.stiffness`` (and with
-        ``seeds`` the random parts of ``scene.irregularity``).
+        ``seeds`` the random parts of ``scene.irregularity`` and the scattered properties of
+        ``scene.supports``). A support property given as a function of X (not a recipe such
+        as :class:`trackwheel.Transition`) enters each case as its values at the supports.
     speed : forward speed(s) v > 0 [m/s] (a number or a sequence; ``kmh`` converts).
-    support_stiffness : support stiffness(es) k_s > 0 [N/m]; default the scene's.
-    seeds : realisations of the random irregularity (integers >= 0), or None (default: the
-        scene as given, ``seed`` column <NA>). Seed s runs the scene with
+    support_stiffness : support stiffness(es) k_s > 0 [N/m], each one value for every support
+        (it replaces a stiffness that varies along X); default the scene's (a stiffness that
+        varies along X is kept, its ``support_stiffness`` column NaN).
+    seeds : realisations of the random irregularity and the scattered bed (integers >= 0), or
+        None (default: the scene as given, ``seed`` column <NA>). Seed s runs the scene with
         ``scene.irregularity.reseeded(s)``: its first random part drawn with seed s, the others
         with seeds derived from s (:func:`trackwheel.irregularity.derived_seed`), the
-        deterministic parts unchanged. Summarise the rows with :func:`summarise_seeds`.
+        deterministic parts unchanged; and with ``scene.supports.reseeded(s)`` (the same rule
+        over its :class:`trackwheel.Scatter` properties). Summarise the rows with
+        :func:`summarise_seeds`.
     executor : any ``concurrent.futures.Executor`` to run the cases on, e.g.
         ``distributed.Client(...).get_executor()`` for a Dask cluster (not shut down here).
         Default: a process pool of ``max_workers`` processes (default ``os.cpu_count()``);
@@ -104,9 +110,7 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a trackwheel.Scene, got {type(scene).__name__}")
     speeds = _values("speed", speed, "m/s")
-    stiffs = _values("support_stiffness",
-                     scene.supports.stiffness if support_stiffness is None else support_stiffness,
-                     "N/m")
+    stiffs = _stiffness_axis(scene, support_stiffness)
     seed_axis = _seeds(seeds, scene)
     kwargs = _simulate_kwargs(simulate_kwargs)
     auto = None
@@ -122,13 +126,16 @@ def sweep(scene: Scene, speed, support_stiffness=None, *, seeds=None,
 
     for sp in speeds.tolist():  # once here, not once per case
         check_speed_units(sp, stacklevel=3)
-    for k in stiffs.tolist():
-        check_stiffness_units("support_stiffness", k, stacklevel=3)
+    for k in stiffs:
+        if k is not None:
+            check_stiffness_units("support_stiffness", k, stacklevel=3)
     case_list = []  # (speed, stiffness, seed, case scene, inputs, hash)
-    for sp, k, seed in itertools.product(speeds.tolist(), stiffs.tolist(), seed_axis):
+    for sp, k, seed in itertools.product(speeds.tolist(), stiffs, seed_axis):
         try:
             cs = cases.case_scene(scene, k, seed)
         except ValueError as exc:  # e.g. a support so soft that the track sags metres
+            if k is None:
+                raise
             raise ValueError(f"support_stiffness = {k:g} N/m: {exc}") from None
         inputs = store_module.inputs(cs, sp, k, kwargs, seed)
         case_list.append((sp, k, seed, cs, inputs, store_module.inputs_hash(inputs)))
@@ -205,7 +212,8 @@ def _auto_fidelity(scene: Scene, speeds, stiffs, kwargs: dict, tol) -> dict:
     """``fidelity="auto"``: the cheapest level adequate within ``tol`` on the sweep's most
     dynamic case (the highest speed on the softest supports), with that case and the table."""
     tol = v.number("fidelity_tol", tol, low=0.0, low_open=True)
-    sample_v, sample_k = float(np.max(speeds)), float(np.min(stiffs))
+    sample_v = float(np.max(speeds))
+    sample_k = None if stiffs == [None] else float(np.min(stiffs))
     rest = {key: val for key, val in kwargs.items() if key != "fidelity"}
     table = adequacy(cases.case_scene(scene, sample_k), speeds=[sample_v], tol=tol, **rest)
     return {"chosen": table.attrs["recommended"], "sample_speed": sample_v,
@@ -232,6 +240,17 @@ def _workers(executor, max_workers) -> int:
         raise ValueError("give executor or max_workers, not both")
     return pool.default_workers() if max_workers is None else v.integer(
         "max_workers", max_workers, low=1, high=4096)
+
+
+def _stiffness_axis(scene: Scene, support_stiffness) -> list:
+    """The support stiffness axis [N/m]: the values given, else the scene's one value, or
+    [None] (the scene's own supports) for a stiffness that varies along X."""
+    if support_stiffness is None:
+        k = scene.supports.stiffness
+        if isinstance(k, tuple) or callable(k):
+            return [None]
+        support_stiffness = k
+    return _values("support_stiffness", support_stiffness, "N/m").tolist()
 
 
 def _values(name: str, values, unit: str) -> np.ndarray:
@@ -269,9 +288,11 @@ def _seeds(seeds, scene: Scene) -> list[int | None]:
         raise ValueError("seeds is empty: give at least one integer >= 0 (or None)")
     if len(set(out)) != len(out):
         raise ValueError(f"seeds contains duplicate values: {out}")
-    if scene.irregularity is None or scene.irregularity.n_random == 0:
-        raise ValueError("seeds: the scene's irregularity has no random part to re-seed; "
-                         "give scene.irregularity = Irregularity.random(...) (+ other parts)")
+    if (scene.irregularity is None or scene.irregularity.n_random == 0) and (
+            scene.supports.n_random == 0):
+        raise ValueError("seeds: the scene has no random part to re-seed; give "
+                         "scene.irregularity = Irregularity.random(...) (+ other parts) or "
+                         "scattered supports (Supports.scattered)")
     return out
 
 

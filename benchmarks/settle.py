@@ -1,0 +1,65 @@
+"""The settlement loop's targets: 10^6 axle passes over a 60 m transition zone in 20 stages on a
+linear level (< 2 min) and on the full model (< 15 min), with the stage convergence (the same
+run in 40 stages: the change of the final settlement).
+
+The track: Scene.ballasted_track on a 72 m rail, the ballast stiffness changing from 50 to
+200 MN/m at X = 36 m over a 6 m linear ramp (soft -> stiff), one wheel at 200 km/h; the
+settling sleepers are the ~60 m the wheel passes (simulate's default stretch). Varandas' law
+with ROSE's parameters.
+
+    python benchmarks/settle.py                         # linear/hertz, 20 and 40 stages
+    python benchmarks/settle.py --fidelity full --stages 20
+    python benchmarks/settle.py --fidelity static       # the fixed-load estimate, seconds
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import time
+
+import numpy as np
+
+import trackwheel as tw
+
+
+def scene() -> tw.Scene:
+    base = tw.Scene.ballasted_track(72.0)
+    supports = base.supports.transition(36.0, ramp=6.0, shape="linear",
+                                        ballast_stiffness=(50e6, 200e6))
+    return dataclasses.replace(base, supports=supports)
+
+
+def run(fidelity: str, stages: int, cycles: float,
+        feedback: bool) -> tuple[tw.settlement.SettlementHistory, float]:
+    t0 = time.perf_counter()
+    h = tw.settle(scene(), tw.kmh(200), cycles, fidelity=fidelity, stages=stages,
+                  feedback=feedback, progress=False)
+    return h, time.perf_counter() - t0
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--fidelity", default="linear/hertz")
+    p.add_argument("--stages", type=int, nargs="+", default=[20, 40])
+    p.add_argument("--cycles", type=float, default=1e6)
+    p.add_argument("--open-loop", action="store_true", help="feedback=False")
+    args = p.parse_args()
+    results = []
+    for m in args.stages:
+        h, wall = run(args.fidelity, m, args.cycles, not args.open_loop)
+        results.append(h)
+        s = h.settlement[-1]
+        print(f"{args.fidelity:>13} {m:>3} stages: {wall:7.1f} s; {h.sleepers.size} sleepers; "
+              f"settlement {1e3 * s.min():.3f}..{1e3 * s.max():.3f} mm, differential "
+              f"{1e3 * h.differential[-1]:.3f} mm; dynamic factor {h.dynamic_factor[0]:.4f} -> "
+              f"{h.dynamic_factor[-1]:.4f}")
+    for a, b in zip(results, results[1:]):
+        change = np.max(np.abs(a.settlement[-1] - b.settlement[-1]))
+        print(f"{a.n_stages} -> {b.n_stages} stages: final settlement changes by at most "
+              f"{1e6 * change:.2f} um ({100 * change / b.differential[-1]:.2f} % of the "
+              "differential settlement)")
+
+
+if __name__ == "__main__":
+    main()

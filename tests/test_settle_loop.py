@@ -1,0 +1,213 @@
+"""The settlement loop (trackwheel.settle): its logic with a passage model of the test's own
+(injected through settle's documented ``passage`` hook), and with the static passage on a real
+track: zero law, uniformity, open loop, monotonicity, resume, stage convergence, bad input."""
+
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pytest
+
+import trackwheel as tw
+from trackwheel.settlement import (
+    PassageForces,
+    Traffic,
+    TrafficItem,
+    Varandas,
+)
+from trackwheel.study.settlement.passage import axle_peaks
+
+SCENE = tw.Scene.ballasted_track(18.0)
+F0 = 40e3  # [N] the model passage's peak ballast force on an intact, uniform bed
+W = 5e-3  # [m] the void at which the model's sleeper would shed all its load (not reached)
+
+
+def model_passage(task):
+    """A passage model with feedback: sleeper j carries F0 (x 1.2 beyond X = 9 m, a stiffer
+    half that draws more load) times max(0, 1 - g_j / W); what a hanging sleeper sheds goes
+    half to each neighbour. Smooth in the voids, so the loop's stage error is first order."""
+    x = np.asarray(task.sleepers)
+    base = F0 * np.where(x > 9.0, 1.2, 1.0) * (task.speed / 50.0)
+    if task.voids is None:
+        g = np.zeros(x.size)
+    else:
+        support = np.asarray(task.scene.support_positions)
+        g = np.asarray(task.voids)[np.argmin(np.abs(support[None, :] - x[:, None]), axis=1)]
+    carried = base * np.maximum(0.0, 1.0 - g / W)
+    shed = base - carried
+    force = carried + 0.5 * (np.roll(shed, 1) + np.roll(shed, -1))
+    p = float(task.scene.static_load)
+    return PassageForces(force[None, :], [p * force.max() / F0], [p], [p])
+
+
+def uniform_passage(task):
+    """Every sleeper the same peak, whatever the bed."""
+    n = len(task.sleepers)
+    p = float(task.scene.static_load)
+    return PassageForces(np.full((1, n), F0), [p], [p], [p])
+
+
+_STOP = {"after": None, "calls": 0}
+
+
+def stopping_passage(task):
+    """model_passage that raises KeyboardInterrupt on its call number _STOP["after"]."""
+    _STOP["calls"] += 1
+    if _STOP["after"] is not None and _STOP["calls"] > _STOP["after"]:
+        raise KeyboardInterrupt
+    return model_passage(task)
+
+
+def run(passage=model_passage, **kw):
+    kw.setdefault("cycles", 10**6)
+    return tw.settle(SCENE, kw.pop("traffic", 50.0), kw.pop("cycles"), passage=passage,
+                     progress=False, **kw)
+
+
+def test_zero_law_leaves_the_track_unchanged():
+    """gamma = 0: no settlement, no voids, every passage on the scene as given (the static
+    passage on the real track: its forces bit for bit the intact bed's at every stage)."""
+    h = tw.settle(SCENE, 50.0, 10**5, law=Varandas(gamma=0.0), stages=4, fidelity="static",
+                  progress=False)
+    assert h.n_stages == 4
+    assert np.all(h.settlement == 0.0) and np.all(h.voids == 0.0)
+    assert all(np.array_equal(s.forces[0].peaks, h.stage_list[0].forces[0].peaks)
+               for s in h.stage_list)
+
+
+def test_uniform_bed_settles_uniformly():
+    """Uniform forces: every sleeper the same settlement bit for bit at every stage, so the
+    datum ("min") leaves no void and the feedback changes nothing."""
+    h = run(uniform_passage)
+    assert h.n_stages > 3
+    assert np.all(np.ptp(h.settlement, axis=1) == 0.0)
+    assert np.all(h.voids == 0.0)
+    np.testing.assert_allclose(h.settlement[-1], Varandas().constant_load(F0, 10**6),
+                               rtol=1e-12)
+
+
+def test_open_loop_is_one_advance_on_the_first_forces():
+    """feedback=False: the stages add up to one law advance of all the cycles at the intact
+    bed's forces (Varandas' jumps are exact; 1e-12 for the sum of the stages' increments)."""
+    h = run(feedback=False)
+    first = h.stage_list[0].forces[0].peaks
+    law = Varandas()
+    state, _ = law.advance(law.initial_state(first.shape[1]), first, 10**6)
+    np.testing.assert_allclose(h.settlement[-1], state.settlement, rtol=1e-12)
+    assert np.all(h.peak_force == h.peak_force[0])
+
+
+def test_feedback_reaches_the_passages():
+    """The more loaded half settles more and hangs; in this model a hanging sleeper sheds its
+    load to its neighbours, so the fed-back bed evens out: the differential settlement stays
+    below the open loop's, and the least settled sleeper is on its bed (void 0)."""
+    closed, opened = run(), run(feedback=False)
+    assert 0.0 < closed.differential[-1] < opened.differential[-1]
+    assert np.all(closed.voids[-1] >= 0.0) and closed.voids[-1].min() == 0.0
+
+
+def test_settlement_monotone_in_traffic_and_load():
+    """More cycles, a heavier wheel: more settlement at every sleeper (static passage)."""
+    kw = dict(stages=3, fidelity="static", feedback=False, progress=False)
+    few = tw.settle(SCENE, 50.0, 10**4, **kw)
+    many = tw.settle(SCENE, 50.0, 10**6, **kw)
+    heavy = tw.settle(SCENE, TrafficItem(50.0, wheel_load=100e3), 10**6, **kw)
+    assert np.all(many.settlement[-1] > few.settlement[-1])
+    assert np.all(heavy.settlement[-1] > many.settlement[-1])
+
+
+def test_resume_is_bit_for_bit(tmp_path):
+    """A run stopped after some stages and run again with its store goes on from the last
+    stored stage and ends where an uninterrupted run does, bit for bit."""
+    whole = run(stopping_passage)
+    _STOP.update(after=4, calls=0)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            run(stopping_passage, store=tmp_path)
+    finally:
+        _STOP.update(after=None, calls=0)
+    resumed = run(stopping_passage, store=tmp_path)
+    assert resumed.computed == whole.n_stages + 1 - 4
+    assert np.array_equal(resumed.settlement, whole.settlement)
+    assert np.array_equal(resumed.cycles, whole.cycles)
+    assert resumed.state.equals(whole.state)
+    again = run(stopping_passage, store=tmp_path)  # everything from the store
+    assert again.computed == 0 and np.array_equal(again.settlement, whole.settlement)
+    with pytest.raises(ValueError, match="other inputs"):
+        run(stopping_passage, store=tmp_path, cycles=10**5)
+
+
+def test_stage_halving_converges_first_order():
+    """The stages are explicit (each uses the forces at its start), so the final settlement's
+    error is first order in the stage length: halving the increment halves the change
+    (ratio of successive differences 2 within 25 %), and the change on halving the default is
+    below 1 % of the differential settlement. The law keeps every peak (level_rtol = 0): its
+    default merges peaks within 1e-3 of each other, an error of its own (up to
+    (1 + 1e-3)^1.6 - 1 = 0.16 %) that does not shrink with the stages."""
+    law = Varandas(level_rtol=0.0)
+    runs = [run(increment=inc, law=law) for inc in (0.4, 0.2, 0.1)]
+    d1 = np.max(np.abs(runs[0].settlement[-1] - runs[1].settlement[-1]))
+    d2 = np.max(np.abs(runs[1].settlement[-1] - runs[2].settlement[-1]))
+    assert 1.5 < d1 / d2 < 2.5
+    assert d2 < 0.01 * runs[2].differential[-1]
+
+
+def test_executor_gives_the_same_history():
+    """Two traffic items, their passages on a thread pool: the same history bit for bit."""
+    traffic = [TrafficItem(50.0, per_day=3.0), TrafficItem(60.0, per_day=1.0)]
+    serial = run(traffic=traffic, cycles=10**5)
+    with ThreadPoolExecutor(2) as ex:
+        pooled = run(traffic=traffic, cycles=10**5, executor=ex)
+    assert np.array_equal(serial.settlement, pooled.settlement)
+    assert serial.stages()["cycles"].iloc[-1] == 10**5
+
+
+def test_traffic_shares_whole_passages():
+    traffic = Traffic.of([TrafficItem(50.0, per_day=3.0), TrafficItem(60.0, per_day=1.0)])
+    p = traffic.passages(SCENE, 10**6)
+    assert p.tolist() == [750_000, 250_000]
+    assert traffic.days(SCENE, 10**6) == pytest.approx(250_000.0)
+
+
+def test_axle_peaks_attribute_each_sample_to_the_nearest_axle():
+    """Two axles 2 m apart over one sleeper at X = 5: each axle's peak is the largest force
+    while it is the nearer one."""
+    x_ref = np.linspace(0.0, 8.0, 81)
+    offsets = np.array([0.0, 2.0])
+    force = (np.exp(-((x_ref - 5.0) / 0.3) ** 2)
+             + 2.0 * np.exp(-((x_ref + 2.0 - 5.0) / 0.3) ** 2))[:, None]
+    peaks = axle_peaks(x_ref, offsets, np.array([5.0]), force)
+    assert peaks[1, 0] == pytest.approx(force[30, 0])  # axle 1 above the sleeper at x_ref = 3
+    assert peaks[0, 0] == pytest.approx(force[50, 0])  # axle 0 above it at x_ref = 5
+
+
+@pytest.mark.parametrize("kw, match", [
+    (dict(cycles=0), "cycles"), (dict(stages=0), "stages"), (dict(increment=0.0), "increment"),
+    (dict(datum="mean"), "datum"), (dict(fidelity="fast"), "fidelity"),
+    (dict(x_start=8.0, x_end=8.5), "no sleeper"), (dict(traffic=-1.0), "speed"),
+])
+def test_bad_input(kw, match):
+    with pytest.raises(ValueError, match=match):
+        run(**kw)
+    with pytest.raises(ValueError, match="per_day"):
+        TrafficItem(50.0, per_day=0.0)
+
+
+def test_single_springs_are_refused():
+    with pytest.raises(ValueError, match="layered"):
+        tw.settle(tw.Scene.kato2005(), 50.0, 100, progress=False)
+
+
+def test_cli_and_plots(tmp_path, capsys):
+    """``trackwheel settle`` prints the stages and writes the table and the profile; the plots
+    take a history."""
+    from trackwheel import plots
+    from trackwheel.cli.main import main
+
+    out, fig = tmp_path / "s.csv", tmp_path / "s.png"
+    code = main(["settle", "--speed-kmh", "200", "--cycles", "1e4", "--fidelity", "static",
+                 "--length", "18", "--stages", "2", "--open-loop", "--no-progress",
+                 "--out", str(out), "--plot", str(fig)])
+    assert code == 0 and out.exists() and fig.exists()
+    assert "stage" in capsys.readouterr().out
+    h = run(cycles=10**4)
+    assert plots.dynamic_factor_cycles(h).axes and plots.settlement_profile(h, voids=True).axes
