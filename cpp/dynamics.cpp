@@ -118,6 +118,7 @@ SimOutput simulate(const Model& model_in, const SimSettings& set, const SimState
   stepper->stream_supports(feed);
   run_time_loop(*stepper, model, set, div, out, progress);
   out.final_state = st;
+  record_ballast(sys.sleepers(), out);
   return out;
 }
 

@@ -7,6 +7,7 @@
 
 #include "limits.hpp"
 #include "sleepers.hpp"
+#include "statics.hpp"
 
 namespace trackwheel {
 
@@ -24,9 +25,11 @@ void solve_pencil(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int n_mode
 }
 
 // The sleepers' rows and columns from local index z0 on: the rail's band already holds the pads
-// as springs and dampers to the ground, (k_p, c_p) s_j s_j^T; the pad's other end is z_j.
+// as springs and dampers to the ground, (k_p, c_p) s_j s_j^T; the pad's other end is z_j. A
+// sleeper off its ballast (closed[j] false) has no ballast.
 template <class Push>
-void add_sleepers(const Sleepers& sl, const std::vector<int>& local, int z0, int ns, Push& push) {
+void add_sleepers(const Sleepers& sl, const std::vector<bool>& closed,
+                  const std::vector<int>& local, int z0, int ns, Push& push) {
   for (int j = 0; j < ns; ++j) {
     const int z = z0 + j;
     const double kp = sl.pad_stiffness(j), cp = sl.pad_damping(j);
@@ -37,7 +40,10 @@ void add_sleepers(const Sleepers& sl, const std::vector<int>& local, int z0, int
       push(i, z, -kp * w, 0.0, -cp * w);
       push(z, i, -kp * w, 0.0, -cp * w);
     }
-    push(z, z, kp + sl.ballast_stiffness(j), sl.mass(j), cp + sl.ballast_damping(j));
+    if (closed[j])
+      push(z, z, kp + sl.ballast_stiffness(j), sl.mass(j), cp + sl.ballast_damping(j));
+    else
+      push(z, z, kp, sl.mass(j), cp);
   }
 }
 
@@ -60,6 +66,12 @@ void to_dense(const SparsePencil& p, Eigen::MatrixXd& K, Eigen::MatrixXd& M) {
 }
 
 }  // namespace
+
+std::vector<bool> ballast_states(const RailModel& rail) {
+  const Sleepers sl(rail);
+  if (!sl.unilateral()) return std::vector<bool>(sl.size(), true);
+  return solve_track_static(rail).closed;
+}
 
 SparsePencil direction_pencil(const RailModel& rail, int component, double wheel_mass,
                               double contact_stiffness, double position) {
@@ -112,7 +124,7 @@ SparsePencil direction_pencil(const RailModel& rail, int component, double wheel
     }
     push(nr, nr, contact_stiffness, wheel_mass, 0.0);
   }
-  add_sleepers(sl, local, z0, ns, push);
+  add_sleepers(sl, ballast_states(rail), local, z0, ns, push);
   return p;
 }
 

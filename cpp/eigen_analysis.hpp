@@ -36,8 +36,14 @@ struct SparsePencil {
   std::vector<double> K, M, C;  // [N/m], [kg], [N s/m] at (row, col)
 };
 
+// Which sleepers stand on their ballast in the linearisation (sleepers.hpp): all for the linear
+// ballast; a unilateral ballast's states at the track's static state under its own weight (no
+// wheel; a sleeper touching its bed counts as closed), so that a sleeper hanging over a void has
+// no ballast in the modes and receptances.
+std::vector<bool> ballast_states(const RailModel& rail);
+
 // component 0: axial (x) of the bare rail; 1: vertical (y), with the wheel mass on its contact
-// spring at X = position if wheel_mass > 0.
+// spring at X = position if wheel_mass > 0; the ballast in the states of ballast_states().
 SparsePencil direction_pencil(const RailModel& rail, int component, double wheel_mass,
                               double contact_stiffness, double position);
 

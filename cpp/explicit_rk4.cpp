@@ -92,6 +92,9 @@ void ExplicitRK4::step(long n) {
                          2.0 * a3_.x.segment(ob, m) + a4_.x.segment(ob, m));
   }
   if (!finite_state(st_)) div_.fail(n, "non-finite state");
+  // a unilateral ballast's states at the step's end: the law, as at every stage
+  sys_.sleepers().update_states(st_.z, &st_.zdot, false);
+  sys_.sleepers().commit(h);
 }
 
 void ExplicitRK4::record(long n) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "band_lu.hpp"
+#include "eigen_analysis.hpp"
 #include "linear_rail.hpp"
 
 namespace trackwheel {
@@ -52,18 +53,20 @@ std::vector<Layer> layers(const RailModel& rail, const LinearTrack& tr) {
   const size_t n = sp.position.size();
   std::vector<Layer> out;
   if (sp.sleeper_mass.empty()) return out;
+  const std::vector<bool> closed = ballast_states(rail);  // open: no ballast
   require(sp.sleeper_mass.size() == n && sp.ballast_stiffness.size() == n &&
               sp.ballast_damping.size() == n,
           "sleeper_mass, ballast_stiffness and ballast_damping must have one entry per support");
   for (size_t j = 0; j < n; ++j) {
     require(std::isfinite(sp.sleeper_mass[j]) && sp.sleeper_mass[j] > 0.0,
             "sleeper_mass must be > 0 kg");
-    require(std::isfinite(sp.ballast_stiffness[j]) && sp.ballast_stiffness[j] > 0.0,
-            "ballast_stiffness must be > 0 N/m");
+    require(std::isfinite(sp.ballast_stiffness[j]) && sp.ballast_stiffness[j] >= 0.0,
+            "ballast_stiffness must be >= 0 N/m");
     require(std::isfinite(sp.ballast_damping[j]) && sp.ballast_damping[j] >= 0.0,
             "ballast_damping must be >= 0 N s/m");
-    out.push_back({coupling(tr, sp.position[j]), sp.sleeper_mass[j], sp.ballast_stiffness[j],
-                   sp.ballast_damping[j], sp.stiffness[j], sp.damping[j]});
+    out.push_back({coupling(tr, sp.position[j]), sp.sleeper_mass[j],
+                   closed[j] ? sp.ballast_stiffness[j] : 0.0,
+                   closed[j] ? sp.ballast_damping[j] : 0.0, sp.stiffness[j], sp.damping[j]});
   }
   return out;
 }

@@ -17,8 +17,10 @@ FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOut
   std::vector<int> identity(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
   supports_ = SupportRecorder(rail, identity);
+  sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
+  check_window_voids(rail.supports());
   std::vector<int> map(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
   const StaticResult rest = solve_track_static(rail);
@@ -46,8 +48,11 @@ bool FullStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   double rear = sys_.x_at(0, t1);
   for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.x_at(w, t1));
   double origin = sys_.origin();
+  const long first = win_.first();
   const bool moved = win_.follow(rear, origin, st_, accs);
   sys_.set_origin(origin);
+  // a unilateral ballast's states move with their sleepers
+  if (moved) sys_.sleepers().shift(static_cast<int>(win_.first() - first));
   return moved;
 }
 

@@ -25,6 +25,7 @@ void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Acce
 
 bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
   if (!have_matrix_ || it >= 4 || !sys_.settings().reuse_jacobian) return true;
+  if (sys_.sleepers().version() != ballast_version_) return true;
   const double reach = 0.05 * sys_.rail().element_length();
   for (int w = 0; w < sys_.n_wheels(); ++w) {
     const MatrixKey& k = key_[w];
@@ -45,6 +46,7 @@ void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x
   sys_.assemble_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail);
   if (!sys_.factorize_iteration_matrix()) div_.fail(n, "singular Newton matrix");
   have_matrix_ = true;
+  ballast_version_ = sys_.sleepers().version();
   for (int w = 0; w < sys_.n_wheels(); ++w)
     key_[w] = {ev_.w[w].pt.mp.element, s1.wheels[w].state, s1.wheels[w].sigma, ev_.w[w].pt.s,
                s1.wheels[w].locked};
@@ -91,7 +93,10 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
     if (dq <= set.newton_tol && small_lambda) {
       predict(s0, acc0, x, s1);
       if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
-      return true;
+      // a sleeper crossed its threshold in the last correction: iterate on in its new state
+      if (sys_.sleepers().update_states(s1.z, &s1.zdot) == 0) return true;
+      prev_dq = INFINITY;
+      continue;
     }
     if (it >= 1 && dq > 0.25 * prev_dq) have_matrix_ = false;
     prev_dq = dq;
@@ -122,6 +127,7 @@ void GeneralizedAlpha::step(long n) {
   if (shift_window(t1, {&acc_, &alg_, &prev_})) have_matrix_ = false;
   s0_ = st_;  // members: the copies reuse their storage, nothing is allocated per step
   acc0_ = acc_;
+  sys_.sleepers().begin_step();
   for (int attempt = 0; attempt < 4; ++attempt) {
     // predictor: linear extrapolation of the accelerations (constant on the first step and
     // after a state change)
@@ -153,6 +159,7 @@ void GeneralizedAlpha::step(long n) {
     std::swap(st_, s1_);
     std::swap(alg_, alg1_);
     std::swap(acc_, x_);
+    sys_.sleepers().commit(c_.h);
     return;
   }
 }

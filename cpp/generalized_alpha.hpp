@@ -1,7 +1,10 @@
 // Generalized-alpha on the full path (the scheme: ga_scheme.hpp): the true accelerations satisfy
 // the equations at t_{n+1}, the algorithmic accelerations a carry the alpha weighting. Newton on
 // the analytic iteration matrix with the bordered banded solver; the rolling constraints are
-// enforced at velocity level at every step (no drift).
+// enforced at velocity level at every step (no drift). A unilateral ballast's sleepers take
+// their states at each iterate (System::residual) like a contact that opens: the matrix is
+// rebuilt when a state changed, and a step converges only when the states at its converged
+// iterate are those it was solved in.
 #pragma once
 
 #include <vector>
@@ -47,6 +50,7 @@ class GeneralizedAlpha : public FullStepper {
     bool locked = false;
   };
   std::vector<MatrixKey> key_;
+  long ballast_version_ = -1;  // the sleepers' states the matrix was built in (sleepers.hpp)
   bool have_matrix_ = false;
   Eigen::VectorXd r1_, r2_, x1_, x2_, dz_, dedd_;
   SimState s0_, s1_;  // the step's start and its iterate

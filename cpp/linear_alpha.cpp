@@ -19,6 +19,7 @@ LinearAlpha::LinearAlpha(LinearSystem& sys, SimState& st, Accel& acc, SimOutput&
 void LinearAlpha::step(long n) {
   const double t1 = n * c_.h;
   shift_window(t1, {&acc_, &alg_});
+  sys_.sleepers().begin_step();
   sys_.couple(t1);
   ga_predictor(c_, layout_, st_, acc_, alg_, pred_, alg_pred_);
   sys_.begin_step(pred_);
@@ -40,19 +41,35 @@ void LinearAlpha::step(long n) {
     }
   std::swap(st_, s1_);
   std::swap(acc_, x_);
+  sys_.sleepers().commit(c_.h);
 }
 
+// One iteration solves a linear level exactly. A unilateral ballast: the step starts in the
+// states of the step before; after each correction the states at the new iterate are set by the
+// law, and the step has converged when none changed (the matrix, refactorised in the new states
+// otherwise, was that of the last correction).
 bool LinearAlpha::newton(long n, double t1) {
   const SimSettings& set = sys_.settings();
   const bool hertz = sys_.options().wheel_model == WheelModel::Hertz;
-  for (int it = 0; it < std::max(set.max_newton, 1); ++it) {
+  const bool unilateral = sys_.sleepers().unilateral();
+  bool converged = false;
+  for (int it = 0; it < std::max(set.max_newton, 1) + (unilateral ? 1 : 0); ++it) {
     ga_corrector(c_, layout_, pred_, x_, s1_);
+    if (unilateral && it > 0) {
+      if (sys_.update_ballast(s1_) > 0) {
+        ++out_.factorizations;
+        sys_.couple(t1);
+      } else if (converged) {
+        return true;  // s1_ is the state at the final accelerations
+      }
+    }
     sys_.residual(it, s1_, x_, r1_);
     if (!sys_.solve(t1, s1_, x_, r1_, x1_, xb_, dz_)) div_.fail(n, "singular iteration matrix");
     ++out_.newton_iterations;
     bool small_force = true;
     const double dq = apply_correction(small_force);
-    if (!hertz || (dq <= set.newton_tol && small_force)) {
+    converged = !hertz || (dq <= set.newton_tol && small_force);
+    if (converged && !unilateral) {
       ga_corrector(c_, layout_, pred_, x_, s1_);  // the state at the final accelerations
       return true;
     }

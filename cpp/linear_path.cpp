@@ -15,8 +15,10 @@ LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOut
       div_(div),
       supports_(sys.model().rail, sys.track().y_of_full),
       delta_(sys.n_wheels()) {
+  sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
+  check_window_voids(sys.model().rail.supports());
   const LinearTrack& tr = sys.track();
   Eigen::VectorXd q = tr.Qg, z;
   LinearRest(tr, sys.sleepers()).solve(q, z);
@@ -41,9 +43,11 @@ bool LinearStepper::shift_window(double t1, std::initializer_list<Accel*> accs) 
   double rear = sys_.x_at(0, t1);
   for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.x_at(w, t1));
   double origin = sys_.origin();
+  const long first = win_.first();
   const bool moved = win_.follow(rear, origin, st_, accs);
   sys_.set_origin(origin);
   if (moved) sys_.drop_cached_columns();
+  if (moved) sys_.shift_ballast(static_cast<int>(win_.first() - first));
   return moved;
 }
 

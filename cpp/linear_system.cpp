@@ -7,21 +7,36 @@
 namespace trackwheel {
 
 LinearRest::LinearRest(const LinearTrack& track, const Sleepers& sleepers)
-    : tr_(track), sl_(sleepers), K_(track.K) {
+    : tr_(track), sl_(sleepers) {
   sl_.set_coefficients(0.0, 0.0, 1.0);
+  factorize();
+}
+
+void LinearRest::factorize() {
+  K_ = tr_.K;
   sl_.condense_matrix(tr_.y_of_full, K_);
   if (!K_.factorize()) throw std::runtime_error("rail stiffness is singular");
 }
 
-// The sleepers at rest condensed: their residual at z = 0 is -m_s g, and z follows from the
-// rail by back-substitution.
-void LinearRest::solve(Eigen::VectorXd& q, Eigen::VectorXd& z) const {
+// The sleepers at rest condensed: their residual at z = 0 is -m_s g (less k_b g_j on a closed
+// sleeper over a void), and z follows from the rail by back-substitution. The problem is linear
+// in each set of states, so an active-set pass solves it exactly; a sleeper that flips back and
+// forth is frozen (Sleepers::kMaxFlips).
+void LinearRest::solve(Eigen::VectorXd& q, Eigen::VectorXd& z) {
   Eigen::VectorXd rs;
-  z = Eigen::VectorXd::Zero(sl_.size());
-  sl_.forces(Eigen::VectorXd::Zero(tr_.nq), nullptr, tr_.y_of_full, z, nullptr, rs);
-  sl_.condense_rhs(rs, tr_.y_of_full, q);
-  K_.solve_in_place(q);
-  sl_.back_substitute(rs, q, tr_.y_of_full, z);
+  const Eigen::VectorXd rhs = sl_.unilateral() ? q : Eigen::VectorXd();
+  sl_.begin_step();
+  for (;;) {
+    z = Eigen::VectorXd::Zero(sl_.size());
+    sl_.forces(Eigen::VectorXd::Zero(tr_.nq), nullptr, tr_.y_of_full, z, nullptr, rs);
+    sl_.condense_rhs(rs, tr_.y_of_full, q);
+    K_.solve_in_place(q);
+    sl_.back_substitute(rs, q, tr_.y_of_full, z);
+    // ends: every change spends one of a sleeper's kMaxFlips flips
+    if (!sl_.unilateral() || sl_.update_states(z, nullptr) == 0) return;
+    factorize();
+    q = rhs;
+  }
 }
 
 double WheelCoupling::u_dot(const Eigen::VectorXd& x) const {
@@ -58,6 +73,7 @@ void LinearSystem::factorize_iteration_matrix() {
   A_.set_linear_combination(1.0, tr_.M, c_.cv, tr_.C);
   A_.add_scaled(c_.cq, tr_.K);
   sl_.set_coefficients(1.0, c_.cv, c_.cq);
+  if (sl_.unilateral()) A0_ = A_;
   sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
 }
@@ -95,9 +111,28 @@ void LinearSystem::assemble_supports() {
 
 void LinearSystem::supports_changed() {
   assemble_supports();
-  sl_ = Sleepers(model_.rail);
+  sl_.take_properties(model_.rail);
   damped_ = !tr_.C.is_zero();
   factorize_iteration_matrix();
+  drop_cached_columns();
+}
+
+int LinearSystem::update_ballast(const SimState& s1) {
+  const int changed = sl_.update_states(s1.z, &s1.zdot);
+  if (changed > 0) refactorize_ballast();
+  return changed;
+}
+
+void LinearSystem::shift_ballast(int k) {
+  if (!sl_.unilateral() || k <= 0) return;
+  sl_.shift(k);
+  refactorize_ballast();
+}
+
+void LinearSystem::refactorize_ballast() {
+  A_ = A0_;
+  sl_.condense_matrix(tr_.y_of_full, A_);
+  if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
   drop_cached_columns();
 }
 
@@ -312,7 +347,7 @@ void LinearSystem::border(int w, double t, const SimState& s1, const Accel& x, E
 // placed before their forces are taken.
 void LinearSystem::start(SimState& st, Accel& acc) {
   const std::vector<int>& map = tr_.y_of_full;
-  const LinearRest rest(tr_, sl_);
+  LinearRest rest(tr_, sl_);
   st.e = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
     tr_.coupling(s_at(w, 0.0), wc_[w].s, wc_[w].ss, wc_[w].sss);
@@ -324,6 +359,11 @@ void LinearSystem::start(SimState& st, Accel& acc) {
   st.edot = Eigen::VectorXd::Zero(tr_.nq);
   st.wheels.assign(nw_, WheelState());
   acc.x.setZero(layout().size());
+  // the iteration matrix in the ballast states of the law at the start state
+  if (sl_.unilateral()) {
+    sl_.begin_step();
+    update_ballast(st);
+  }
   Eigen::VectorXd rhs = tr_.Qg, Kq;
   for (int w = 0; w < nw_; ++w) {
     const WheelCoupling& wc = wc_[w];

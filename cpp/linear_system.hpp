@@ -37,14 +37,18 @@ namespace trackwheel {
 // quasi-static line all stand on it.
 class LinearRest {
  public:
+  // The sleepers' unilateral ballast starts in the states of `sleepers`.
   LinearRest(const LinearTrack& track, const Sleepers& sleepers);
   // q = K^-1 (rhs + the sleepers' pull at rest), with z the sleepers' heights under it; rhs is
-  // Q_g less the loads, over q.
-  void solve(Eigen::VectorXd& q, Eigen::VectorXd& z) const;
-  // u = K^-1 s (the track under a unit upward load through s).
+  // Q_g less the loads, over q. A unilateral ballast: an active set (the states at the
+  // solution, K refactorised in the new ones, until no state changes).
+  void solve(Eigen::VectorXd& q, Eigen::VectorXd& z);
+  // u = K^-1 s (the track under a unit upward load through s; K in the present states).
   void solve_in_place(Eigen::VectorXd& u) const { K_.solve_in_place(u); }
+  const Sleepers& sleepers() const { return sl_; }
 
  private:
+  void factorize();
   const LinearTrack& tr_;
   Sleepers sl_;
   BandMatrix K_;
@@ -125,11 +129,20 @@ class LinearSystem {
   // sleepers' dz''; false if the border's Schur complement is singular.
   bool solve(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& r1,
              Eigen::VectorXd& x1, Eigen::VectorXd& xb, Eigen::VectorXd& dz);
+  // A unilateral ballast's sleepers (sleepers.hpp): their states set by the law at s1 (a sleeper
+  // frozen in this step excepted); if any changed, the iteration matrix is refactorised in the
+  // new states and the wheels' cached columns dropped (couple() again). Returns the changes.
+  int update_ballast(const SimState& s1);
+  // The travelling window moved k bays: the sleepers' states move with it (Sleepers::shift) and
+  // the iteration matrix is refactorised in them.
+  void shift_ballast(int k);
+  Sleepers& sleepers() { return sl_; }
 
  private:
   // Wheel w's border rows: D [dY''; dN] + u^T x1 e_1 = r2 (track rows: A x1 + s dN = r1).
   void border(int w, double t, const SimState& s1, const Accel& x, Eigen::Matrix2d& D,
               Eigen::Vector2d& r2);
+  void refactorize_ballast();  // A_ in the sleepers' present states
   bool solve_border(double t, const SimState& s1, const Accel& x, const Eigen::VectorXd& x1,
                     Eigen::VectorXd& xb);
   void factorize_iteration_matrix();  // A_ = M + cv C + cq K, the sleepers condensed
@@ -143,8 +156,9 @@ class LinearSystem {
   LinearTrack tr_;  // rebuilt when the supports change (supports_changed)
   const GACoefficients c_;
   const int nw_, nb_;
-  Sleepers sl_;   // layered supports (sleepers.hpp): z'' condensed into A_
-  BandMatrix A_;  // M + cv C + cq K, factorised once
+  Sleepers sl_;    // layered supports (sleepers.hpp): z'' condensed into A_
+  BandMatrix A_;   // M + cv C + cq K, factorised once (again when a ballast state changes)
+  BandMatrix A0_;  // M + cv C + cq K unfactorised, kept for a unilateral ballast
   bool damped_;
   VehicleRows vehicle_;
   std::vector<double> static_load_;  // [N]

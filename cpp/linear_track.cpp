@@ -36,6 +36,7 @@ SimOutput simulate_linear(const Model& model_in, const SimSettings& set, const L
   LinearAlpha stepper(sys, st, acc, out, div);
   stepper.stream_supports(feed);
   run_time_loop(stepper, model, set, div, out, progress);
+  record_ballast(sys.sleepers(), out);
   return out;
 }
 
@@ -46,15 +47,21 @@ Eigen::VectorXd linear_static_line(const RailModel& rail, const BeamParams& beam
   const Sleepers sl(rail);
   if (!sl.empty() && tr.modal)
     throw std::invalid_argument("n_modes (modal superposition) does not take layered supports");
-  const LinearRest rest(tr, sl);
+  LinearRest rest(tr, sl);
   Eigen::VectorXd q_rail = tr.Qg, z, s, ss, sss;  // the track under its own weight
   rest.solve(q_rail, z);
   Eigen::VectorXd y(static_cast<Eigen::Index>(x.size()));
   for (std::size_t i = 0; i < x.size(); ++i) {
     tr.coupling(x[i], s, ss, sss);
-    Eigen::VectorXd u = s;  // K^-1 s: the track under a unit upward load at X_i
-    rest.solve_in_place(u);
-    y(static_cast<Eigen::Index>(i)) = s.dot(q_rail) - load * s.dot(u);
+    if (sl.unilateral()) {  // no superposition: the active set under each load, warm-started
+      Eigen::VectorXd q = tr.Qg - load * s;
+      rest.solve(q, z);
+      y(static_cast<Eigen::Index>(i)) = s.dot(q);
+    } else {
+      Eigen::VectorXd u = s;  // K^-1 s: the track under a unit upward load at X_i
+      rest.solve_in_place(u);
+      y(static_cast<Eigen::Index>(i)) = s.dot(q_rail) - load * s.dot(u);
+    }
     if (element_compliance) {  // the element's own deflection under the load
       const double l = rail.element_length(), xi = tr.point(x[i]).xi;
       const double cs = beam.timoshenko() ? 1.0 / beam.shear_stiffness : 0.0;

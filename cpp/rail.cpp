@@ -19,7 +19,17 @@ void require(bool ok, const std::string& msg) {
 // per support.
 void check_layers(const SupportParams& s) {
   const size_t ns = s.position.size();
-  if (s.sleeper_mass.empty() && s.ballast_stiffness.empty() && s.ballast_damping.empty()) return;
+  require(s.void_gap.empty() || s.void_gap.size() == ns,
+          "void_gap must be empty or have one entry per support");
+  for (size_t j = 0; j < s.void_gap.size(); ++j)
+    require(std::isfinite(s.void_gap[j]) && s.void_gap[j] >= 0,
+            "void_gap must be >= 0 m (support " + std::to_string(j) + ")");
+  if (s.sleeper_mass.empty() && s.ballast_stiffness.empty() && s.ballast_damping.empty()) {
+    require(!s.any_unilateral(),
+            "void_gap > 0 and tensionless need layered supports (sleeper_mass, "
+            "ballast_stiffness and ballast_damping given)");
+    return;
+  }
   require(s.sleeper_mass.size() == ns && s.ballast_stiffness.size() == ns &&
               s.ballast_damping.size() == ns,
           "sleeper_mass, ballast_stiffness and ballast_damping must be empty or have one entry "
@@ -27,10 +37,16 @@ void check_layers(const SupportParams& s) {
   for (size_t j = 0; j < ns; ++j) {
     require(std::isfinite(s.sleeper_mass[j]) && s.sleeper_mass[j] > 0,
             "sleeper_mass must be > 0 kg");
-    require(std::isfinite(s.ballast_stiffness[j]) && s.ballast_stiffness[j] > 0,
-            "ballast_stiffness must be > 0 N/m");
+    require(std::isfinite(s.ballast_stiffness[j]) && s.ballast_stiffness[j] >= 0,
+            "ballast_stiffness must be >= 0 N/m");
     require(std::isfinite(s.ballast_damping[j]) && s.ballast_damping[j] >= 0,
             "ballast_damping must be >= 0 N s/m");
+    // a sleeper off its ballast (a void, tensionless, or none: k_b = 0) hangs on its pad
+    if (s.unilateral(j) || s.ballast_stiffness[j] == 0.0)
+      require(s.stiffness[j] > 0,
+              "support " + std::to_string(j) +
+                  ": a sleeper that can lose its ballast (void_gap > 0, tensionless or "
+                  "ballast_stiffness = 0) needs a pad stiffness > 0 N/m to hang on");
   }
 }
 // Every rail and support parameter in range, in the order a message names the first one out.
@@ -75,6 +91,12 @@ void check_inputs(const RailParams& p, const SupportParams& sup) {
 }
 
 }  // namespace
+
+bool SupportParams::any_unilateral() const {
+  for (size_t j = 0; j < position.size(); ++j)
+    if (unilateral(j)) return true;
+  return false;
+}
 
 RailModel::RailModel(const RailParams& rail, const SupportParams& supports, Profile profile)
     : p_(rail), sup_(supports), profile_(std::move(profile)) {

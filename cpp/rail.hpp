@@ -59,6 +59,17 @@ struct SupportParams {
   std::vector<double> sleeper_mass;       // m_s, the sleeper's share of one rail [kg]
   std::vector<double> ballast_stiffness;  // k_b [N/m]
   std::vector<double> ballast_damping;    // c_b [N s/m]
+  // Unilateral ballast (sleepers.hpp): a void g_j >= 0 [m] between sleeper j's underside at
+  // rest and the ballast bed, one per support or empty (none). A sleeper with g_j > 0, or every
+  // sleeper with tensionless, rests on a ballast that pushes only: F_b = max(0, k_b d + c_b d')
+  // with d = -z_j - g_j > 0, else 0. g_j = 0 without tensionless: the linear ballast.
+  std::vector<double> void_gap;  // g_j [m]
+  bool tensionless = false;
+  // The ballast under support j can lose contact (or is absent: k_b = 0).
+  bool unilateral(size_t j) const {
+    return tensionless || (!void_gap.empty() && void_gap[j] > 0.0);
+  }
+  bool any_unilateral() const;
 };
 
 // f(v) for every per-support property vector of s (every field but the positions): the fields

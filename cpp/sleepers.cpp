@@ -2,10 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace trackwheel {
 
 bool is_layered(const SupportParams& s) { return !s.sleeper_mass.empty(); }
+
+void check_window_voids(const SupportParams& s) {
+  for (double g : s.void_gap)
+    if (g > 0.0)
+      throw std::invalid_argument(
+          "the travelling window does not take voids (void_gap > 0 under a sleeper): run the "
+          "voided track on a fixed rail (tensionless ballast without voids is fine)");
+}
 
 Sleepers::Sleepers(const RailModel& rail) {
   const SupportParams& s = rail.supports();
@@ -17,6 +26,104 @@ Sleepers::Sleepers(const RailModel& rail) {
   kb_ = s.ballast_stiffness;
   cb_ = s.ballast_damping;
   g_ = rail.params().gravity;  // the track's weight: switched with the rail's
+  const int n = size();
+  gap_.assign(n, 0.0);
+  uni_.assign(n, 0);
+  closed_.assign(n, 1);
+  flips_.assign(n, 0);
+  for (int j = 0; j < n; ++j) {
+    if (!s.void_gap.empty()) gap_[j] = s.void_gap[j];
+    uni_[j] = s.unilateral(j) ? 1 : 0;
+    any_unilateral_ |= uni_[j] != 0;
+    closed_[j] = gap_[j] == 0.0;  // at rest: a sleeper over a void hangs
+  }
+  committed_ = closed_;
+  contact_time_ = Eigen::VectorXd::Zero(n);
+}
+
+double Sleepers::ballast(int j, double z, double zdot) const {
+  if (!uni_[j]) return -kb_[j] * z - cb_[j] * zdot;
+  return closed_[j] ? kb_[j] * (-z - gap_[j]) - cb_[j] * zdot : 0.0;
+}
+
+int Sleepers::update_states(const Eigen::VectorXd& z, const Eigen::VectorXd* zdot, bool freeze) {
+  if (!any_unilateral_) return 0;
+  int changed = 0;
+  for (int j = 0; j < size(); ++j) {
+    if (!uni_[j]) continue;
+    const double d = -z(j) - gap_[j];
+    const double f = kb_[j] * d - (zdot ? cb_[j] * (*zdot)(j) : 0.0);
+    const unsigned char want = d > 0.0 && f > 0.0 ? 1 : 0;
+    if (want == closed_[j]) continue;
+    if (freeze && flips_[j] >= kMaxFlips) continue;  // chattering at the threshold: frozen
+    if (freeze && ++flips_[j] == kMaxFlips) ++frozen_;
+    closed_[j] = want;
+    set_coefficient(j);
+    ++changed;
+  }
+  version_ += changed;
+  return changed;
+}
+
+void Sleepers::take_properties(const RailModel& rail) {
+  const SupportParams& s = rail.supports();
+  if (!is_layered(s) || static_cast<int>(s.sleeper_mass.size()) != size())
+    throw std::logic_error("Sleepers::take_properties: another set of supports");
+  m_ = s.sleeper_mass;
+  kp_ = s.stiffness;
+  cp_ = s.damping;
+  kb_ = s.ballast_stiffness;
+  cb_ = s.ballast_damping;
+  for (int j = 0; j < size(); ++j) set_coefficient(j);
+}
+
+void Sleepers::shift(int k) {
+  if (k <= 0 || !any_unilateral_) return;
+  const int n = size();
+  for (int j = 0; j < n; ++j) {
+    if (j + k < n) {
+      closed_[j] = closed_[j + k];
+      committed_[j] = committed_[j + k];
+      flips_[j] = flips_[j + k];
+      contact_time_(j) = contact_time_(j + k);
+    } else {
+      closed_[j] = committed_[j] = gap_[j] == 0.0;
+      flips_[j] = 0;
+      contact_time_(j) = 0.0;
+    }
+    set_coefficient(j);
+  }
+  ++version_;
+}
+
+void Sleepers::begin_step() { std::fill(flips_.begin(), flips_.end(), 0); }
+
+void Sleepers::init_states(const Eigen::VectorXd& z) {
+  if (!any_unilateral_) return;
+  int changed = 0;
+  for (int j = 0; j < size(); ++j) {
+    if (!uni_[j]) continue;
+    const unsigned char want = -z(j) - gap_[j] >= 0.0 ? 1 : 0;
+    if (want == closed_[j]) continue;
+    closed_[j] = want;
+    set_coefficient(j);
+    ++changed;
+  }
+  version_ += changed;
+}
+
+void Sleepers::reset_record() {
+  committed_ = closed_;
+  events_ = frozen_ = 0;
+  contact_time_.setZero(size());
+}
+
+void Sleepers::commit(double dt) {
+  for (int j = 0; j < size(); ++j) {
+    events_ += committed_[j] != closed_[j];
+    committed_[j] = closed_[j];
+    if (closed_[j]) contact_time_(j) += dt;
+  }
 }
 
 double Sleepers::rail_y(int j, const Eigen::VectorXd& u, const std::vector<int>& map) const {
@@ -29,7 +136,9 @@ double Sleepers::rail_y(int j, const Eigen::VectorXd& u, const std::vector<int>&
 }
 
 double Sleepers::force(int j, double y, double ydot, double z, double zdot) const {
-  return kp_[j] * (y - z) + cp_[j] * (ydot - zdot) - kb_[j] * z - cb_[j] * zdot - m_[j] * g_;
+  if (!uni_[j])
+    return kp_[j] * (y - z) + cp_[j] * (ydot - zdot) - kb_[j] * z - cb_[j] * zdot - m_[j] * g_;
+  return kp_[j] * (y - z) + cp_[j] * (ydot - zdot) + ballast(j, z, zdot) - m_[j] * g_;
 }
 
 void Sleepers::forces(const Eigen::VectorXd& u, const Eigen::VectorXd* udot,
@@ -73,14 +182,25 @@ Eigen::VectorXd Sleepers::static_z(const Eigen::VectorXd& e) const {
   for (int j = 0; j < size(); ++j) {
     double y = 0.0;
     for (int a = 0; a < 4; ++a) y += weight(j, a) * e(index(j, a));
-    z(j) = (kp_[j] * y - m_[j] * g_) / (kp_[j] + kb_[j]);
+    if (!uni_[j]) {
+      z(j) = (kp_[j] * y - m_[j] * g_) / (kp_[j] + kb_[j]);
+      continue;
+    }
+    // hanging on the pad, unless that presses it into its bed (the force is monotone in z: one
+    // of the two is consistent)
+    z(j) = (kp_[j] * y - m_[j] * g_) / kp_[j];
+    if (-z(j) - gap_[j] > 0.0)
+      z(j) = (kp_[j] * y - kb_[j] * gap_[j] - m_[j] * g_) / (kp_[j] + kb_[j]);
   }
   return z;
 }
 
-Eigen::VectorXd Sleepers::ballast_force(const Eigen::VectorXd& z) const {
+Eigen::VectorXd Sleepers::ballast_force(const Eigen::VectorXd& z,
+                                        const Eigen::VectorXd* zdot) const {
   Eigen::VectorXd f(size());
-  for (int j = 0; j < size(); ++j) f(j) = -kb_[j] * z(j);
+  for (int j = 0; j < size(); ++j)
+    f(j) = uni_[j] ? ballast(j, z(j), zdot ? (*zdot)(j) : 0.0)
+                   : -kb_[j] * z(j) - (zdot ? cb_[j] * (*zdot)(j) : 0.0);
   return f;
 }
 
@@ -89,7 +209,12 @@ double Sleepers::energy(const Eigen::VectorXd& u, const std::vector<int>& map,
   double E = kinetic_energy(zdot);
   for (int j = 0; j < size(); ++j) {
     const double y = rail_y(j, u, map);
-    E += -kp_[j] * y * z(j) + 0.5 * (kp_[j] + kb_[j]) * z(j) * z(j) + m_[j] * g_ * z(j);
+    if (!uni_[j]) {
+      E += -kp_[j] * y * z(j) + 0.5 * (kp_[j] + kb_[j]) * z(j) * z(j) + m_[j] * g_ * z(j);
+      continue;
+    }
+    const double d = std::max(-z(j) - gap_[j], 0.0);
+    E += -kp_[j] * y * z(j) + 0.5 * kp_[j] * z(j) * z(j) + 0.5 * kb_[j] * d * d + m_[j] * g_ * z(j);
   }
   return E;
 }
@@ -107,12 +232,23 @@ double Sleepers::highest_frequency() const {
 }
 
 void Sleepers::set_coefficients(double cm, double cv, double cq) {
+  cm_ = cm;
+  cv_ = cv;
+  cq_ = cq;
   a_.resize(size());
   D_.resize(size());
-  for (int j = 0; j < size(); ++j) {
-    a_(j) = cq * kp_[j] + cv * cp_[j];
-    D_(j) = cm * m_[j] + cv * (cp_[j] + cb_[j]) + cq * (kp_[j] + kb_[j]);
-  }
+  for (int j = 0; j < size(); ++j) set_coefficient(j);
+}
+
+// An open sleeper's ballast is absent: its k_b and c_b drop out (adding 0.0 for them would give
+// the same bits; the branch says what is meant).
+void Sleepers::set_coefficient(int j) {
+  if (a_.size() != size()) return;  // coefficients not set yet
+  a_(j) = cq_ * kp_[j] + cv_ * cp_[j];
+  if (closed_[j])
+    D_(j) = cm_ * m_[j] + cv_ * (cp_[j] + cb_[j]) + cq_ * (kp_[j] + kb_[j]);
+  else
+    D_(j) = cm_ * m_[j] + cv_ * cp_[j] + cq_ * kp_[j];
 }
 
 void Sleepers::condense_matrix(const std::vector<int>& map, BandMatrix& K) const {

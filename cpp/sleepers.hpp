@@ -16,6 +16,19 @@
 // one element, so the band keeps its width. (cm, cv, cq) = (1, gamma' h, beta' h^2) for
 // generalized-alpha, (0, 0, 1) for statics.
 //
+//
+// Unilateral ballast (docs: Model § Voids and unilateral ballast): under a sleeper with a void
+// g_j > 0, or every sleeper with tensionless ballast, the ballast force is
+//   F_b,j = k_b d_j + c_b d_j'  while the sleeper is closed (on its bed), 0 while open,
+//   d_j = -z_j - g_j,
+// the state being a per-sleeper flag: update_states() sets it by the law at an iterate (closed
+// when d_j > 0 and k_b d_j + c_b d_j' > 0: the force criterion), and every force, residual and
+// condensation coefficient uses the stored flag, so that the Jacobian is exact for the state the
+// residual is evaluated in (open: k_b, c_b drop out of D_j). A sleeper whose state flipped
+// kMaxFlips times within one step (begin_step()) is frozen for the rest of that step: Newton
+// then converges in that state, and the residual it converges is the frozen state's. The other
+// sleepers (g_j = 0, not tensionless) keep the linear ballast and its arithmetic.
+//
 // The functions take a map from the rail's full coordinate index to the index of the vector or
 // matrix they act on (-1: a fixed coordinate): RailModel::full_to_free() for the full path,
 // LinearTrack::y_of_full for the linear path.
@@ -31,12 +44,55 @@ namespace trackwheel {
 
 // True if the supports carry sleepers (SupportParams::sleeper_mass is given).
 bool is_layered(const SupportParams& supports);
+// The travelling window shifts the track by whole bays over sleepers that stay identical: a
+// void, fixed to one sleeper, cannot travel with it (tensionless ballast can). Throws
+// std::invalid_argument if supports has a void.
+void check_window_voids(const SupportParams& supports);
 
 class Sleepers {
  public:
+  // State flips of one sleeper within a step before it is frozen for the rest of the step.
+  static constexpr int kMaxFlips = 4;
+
   explicit Sleepers(const RailModel& rail);
   int size() const { return static_cast<int>(m_.size()); }  // 0: single springs
   bool empty() const { return m_.empty(); }
+
+  // Unilateral ballast: any sleeper's (one that can lose contact: g_j > 0 or tensionless).
+  bool unilateral() const { return any_unilateral_; }
+  bool is_unilateral(int j) const { return uni_[j] != 0; }
+  double gap(int j) const { return gap_[j]; }  // g_j [m]
+  // Sleeper j on its ballast (always true for the linear ballast).
+  bool closed(int j) const { return closed_[j] != 0; }
+  // The ballast's upward force on sleeper j [N] at z, z' in the stored state: -k_b z - c_b z'
+  // for the linear ballast, k_b d + c_b d' (d = -z - g) closed, 0 open.
+  double ballast(int j, double z, double zdot) const;
+  // Sets every unilateral sleeper's state by the law at (z, z') (zdot null: at rest, the
+  // criterion d > 0), a sleeper frozen after kMaxFlips flips since begin_step() excepted (freeze
+  // false: none is frozen); the condensation coefficients follow. Returns how many changed.
+  int update_states(const Eigen::VectorXd& z, const Eigen::VectorXd* zdot, bool freeze = true);
+  // The start of a Newton solve (a time step, a static solve): no sleeper is frozen.
+  void begin_step();
+  // States at the start of a static solve: closed where the sleeper touches or presses its bed,
+  // d_j >= 0 (a touching sleeper counts as closed: the linearisation's convention).
+  void init_states(const Eigen::VectorXd& z);
+  // A changed state changes the condensation: the count of changes so far (a matrix factorised
+  // at another count is stale).
+  long version() const { return version_; }
+  // A travelling window streamed new properties into the rail's supports (the same
+  // positions): the sleepers take them, keeping their states and record.
+  void take_properties(const RailModel& rail);
+  // The travelling window moved k bays back: sleeper j takes the state, flips and record of
+  // sleeper j + k; the k fresh sleepers at the front join at rest (closed where they touch their
+  // bed, no event, no time on it yet).
+  void shift(int k);
+  // The run's record: events (state changes between committed steps), how many sleepers were
+  // frozen, and each sleeper's time on its ballast [s].
+  void reset_record();  // at the start state
+  void commit(double dt);
+  long events() const { return events_; }
+  long frozen() const { return frozen_; }
+  const Eigen::VectorXd& contact_time() const { return contact_time_; }
 
   // y_j = s_j . u over u's indexing (map: full index -> index in u).
   double rail_y(int j, const Eigen::VectorXd& u, const std::vector<int>& map) const;
@@ -58,13 +114,17 @@ class Sleepers {
   // a vector of internal forces that holds RailModel's pad-to-ground forces.
   void add_rail_force(const Eigen::VectorXd& z, const Eigen::VectorXd* zdot,
                       const std::vector<int>& map, Eigen::VectorXd& Q, double sign = -1.0) const;
-  // Static sleeper heights under the rail e: F_j = 0 at rest, z_j = (k_p y_j - m_s g)/(k_p + k_b).
+  // Static sleeper heights under the rail e: F_j = 0 at rest, z_j = (k_p y_j - m_s g)/(k_p + k_b)
+  // (a unilateral ballast: on its bed (k_p y_j - k_b g_j - m_s g)/(k_p + k_b) if that presses
+  // it, else hanging on the pad, (k_p y_j - m_s g)/k_p).
   Eigen::VectorXd static_z(const Eigen::VectorXd& e) const;
-  // Ballast forces -k_b z_j [N] (positive: compression) at z.
-  Eigen::VectorXd ballast_force(const Eigen::VectorXd& z) const;
+  // Ballast forces [N] (positive: compression) at z, z' (zdot null: at rest) in the stored
+  // states: -k_b z_j - c_b z_j' for the linear ballast, 0 for an open sleeper.
+  Eigen::VectorXd ballast_force(const Eigen::VectorXd& z,
+                                const Eigen::VectorXd* zdot = nullptr) const;
   // Energy beyond RailModel's (1/2) k_p y_j^2 [J]: the kinetic energy (1/2) m_s z'^2, the pad's
-  // correction (1/2) k_p (y - z)^2 - (1/2) k_p y^2, the ballast's (1/2) k_b z^2 and the
-  // sleepers' weight m_s g z.
+  // correction (1/2) k_p (y - z)^2 - (1/2) k_p y^2, the ballast's (1/2) k_b z^2 (unilateral:
+  // (1/2) k_b max(d, 0)^2, whatever the state) and the sleepers' weight m_s g z.
   double energy(const Eigen::VectorXd& u, const std::vector<int>& map, const Eigen::VectorXd& z,
                 const Eigen::VectorXd& zdot) const;
   double kinetic_energy(const Eigen::VectorXd& zdot) const;
@@ -113,9 +173,25 @@ class Sleepers {
     }
   }
   std::vector<MeshPoint> pt_;
-  std::vector<double> m_, kp_, cp_, kb_, cb_;
+  // a_j, D_j of sleeper j in its state for the stored (cm, cv, cq)
+  void set_coefficient(int j);
+  std::vector<double> m_, kp_, cp_, kb_, cb_, gap_;
+  std::vector<unsigned char> uni_, closed_, committed_;
+  std::vector<int> flips_;
+  bool any_unilateral_ = false;
+  long version_ = 0, events_ = 0, frozen_ = 0;
+  Eigen::VectorXd contact_time_;
   double g_ = 0.0;
+  double cm_ = 0.0, cv_ = 0.0, cq_ = 0.0;
   Eigen::VectorXd a_, D_;
 };
+
+// The run's ballast record into its output (time_loop.hpp's SimOutput).
+template <class Output>
+void record_ballast(const Sleepers& sl, Output& out) {
+  out.ballast_events = sl.events();
+  out.ballast_frozen = sl.frozen();
+  out.ballast_contact_time = sl.contact_time();
+}
 
 }  // namespace trackwheel

@@ -71,10 +71,13 @@ void finish(const RailModel& rail, const Eigen::VectorXd& e, const Eigen::Vector
             const std::vector<double>& s_guess, std::vector<StaticResult>& res) {
   const int m = static_cast<int>(xs.size());
   const Eigen::VectorXd ballast = sl.ballast_force(z);
+  std::vector<bool> closed(sl.size());
+  for (int j = 0; j < sl.size(); ++j) closed[j] = sl.closed(j);
   for (int w = 0; w < std::max(m, 1); ++w) {
     res[w].e = e;
     res[w].z = z;
     res[w].ballast_force = ballast;
+    res[w].closed = closed;
   }
   for (int w = 0; w < m; ++w) {
     res[w].x_wheel = xs[w];
@@ -91,6 +94,10 @@ void finish(const RailModel& rail, const Eigen::VectorXd& e, const Eigen::Vector
 // Newton over the free rail coordinates and the heights Y_A of the given wheels (none: the rail
 // alone), each wheel w held at X_A = xs[w] under its load P_w = F_w + M_w g; sleepers (layered
 // supports) are condensed into the rail's band (sleepers.hpp, at rest: (cm, cv, cq) = (0, 0, 1)).
+// A unilateral ballast is an active set: each iteration sets the sleepers' states at its iterate
+// (the first keeps those of the start, closed where a sleeper touches its bed) and takes the
+// exact Jacobian of that state; converged when the correction is small and no state changed
+// (a sleeper flipping back and forth is frozen after Sleepers::kMaxFlips flips).
 std::vector<StaticResult> newton_static(const RailModel& rail,
                                         const std::vector<const WheelParams*>& wheels,
                                         const std::vector<ContactParams>& contacts,
@@ -111,7 +118,10 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
   std::vector<int> identity(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
   Eigen::VectorXd z = sl.static_z(e), rs, dz;
+  sl.init_states(z);
+  sl.begin_step();
   for (int it = 0; it < 60; ++it) {
+    const int changed = it > 0 ? sl.update_states(z, nullptr) : 0;
     rail.internal_force(e, nullptr, Q);
     sys.R = Q - Qg;  // full residual of the rail
     sys.K.set_zero();
@@ -146,7 +156,7 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
       step = std::max(step, std::abs(dx2(w)));
     }
     for (StaticResult& r : res) r.iterations = it + 1;
-    if (step <= tol) {
+    if (step <= tol && changed == 0) {
       finish(rail, e, z, sl, contacts, xs, ys, s_guess, res);
       return res;
     }

@@ -24,8 +24,10 @@ struct StaticResult {
   double normal_force = 0.0;         // N [N]
   double horizontal_reaction = 0.0;  // force holding X_A [N]
   int iterations = 0;
-  Eigen::VectorXd z;              // sleeper heights z_j [m] (layered supports; else empty)
-  Eigen::VectorXd ballast_force;  // -k_b z_j, the ballast's compression under sleeper j [N]
+  Eigen::VectorXd z;  // sleeper heights z_j [m] (layered supports; else empty)
+  // the ballast's compression under sleeper j [N]: -k_b z_j, or the unilateral law's (0 open)
+  Eigen::VectorXd ballast_force;
+  std::vector<bool> closed;  // sleeper j on its ballast (always, for the linear ballast)
 };
 
 // e_guess may be empty (starts from the straight rail).

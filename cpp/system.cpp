@@ -150,6 +150,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
   solve_bordered(r1, r2, x1_, acc.x);
   acc.edd.setZero(rail().n_dof());
   rail().add_from_free(x1_, acc.edd);
+  sl_.update_states(st.z, &st.zdot, false);  // the law at this state
   sl_.accelerations(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd);
 }
 
@@ -173,6 +174,7 @@ void System::residual(const SimState& st, const Eval& ev, const Accel& acc, doub
     if (st.wheels[w].locked) r2(o + kTheta) = -st.wheels[w].thetadot / cv;
   }
   vehicle_.body_residual(acc.x, fb_, r2);
+  sl_.update_states(st.z, &st.zdot);  // a unilateral ballast's state at this iterate
   sl_.residual(st.e, &st.edot, identity_, st.z, &st.zdot, acc.zdd, rs_);
 }
 
@@ -210,9 +212,11 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Jrail_.set_linear_combination(1.0, rail().mass(), cv, rail().support_damping());
     rail().add_tangent(st.e, cq, Jrail_);
     sl_.set_coefficients(1.0, cv, cq);
-    sl_.condense_matrix(rail().full_to_free(), Jrail_);
   }
   J_ = Jrail_;
+  // the sleepers in their present states (a unilateral ballast's change between two rail
+  // refreshes); the same additions onto the same cached sums as when condensed into Jrail_
+  sl_.condense_matrix(rail().full_to_free(), J_);
   Bb_.setZero();
   Cb_.setZero();
   Db_.setZero();

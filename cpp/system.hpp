@@ -109,9 +109,13 @@ class System {
   void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
              Eigen::VectorXd& x2, Eigen::VectorXd& dz);
   const Sleepers& sleepers() const { return sl_; }
+  // The sleepers' unilateral ballast states and their record (sleepers.hpp): residual() sets
+  // them at its iterate, accelerations() by the law at its state.
+  Sleepers& sleepers() { return sl_; }
   // The rail's supports changed their properties (a travelling window streams them in,
-  // window.hpp): the sleepers' rows follow; the next matrix must refresh its rail part.
-  void supports_changed() { sl_ = Sleepers(rail()); }
+  // window.hpp): the sleepers' rows follow (their ballast states and record kept); the next
+  // matrix must refresh its rail part.
+  void supports_changed() { sl_.take_properties(rail()); }
 
  private:
   // Forces without inertia at the multipliers lam (one per wheel): rail (full) and the

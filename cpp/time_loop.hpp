@@ -38,6 +38,12 @@ struct SimOutput {
   long newton_iterations = 0;
   long factorizations = 0;  // Newton matrix factorisations (generalized-alpha)
   long state_changes = 0;   // slip/contact state switches, summed over wheels
+  // A unilateral ballast (sleepers.hpp): its sleepers' state changes from step to step, the
+  // sleepers frozen in a step after flipping back and forth, each sleeper's time on its ballast
+  // [s] (empty without sleepers).
+  long ballast_events = 0;
+  long ballast_frozen = 0;
+  Eigen::VectorXd ballast_contact_time;
   SimState final_state;
   double stability_limit = 0.0;  // explicit RK4: predicted dt limit at the start [s]
 };

@@ -18,7 +18,8 @@ def test_result_exposes_exactly_the_table_fields_with_units_in_its_doc():
     result_arrays = [f.name for f in dc.fields(tw.Result)
                      if f.name not in {"scene", "settings", "steps", "newton_iterations",
                                        "state_changes", "stability_limit", "wall_time",
-                                       "final_state", "body_z", "body_phi", "support_envelope"}]
+                                       "final_state", "body_z", "body_phi", "support_envelope",
+                                       "ballast_events", "ballast_contact_time"}]
     assert result_arrays == names + [f[0] for f in _core.SUPPORT_FIELDS]
     doc = tw.Result.__doc__
     for name, unit, text, _per_wheel, dtype in table:

@@ -228,13 +228,18 @@ def test_the_window_refuses_per_support_sequences():
         with_supports(scene, ballast_stiffness=[105e6] * n)
 
 
-def test_voids_wait_for_the_kernels_unilateral_ballast():
+def test_voids_reach_the_kernels_unilateral_ballast():
+    """Each form of a void, and tensionless ballast, reaches the kernel (its physics:
+    tests/test_voids.py): a ballast that pushes only never pulls, the hanging sleeper carries
+    no ballast force, and void = 0 is the intact track bit for bit."""
     for sup in (dc.replace(BALLASTED.supports, void=1e-3),
-                dc.replace(BALLASTED.supports, ballast_tensionless=True),
-                BALLASTED.supports.hanging(4.5, gap=1e-3)):
-        scene = dc.replace(BALLASTED, supports=sup)  # the scene is valid...
-        with pytest.raises(ValueError, match="need the kernel's unilateral ballast"):
-            tw.static(scene, 4.5)  # ...the kernel does not have the law yet
+                dc.replace(BALLASTED.supports, ballast_tensionless=True)):
+        st = tw.static(dc.replace(BALLASTED, supports=sup), 4.5)
+        assert np.all(st.ballast_force >= 0.0)
+    hanging = BALLASTED.supports.hanging(4.5, gap=1e-3)
+    hung = tw.static(dc.replace(BALLASTED, supports=hanging), 4.5)
+    j = int(np.argmax(hanging.values(np.asarray(BALLASTED.support_positions)).void))
+    assert hung.ballast_force[j] == 0.0
     zero = with_supports(BALLASTED, void=[0.0] * N_SLEEPERS)
     assert tw.static(zero, 4.5).y_contact == tw.static(BALLASTED, 4.5).y_contact
 
@@ -276,8 +281,8 @@ def fe_track(scene: tw.Scene, x_load: float, load: float, *, max_element: float 
     consistent nodal loads and the sleepers' weights (``Scene.rail_gravity``), ``load`` [N]
     down at ``x_load`` [m]. Point forces at nodes make the exact solution cubic between nodes,
     so these elements are exact. A sleeper with a void g_j (or every sleeper with tensionless
-    ballast) rests on its ballast only while it is pressed into it, delta_j = -z_j - g_j > 0:
-    an active-set iteration (the ballast force k_b delta_j on the closed sleepers) until the
+    ballast) rests on its ballast only while it is pressed into it, delta_j = -z_j - g_j > 0
+    (the others keep the linear ballast): an active-set iteration (the ballast force k_b delta_j on the closed sleepers) until the
     set repeats. Returns (nodes [m], rail deflection w at the nodes [m], ballast forces [N],
     positive in compression)."""
     rail, sv = scene.rail, scene.support_values
@@ -309,7 +314,9 @@ def fe_track(scene: tw.Scene, x_load: float, load: float, *, max_element: float 
     f[2 * np.searchsorted(nodes, x_load)] -= load
     free = np.setdiff1d(np.arange(2 * n + ns), [0, 2 * (n - 1)])
     gap = sv.void
-    unilateral = sv.ballast_tensionless or np.any(gap > 0.0)
+    # the unilateral sleepers: every one with tensionless ballast, else those over a void (a
+    # sleeper with g_j = 0 keeps the linear ballast, which also pulls)
+    unilateral = np.full(ns, True) if sv.ballast_tensionless else gap > 0.0
     closed = np.ones(ns, bool)
     for _ in range(ns + 2):
         Kc, fc = K.copy(), f.copy()
@@ -318,12 +325,13 @@ def fe_track(scene: tw.Scene, x_load: float, load: float, *, max_element: float 
         u = np.zeros(2 * n + ns)
         u[free] = np.linalg.solve(Kc[np.ix_(free, free)], fc[free])
         delta = -u[z] - gap
-        if not unilateral or np.array_equal(delta > 0.0, closed):
+        new = (delta > 0.0) | ~unilateral
+        if np.array_equal(new, closed):
             break
-        closed = delta > 0.0
+        closed = new
     else:
         raise AssertionError("the active set did not settle")
-    force = np.where(closed | (not unilateral), sv.ballast_stiffness * delta, 0.0)
+    force = np.where(closed, sv.ballast_stiffness * delta, 0.0)
     return nodes, u[:2 * n:2], force
 
 
@@ -369,14 +377,9 @@ def test_statics_of_a_stiffness_step_match_an_independent_finite_element_track(
 def test_statics_of_a_voided_sleeper_match_an_independent_finite_element_track():
     """A sleeper hanging 0.5 mm over its ballast next to the wheel, against :func:`fe_track`'s
     active set (docs: Model § Supports varying along the track): tolerance as for the
-    stiffness step. Runs once the kernel has its unilateral ballast."""
+    stiffness step."""
     scene = dc.replace(LONG, supports=LONG.supports.hanging(15.6, gap=5e-4))
-    try:
-        st = tw.static(scene, 15.3)
-    except ValueError as exc:
-        if "unilateral ballast" in str(exc):
-            pytest.skip("the kernel has no unilateral ballast yet")
-        raise
+    st = tw.static(scene, 15.3)
     nodes, w, fb = fe_track(scene, st.contact_s, st.normal_force)
     assert abs(st.y_contact / w[np.searchsorted(nodes, st.contact_s)] - 1.0) < 1e-6
     assert np.max(np.abs(st.ballast_force - fb)) < 1e-6 * np.max(np.abs(fb))
@@ -697,8 +700,6 @@ def test_the_command_line_builds_the_api_track():
      ["give them or --support-stiffness, not both"]),
     (["--scatter", "20"], ["--scatter: Scatter.cv = 20.0 is outside the allowed range"]),
     (["--void", "2,1e-3"], ["--void: a void lies between a sleeper and its ballast"]),
-    (["--track", "ballasted", "--void", "15,1e-3", "--x-start", "5.1"],
-     ["need the kernel's unilateral ballast"]),
     (["--track", "ballasted", "--void", "15,0.5"], ["--void: Voids.gaps = 0.5",
                                                     "[0.0, 0.1] m"]),
     (["--seed", "3"], ["--seed need(s) a random --irregularity", "or --scatter"]),

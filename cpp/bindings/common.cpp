@@ -70,6 +70,9 @@ py::dict output_to_dict(SimOutput&& o) {
   d["newton_iterations"] = o.newton_iterations;
   d["factorizations"] = o.factorizations;
   d["state_changes"] = o.state_changes;
+  d["ballast_events"] = o.ballast_events;
+  d["ballast_frozen"] = o.ballast_frozen;
+  d["ballast_contact_time"] = o.ballast_contact_time;
   d["final_state"] = o.final_state;
   d["stability_limit"] = o.stability_limit;
   return d;
@@ -87,6 +90,7 @@ py::dict static_to_dict(const StaticResult& r) {
   d["iterations"] = r.iterations;
   d["sleeper_z"] = r.z;
   d["ballast_force"] = r.ballast_force;
+  d["sleeper_closed"] = r.closed;
   return d;
 }
 

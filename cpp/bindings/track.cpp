@@ -127,7 +127,12 @@ void bind_rail_params(py::module_& m) {
       .def_readwrite("damping", &SupportParams::damping)
       .def_readwrite("sleeper_mass", &SupportParams::sleeper_mass)
       .def_readwrite("ballast_stiffness", &SupportParams::ballast_stiffness)
-      .def_readwrite("ballast_damping", &SupportParams::ballast_damping);
+      .def_readwrite("ballast_damping", &SupportParams::ballast_damping)
+      .def_readwrite("void_gap", &SupportParams::void_gap,
+                     "g_j >= 0 [m] per support (empty: none): the void between sleeper j at rest "
+                     "and its ballast bed; g_j > 0 makes that ballast unilateral")
+      .def_readwrite("tensionless", &SupportParams::tensionless,
+                     "every sleeper's ballast unilateral (pushes only)");
   py::class_<BeamParams>(m, "BeamParams")
       .def(py::init<>())
       .def_readwrite("shear_stiffness", &BeamParams::shear_stiffness,

@@ -134,6 +134,22 @@ class SupportParams:
     @stiffness.setter
     def stiffness(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
+    @property
+    def tensionless(self) -> bool:
+        """
+        every sleeper's ballast unilateral (pushes only)
+        """
+    @tensionless.setter
+    def tensionless(self, arg0: bool) -> None:
+        ...
+    @property
+    def void_gap(self) -> list[float]:
+        """
+        g_j >= 0 [m] per support (empty: none): the void between sleeper j at rest and its ballast bed; g_j > 0 makes that ballast unilateral
+        """
+    @void_gap.setter
+    def void_gap(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
 class BeamParams:
     def __init__(self) -> None:
         ...

@@ -71,7 +71,6 @@ def _supports_at(scene: Scene, x: np.ndarray, position=None) -> _core.SupportPar
     coordinates ``x`` [m] (:meth:`trackwheel.Supports.values`), placed at ``position``
     (None: at ``x``)."""
     sv = scene.supports.values(x)
-    unilateral_ballast(sv)
     s = _core.SupportParams()
     s.position = sv.position.tolist() if position is None else np.asarray(position).tolist()
     s.stiffness = sv.stiffness.tolist()
@@ -80,16 +79,17 @@ def _supports_at(scene: Scene, x: np.ndarray, position=None) -> _core.SupportPar
         s.sleeper_mass = sv.sleeper_mass.tolist()
         s.ballast_stiffness = sv.ballast_stiffness.tolist()
         s.ballast_damping = sv.ballast_damping.tolist()
+        unilateral_ballast(sv, s)
     return s
 
 
-def unilateral_ballast(sv) -> None:
-    """Voids and tensionless ballast need the kernel's unilateral ballast: ValueError until it
-    has one."""
-    if sv.unilateral:
-        raise ValueError("Supports.void and Supports.ballast_tensionless need the kernel's "
-                         "unilateral ballast, which this build does not have yet: give void = 0 "
-                         "and ballast_tensionless = False")
+def unilateral_ballast(sv, s: _core.SupportParams) -> None:
+    """The kernel's unilateral ballast into ``s`` from the resolved supports ``sv``: the void
+    g_j [m] under each sleeper (only if some is > 0: a void makes that ballast push only) and
+    the tensionless switch (every ballast pushes only)."""
+    if np.any(sv.void > 0.0):
+        s.void_gap = np.asarray(sv.void, dtype=float).tolist()
+    s.tensionless = bool(sv.ballast_tensionless)
 
 
 #: The per-support properties the travelling window streams (the kernel's
@@ -111,6 +111,10 @@ def support_stream(scene: Scene, window, travel: float):
     n = len(rail_x) + int(np.ceil(travel / d - 1e-9)) + 2  # one more shift at each end
     x = window.origin + rail_x[0] + d * np.arange(n)
     stream = _supports_at(scene, x)
+    if any(g > 0.0 for g in stream.void_gap):
+        raise ValueError("the travelling window does not take voids (Supports.void > 0 at a "
+                         "sleeper it meets): run the voided track on a fixed rail "
+                         "(tensionless ballast without voids is fine)")
     if all(len(set(getattr(stream, f))) <= 1 for f in STREAMED_PROPERTIES):
         return None
     return stream

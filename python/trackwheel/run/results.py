@@ -287,7 +287,10 @@ def _result_doc() -> str:
         lines.append(f"- ``{name}`` [{unit}]: {doc}")
     lines += ["", "``support_envelope``: each support's envelope along the track, {name: array}",
               "over :data:`ENVELOPE_FIELDS` (also on a travelling window, one entry per sleeper",
-              "that passed): :meth:`sleeper_envelope` as a DataFrame."]
+              "that passed): :meth:`sleeper_envelope` as a DataFrame.", "",
+              "``ballast_events``: a unilateral ballast's open/closed changes over the run",
+              "(voids, tensionless ballast; 0 otherwise); ``ballast_contact_time`` [s]: each",
+              "sleeper's time on its ballast (None without sleepers)."]
     return "\n".join(lines)
 
 
@@ -301,7 +304,9 @@ Result = dataclasses.make_dataclass(
      ("body_z", "np.ndarray | None", field(default=None, repr=False)),
      ("body_phi", "np.ndarray | None", field(default=None, repr=False)),
      *[(f[0], "np.ndarray | None", field(default=None, repr=False)) for f in SUPPORT_FIELDS],
-     ("support_envelope", "dict | None", field(default=None, repr=False))],
+     ("support_envelope", "dict | None", field(default=None, repr=False)),
+     ("ballast_events", int, field(default=0)),
+     ("ballast_contact_time", "np.ndarray | None", field(default=None, repr=False))],
     bases=(_ResultMethods,), frozen=True, repr=False,
     namespace={"__doc__": _result_doc(), "__module__": __name__})
 
@@ -336,4 +341,7 @@ def result_from_kernel(out: dict, scene: Scene, settings: RunSettings, wall_time
     return Result(scene=scene, settings=settings, **arrays, steps=out["steps"],
                   newton_iterations=out["newton_iterations"], state_changes=out["state_changes"],
                   stability_limit=out["stability_limit"], wall_time=wall_time,
-                  final_state=out.get("final_state"))
+                  final_state=out.get("final_state"),
+                  ballast_events=int(out.get("ballast_events", 0)),
+                  ballast_contact_time=(out["ballast_contact_time"]
+                                        if len(out.get("ballast_contact_time", ())) else None))

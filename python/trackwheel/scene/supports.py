@@ -85,7 +85,8 @@ class Supports:
     value; any other function compares equal only to itself and prints by its name (a sweep
     tabulates it at the scene's supports). ``void`` (layered only, default 0) is the gap g_j
     between a sleeper and its ballast bed; ``ballast_tensionless`` makes every sleeper's
-    ballast push only. Both need the kernel's unilateral ballast.
+    ballast push only (not on the travelling window; docs:
+    Model § Voids and unilateral ballast).
     """
 
     #: k_s, vertical stiffness of each support [N/m] (layered: pad k_p)
