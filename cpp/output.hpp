@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rail.hpp"
+#include "sleepers.hpp"
 
 namespace trackwheel {
 
@@ -144,6 +145,8 @@ class SupportEnvelope {
 // rail's y_j = s_j . u and y_j' (u over map, as sleepers.hpp) and its sleeper's z_j, z_j',
 //   rail-seat force Fp_j = -(k_p (y_j - z_j) + c_p (y_j' - z_j'))   (the pad's compression)
 //   ballast force  Fb_j = -(k_b z_j + c_b z_j')                     (the bed's compression)
+// (a unilateral bed, a void g_j or tensionless: Sleepers::ballast in the committed state,
+// k_b d_j + c_b d_j' with d_j = -z_j - g_j while the sleeper is on its bed, 0 off it)
 // (single springs: Fp_j = Fb_j = -(k_s y_j + c_s y_j'), z_j = 0: the spring carries the rail
 // to the ground). The properties are read from the rail at each call (a travelling window
 // streams them). Records the per-support fields if the recording wants them, and the envelope
@@ -154,8 +157,9 @@ class SupportRecorder {
   SupportRecorder(const RailModel& rail, std::vector<int> map);
   int size() const { return static_cast<int>(pt_.size()); }
   void record(const RailModel& rail, const Eigen::VectorXd& u, const Eigen::VectorXd& udot,
-              const Eigen::VectorXd& z, const Eigen::VectorXd& zdot, long first, double origin,
-              double dt_sample, Recording& rec, SupportEnvelope& env) const;
+              const Eigen::VectorXd& z, const Eigen::VectorXd& zdot, const Sleepers& sleepers,
+              long first, double origin, double dt_sample, Recording& rec,
+              SupportEnvelope& env) const;
 
  private:
   std::vector<MeshPoint> pt_;

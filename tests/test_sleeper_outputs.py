@@ -109,6 +109,35 @@ def test_envelope_is_the_histories_extremes(fidelity):
     assert df.ballast_force_max.max() > 0.2 * scene.static_load
 
 
+@pytest.mark.parametrize("fidelity", ["full", "linear/hertz"])
+def test_a_voided_sleeper_records_its_unilateral_ballast(fidelity):
+    """A sleeper over a void (docs: Model § Supports varying along the track) records the
+    unilateral law, not the linear one: its ballast force is never negative (the bed pushes
+    only) and exactly 0 wherever the sleeper is clear of its bed, d = -z - g < 0. A 0.3 mm
+    void under the sleeper the wheel passes is closed under the wheel (the static fall is about
+    0.8 mm) and open before and after it: the envelope's contact_time (kept samples with
+    F_b > 0, output_every = 1) equals the kernel's own ballast_contact_time (steps on the
+    bed) within one sample per state change. A 5 mm void, deeper than any motion here, keeps
+    the bed's force exactly 0 throughout."""
+    scene = _track()
+    j = int(np.argmin(np.abs(np.asarray(scene.support_positions) - 9.0)))
+    for gap, closes in ((3e-4, True), (5e-3, False)):
+        voided = dc.replace(scene, supports=scene.supports.hanging(9.0, gap=gap))
+        r = tw.simulate(voided, tw.kmh(150), x_start=8.0, x_end=10.0, output_every=1,
+                        support_forces=True, fidelity=fidelity, progress=False)
+        fb = r.ballast_force[:, j]
+        assert fb.min() >= 0.0
+        assert np.all(fb[-r.sleeper_z[:, j] - gap < 0.0] == 0.0)
+        env = r.sleeper_envelope()
+        ds = r.settings.output_every * r.settings.dt
+        assert abs(env.contact_time[j] - r.ballast_contact_time[j]) <= (r.ballast_events + 1) * ds
+        if closes:
+            assert r.ballast_events >= 2 and fb.max() > 0.05 * scene.static_load
+            assert 0.0 < env.contact_time[j] < env.observed_time[j]
+        else:
+            assert r.ballast_events == 0 and fb.max() == 0.0 and env.contact_time[j] == 0.0
+
+
 def test_support_outputs_are_deterministic_and_on_request():
     scene = _track()
     kw = dict(x_start=8.0, x_end=8.6, fidelity="linear/hertz", progress=False)
