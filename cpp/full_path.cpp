@@ -100,8 +100,8 @@ void FullStepper::record_sample(double t) {
   }
   for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
   const SimSettings& set = sys_.settings();
-  supports_.record(sys_.rail(), st_.e, st_.edot, st_.z, st_.zdot, win_.first(), sys_.origin(),
-                   set.output_every * set.dt, rec, out_.envelope);
+  supports_.record(sys_.rail(), st_.e, st_.edot, st_.z, st_.zdot, sys_.sleepers(), win_.first(),
+                   sys_.origin(), set.output_every * set.dt, rec, out_.envelope);
 }
 
 }  // namespace trackwheel

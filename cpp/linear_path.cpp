@@ -73,8 +73,8 @@ void LinearStepper::record_sample(double t) {
   for (int b = 0; b < sys_.n_bodies(); ++b) rec.push_body(st_.body(2 * b), st_.body(2 * b + 1));
   if (rec.wants(Field::energy)) rec.push(Field::energy, total_energy(t, delta_));
   const SimSettings& set = sys_.settings();
-  supports_.record(sys_.model().rail, st_.e, st_.edot, st_.z, st_.zdot, win_.first(), sys_.origin(),
-                   set.output_every * set.dt, rec, out_.envelope);
+  supports_.record(sys_.model().rail, st_.e, st_.edot, st_.z, st_.zdot, sys_.sleepers(),
+                   win_.first(), sys_.origin(), set.output_every * set.dt, rec, out_.envelope);
 }
 
 // The contact stays vertical at X_A: no obliquity at the wheel, the rail's slope y_s enters the

@@ -128,8 +128,9 @@ double SupportRecorder::y(int j, const Eigen::VectorXd& u) const {
 
 void SupportRecorder::record(const RailModel& rail, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& udot, const Eigen::VectorXd& z,
-                             const Eigen::VectorXd& zdot, long first, double origin,
-                             double dt_sample, Recording& rec, SupportEnvelope& env) const {
+                             const Eigen::VectorXd& zdot, const Sleepers& sleepers, long first,
+                             double origin, double dt_sample, Recording& rec,
+                             SupportEnvelope& env) const {
   const SupportParams& sp = rail.supports();
   const bool layered = z.size() == size() && !sp.sleeper_mass.empty();
   const bool histories = rec.wants(Field::rail_seat_force);
@@ -137,8 +138,9 @@ void SupportRecorder::record(const RailModel& rail, const Eigen::VectorXd& u,
     const double yj = y(j, u), ydj = y(j, udot);
     const double zj = layered ? z(j) : 0.0, zdj = layered ? zdot(j) : 0.0;
     const double Fp = -(sp.stiffness[j] * (yj - zj) + sp.damping[j] * (ydj - zdj));
-    // the ballast law (a void's unilateral law replaces it here)
-    const double Fb = layered ? -(sp.ballast_stiffness[j] * zj + sp.ballast_damping[j] * zdj) : Fp;
+    // each sleeper's own ballast law in its committed state: a void's or a tensionless bed
+    // pushes only once closed (k_b d + c_b d', d = -z - g) and carries nothing open
+    const double Fb = layered ? sleepers.ballast(j, zj, zdj) : Fp;
     if (histories) {
       rec.push(Field::rail_seat_force, Fp);
       rec.push(Field::ballast_force, Fb);

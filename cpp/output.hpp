@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rail.hpp"
+#include "sleepers.hpp"
 
 namespace trackwheel {
 
@@ -154,8 +155,9 @@ class SupportRecorder {
   SupportRecorder(const RailModel& rail, std::vector<int> map);
   int size() const { return static_cast<int>(pt_.size()); }
   void record(const RailModel& rail, const Eigen::VectorXd& u, const Eigen::VectorXd& udot,
-              const Eigen::VectorXd& z, const Eigen::VectorXd& zdot, long first, double origin,
-              double dt_sample, Recording& rec, SupportEnvelope& env) const;
+              const Eigen::VectorXd& z, const Eigen::VectorXd& zdot, const Sleepers& sleepers,
+              long first, double origin, double dt_sample, Recording& rec,
+              SupportEnvelope& env) const;
 
  private:
   std::vector<MeshPoint> pt_;
