@@ -10,6 +10,7 @@ with ROSE's parameters.
     python benchmarks/settle.py                         # linear/hertz, 20 and 40 stages
     python benchmarks/settle.py --fidelity full --stages 20
     python benchmarks/settle.py --fidelity static       # the fixed-load estimate, seconds
+    python benchmarks/settle.py --stages --increment 0.4 0.2   # adaptive stages
 """
 
 from __future__ import annotations
@@ -30,30 +31,39 @@ def scene() -> tw.Scene:
     return dataclasses.replace(base, supports=supports)
 
 
-def run(fidelity: str, stages: int, cycles: float,
-        feedback: bool) -> tuple[tw.settlement.SettlementHistory, float]:
+def run(fidelity: str, stages: int | None, cycles: float, feedback: bool,
+        increment: float = 0.1) -> tuple[tw.settlement.SettlementHistory, float]:
     t0 = time.perf_counter()
     h = tw.settle(scene(), tw.kmh(200), cycles, fidelity=fidelity, stages=stages,
-                  feedback=feedback, progress=False)
+                  increment=increment, feedback=feedback, progress=False)
     return h, time.perf_counter() - t0
 
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--fidelity", default="linear/hertz")
-    p.add_argument("--stages", type=int, nargs="+", default=[20, 40])
+    p.add_argument("--stages", type=int, nargs="*", default=[20, 40])
+    p.add_argument("--increment", type=float, nargs="*", default=[],
+                   help="adaptive runs, each stage's largest increment this fraction of w0")
     p.add_argument("--cycles", type=float, default=1e6)
     p.add_argument("--open-loop", action="store_true", help="feedback=False")
     args = p.parse_args()
     results = []
-    for m in args.stages:
-        h, wall = run(args.fidelity, m, args.cycles, not args.open_loop)
+    cases = [(m, 0.1) for m in args.stages] + [(None, inc) for inc in args.increment]
+    for m, inc in cases:
+        h, wall = run(args.fidelity, m, args.cycles, not args.open_loop, inc)
         results.append(h)
         s = h.settlement[-1]
-        print(f"{args.fidelity:>13} {m:>3} stages: {wall:7.1f} s; {h.sleepers.size} sleepers; "
+        how = f"{m:>3} stages" if m is not None else f"increment {inc:g}, {h.n_stages} stages"
+        print(f"{args.fidelity:>13} {how}: {wall:7.1f} s; {h.sleepers.size} sleepers; "
               f"settlement {1e3 * s.min():.3f}..{1e3 * s.max():.3f} mm, differential "
               f"{1e3 * h.differential[-1]:.3f} mm; dynamic factor {h.dynamic_factor[0]:.4f} -> "
               f"{h.dynamic_factor[-1]:.4f}")
+        print(f"  most settled sleeper at X = {h.sleepers[np.argmax(s)]:.1f} m, least at "
+              f"{h.sleepers[np.argmin(s)]:.1f} m")
+        print("  per stage: cycles " + " ".join(f"{c:.3g}" for c in h.cycles))
+        print("  dynamic factor " + " ".join(f"{d:.3f}" for d in h.dynamic_factor))
+        print("  largest void [mm] " + " ".join(f"{1e3 * g:.3f}" for g in h.voids.max(axis=1)))
     for a, b in zip(results, results[1:]):
         change = np.max(np.abs(a.settlement[-1] - b.settlement[-1]))
         print(f"{a.n_stages} -> {b.n_stages} stages: final settlement changes by at most "

@@ -7,8 +7,11 @@ passages of a stage run on any ``concurrent.futures.Executor``; :func:`run_passa
 returns a :class:`PassageForces`. Two ways to run it (``PassageTask.fidelity``):
 
 - a time-domain level of :func:`trackwheel.simulate` (``"linear/hertz"``, ..., ``"full"``): the
-  dynamic passage at the item's speed; each sleeper's peak ballast force per axle from the
-  run's per-sleeper ballast-force histories (:func:`peak_ballast_forces`);
+  dynamic passage at the item's speed; each sleeper's peak ballast force per axle
+  (:func:`peak_ballast_forces`): one wheel, the run's envelope along the track
+  (``Result.support_envelope``, on a fixed rail or a travelling window); several axles, the
+  per-support ballast-force histories of a fixed rail (``simulate(..., support_forces=True)``),
+  each sample given to the axle nearest the sleeper;
 - ``"static"``: the wheel (or each wheel of the vehicle in turn) standing still right above
   each sleeper, the peak the static ballast force under it: the fixed-load estimate of linear
   spring tools, without inertia (no dynamic factor).
@@ -16,11 +19,14 @@ returns a :class:`PassageForces`. Two ways to run it (``PassageTask.fidelity``):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ...run import statics
+from ...run.defaults import default_settings
+from ...run.results import sample_bytes
 from ...run.simulate import TIME_DOMAIN_LEVELS, simulate
 from ...scene import Scene
 
@@ -28,6 +34,13 @@ from ...scene import Scene
 STATIC_LEVEL = "static"
 #: every way :func:`run_passage` runs a passage
 PASSAGE_LEVELS = TIME_DOMAIN_LEVELS + (STATIC_LEVEL,)
+#: the travel of the wheels between two kept samples of a dynamic passage, a fraction of the
+#: sleeper spacing [-]: the peak's relative error from sampling is about (dx / L)^2 / 8 for a
+#: force bump of length L ~ d_s, 3e-6 at d_s / 200 (a few time steps at 200 km/h)
+SAMPLE_TRAVEL = 1.0 / 200.0
+#: the most memory the per-support histories of a several-axle passage may take [bytes]: a
+#: longer rail keeps fewer samples (output_every grows) rather than more memory
+HISTORY_BYTES = 256 * 2**20
 
 
 @dataclass(frozen=True)
@@ -100,33 +113,59 @@ def run_passage(task: PassageTask) -> PassageForces:
     if task.fidelity == STATIC_LEVEL:
         peaks = static_peaks(scene, sleepers)
         return PassageForces(peaks, loads, loads, loads)
+    several = loads.size > 1
+    kwargs = dict(task.simulate_kwargs)
+    kwargs.setdefault("output_every", passage_output_every(task, several))
     result = simulate(scene, task.speed, fidelity=task.fidelity, x_start=task.x_start,
-                      x_end=task.x_end, progress=False, **task.simulate_kwargs)
+                      x_end=task.x_end, progress=False, support_forces=several, **kwargs)
     force = np.asarray(result.normal_force, dtype=float).reshape(len(result.t), -1)
     return PassageForces(peak_ballast_forces(result, scene, sleepers), force.max(axis=0),
                          force.min(axis=0), loads)
 
 
+def passage_output_every(task: PassageTask, several: bool) -> int:
+    """The passage's ``output_every``: a kept sample every SAMPLE_TRAVEL x d_s of travel (the
+    envelope and the histories resolve each sleeper's peak), or, for several axles (the
+    per-support histories, 24 bytes per support and sample), as many samples as fit in
+    HISTORY_BYTES if fewer."""
+    scene = task.scene
+    dt = task.simulate_kwargs.get("dt")
+    if dt is None:
+        dt = default_settings(scene)["dt"]
+    travel = max(task.speed * float(dt), 1e-300)
+    every = max(1, int(SAMPLE_TRAVEL * scene.supports.spacing / travel))
+    if several:
+        n_steps = (task.x_end - task.x_start) / travel
+        per_sample = (sample_bytes(False) * len(scene.active_vehicle.positions)
+                      + sample_bytes(False, len(scene.support_positions)) - sample_bytes(False))
+        every = max(every, math.ceil(n_steps * per_sample / HISTORY_BYTES))
+    return every
+
+
 def peak_ballast_forces(result, scene: Scene, sleepers) -> np.ndarray:
     """Each sleeper's peak ballast force per axle in a passage, (n_axles, n_sleepers) [N]
-    (compression positive): of the samples in which axle i is the axle nearest sleeper j, the
-    largest ballast force on sleeper j. ``sleepers``: the sleepers' positions X_j [m].
+    (compression positive): of the kept samples in which axle i is the axle nearest sleeper j,
+    the largest ballast force on sleeper j. ``sleepers``: the sleepers' positions X_j [m].
 
-    Needs the run's per-sleeper ballast-force histories (``result.ballast_force``, one column
-    per support of the rail); a run without them raises a RuntimeError naming the way out.
+    One axle: the run's envelope along the track (``result.support_envelope``, every run keeps
+    it, on a travelling window too). Several: the per-support histories
+    (``result.ballast_force``, a run with ``support_forces=True`` on a fixed rail); a run
+    without them raises a ValueError naming the way out.
     """
+    sleepers = np.asarray(sleepers, dtype=float)
+    offsets = np.asarray(scene.active_vehicle.positions, dtype=float)
+    if offsets.size == 1:
+        env = result.support_envelope
+        columns = _columns(np.asarray(env["x"], dtype=float), sleepers)
+        return np.asarray(env["ballast_force_max"], dtype=float)[columns][None, :]
     history = getattr(result, "ballast_force", None)
     if history is None:
-        raise RuntimeError("this trackwheel's simulate does not record the per-sleeper "
-                           "ballast forces the settlement loop needs from a dynamic passage; "
-                           "run settle(..., fidelity='static') (the fixed-load estimate)")
-    positions = np.asarray(scene.support_positions, dtype=float)
-    columns = _columns(positions, np.asarray(sleepers, dtype=float))
-    offsets = np.asarray(scene.active_vehicle.positions, dtype=float)
+        raise ValueError("the per-axle peaks of a several-axle vehicle need the per-support "
+                         "ballast forces: simulate(..., support_forces=True) on a fixed rail")
+    columns = _columns(np.asarray(scene.support_positions, dtype=float), sleepers)
     x_wheels = np.asarray(result.x_wheel, dtype=float).reshape(len(result.t), -1)
     x_ref = x_wheels[:, 0] - offsets[0]
-    return axle_peaks(x_ref, offsets, np.asarray(sleepers, dtype=float),
-                      np.asarray(history, dtype=float)[:, columns])
+    return axle_peaks(x_ref, offsets, sleepers, np.asarray(history, dtype=float)[:, columns])
 
 
 def axle_peaks(x_ref: np.ndarray, offsets: np.ndarray, sleepers: np.ndarray,

@@ -83,6 +83,10 @@ def setup(scene, traffic, cycles, law, stages, increment, feedback, datum, fidel
     v.boolean("feedback", feedback)
     v.choice("datum", datum, DATUMS)
     v.choice("fidelity", fidelity, PASSAGE_LEVELS)
+    if feedback and scene.window is not None:
+        raise ValueError("feedback=True needs a fixed rail: a travelling window cannot carry "
+                         "the settled bed's voids (a void belongs to one sleeper); use "
+                         "feedback=False (the open-loop estimate) or a fixed rail")
     item_scenes = tuple(item.scene(scene) for item in traffic.items)
     x_range = tuple(_x_range(s, x_start, x_end) for s in item_scenes)
     supports = np.asarray(scene.support_positions, dtype=float)
