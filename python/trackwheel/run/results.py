@@ -75,8 +75,9 @@ STATIC_FIELDS: tuple[Quantity, ...] = (
     Quantity("sleeper_z", "m", "layered supports: sleeper heights z_j (negative = down), one "
              "per support; else empty", "np.ndarray", factory=lambda: np.empty(0)),
     Quantity("ballast_force", "N", "layered supports: ballast force under each sleeper, "
-             "-k_b z_j (positive = compression); their sum is the wheel loads plus the weight "
-             "of rail and sleepers on them; else empty", "np.ndarray",
+             "-k_b z_j, or k_b max(0, -z_j - g_j) over a void or on tensionless ballast (positive "
+             "= compression); their sum is the wheel loads plus the weight of rail and sleepers "
+             "on them; else empty", "np.ndarray",
              factory=lambda: np.empty(0)),
 )
 #: the kernel's key of a static field where it differs from the field's name
