@@ -19,7 +19,7 @@ import numpy as np
 from ..base import validate as v
 from .analysis import analyse
 from .columns import ADEQUACY_COLUMNS, HEADLINE, SPEED, SPEED_KMH
-from ..run.defaults import MAX_SPEED, default_settings
+from ..run.defaults import MAX_SPEED, default_settings, pinned_pinned_frequencies
 from ..excitation import contact_half_width, filter_attenuation, filter_matters
 from ..scene import Scene, Vehicle
 from ..run.periodic import PeriodicResponse, periodic_response
@@ -240,21 +240,6 @@ def vehicle_adequacy(scene: Scene, speeds=(100 / 3.6, 300 / 3.6), *, tol: float 
     df.attrs["tol"] = tol
     df.attrs["recommended"] = next((n for n in VEHICLE_LEVELS if ok.get(n, False)), full)
     return df
-
-
-def pinned_pinned_frequencies(scene: Scene) -> tuple[float, float]:
-    """(Euler-Bernoulli, Timoshenko) pinned-pinned frequency [Hz] of one support span d_s:
-    (pi/(2 d_s^2)) sqrt(EI/m), and the lower root of the Timoshenko frequency equation with
-    k = pi/d_s (docs: Model, section "Shear-deformable rail (Timoshenko)")."""
-    r, d = scene.rail, scene.supports.spacing
-    k = math.pi / d
-    kg = r.shear_coefficient * r.modulus_of_rigidity
-    a = r.rotary_inertia * r.density / kg
-    b = r.mass_per_length + r.rotary_inertia * k**2 + r.bending_stiffness * k**2 * r.density / kg
-    c = r.bending_stiffness * k**4
-    f_t = math.sqrt((b - math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a)) / (2.0 * math.pi)
-    f_e = math.pi / (2.0 * d * d) * math.sqrt(r.bending_stiffness / r.mass_per_length)
-    return f_e, f_t
 
 
 def shear_judgement(scene: Scene, speeds, *, tol: float = 0.005, **simulate_kwargs) -> dict:

@@ -10,7 +10,7 @@ import numpy as np
 
 from ...run import frequency
 from ...scene import Scene
-from ...study.fidelity import pinned_pinned_frequencies
+from ...run.defaults import pinned_pinned_frequencies
 from ..checks import option_error, output_options
 from ..formatting import frequency_elements, save_figure, write_csv
 from ..options import damping_options, finite_float, mesh_option, positive_int, track_option
