@@ -240,12 +240,10 @@ double series_static_approach(ContactLaw law, double k, double G, double P) {
 
 namespace {
 
-// contact_force with the element's compliance in series (contact.hpp).
-ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint& pt,
-                                     const Vec10& qdot, bool want_jacobian, double radius_rate) {
-  ContactForce out;
-  out.compliant = true;
-  Mat10 H;
+// The part of contact_force both laws share: the distance's derivatives (its Hessian into H
+// when want_jacobian), the approach delta = rho0 + Delta rho - rho and an inactive force.
+void start_contact_force(const ContactParams& cp, const ContactPoint& pt, bool want_jacobian,
+                         ContactForce& out, Mat10& H) {
   distance_derivatives(pt, out.grad_rho, want_jacobian ? &H : nullptr);
   out.delta = cp.radius - pt.rho;
   out.compression = out.delta;
@@ -254,6 +252,15 @@ ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint
   out.C.setZero();
   out.dNe_dq.setZero();
   out.ddeflection_dq.setZero();
+}
+
+// contact_force with the element's compliance in series (contact.hpp).
+ContactForce compliant_contact_force(const ContactParams& cp, const ContactPoint& pt,
+                                     const Vec10& qdot, bool want_jacobian, double radius_rate) {
+  ContactForce out;
+  out.compliant = true;
+  Mat10 H;
+  start_contact_force(cp, pt, want_jacobian, out, H);
   if (out.delta <= 0.0) return out;
   const ElementCompliance& g = pt.compliance;
   const SeriesForce sf = series_normal_force(cp.law, cp.stiffness, g.G, out.delta);
@@ -291,14 +298,7 @@ ContactForce contact_force(const ContactParams& cp, const ContactPoint& pt, cons
     return compliant_contact_force(cp, pt, qdot, want_jacobian, radius_rate);
   ContactForce out;
   Mat10 H;
-  distance_derivatives(pt, out.grad_rho, want_jacobian ? &H : nullptr);
-  out.delta = cp.radius - pt.rho;
-  out.compression = out.delta;
-  out.F.setZero();
-  out.K.setZero();
-  out.C.setZero();
-  out.dNe_dq.setZero();
-  out.ddeflection_dq.setZero();
+  start_contact_force(cp, pt, want_jacobian, out, H);
   if (out.delta <= 0.0) return out;
   double dNe;  // derivative of the elastic force with respect to delta
   const double Ne = elastic_normal_force(cp.law, cp.stiffness, out.delta, dNe);

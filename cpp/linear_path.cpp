@@ -40,12 +40,8 @@ void LinearStepper::stream_supports(SupportFeed& feed) {
 
 bool LinearStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   if (!win_.active()) return false;
-  double rear = sys_.x_at(0, t1);
-  for (int w = 1; w < sys_.n_wheels(); ++w) rear = std::min(rear, sys_.x_at(w, t1));
-  double origin = sys_.origin();
   const long first = win_.first();
-  const bool moved = win_.follow(rear, origin, st_, accs);
-  sys_.set_origin(origin);
+  const bool moved = win_.follow_wheels(sys_, t1, st_, accs);
   if (moved) sys_.drop_cached_columns();
   if (moved) sys_.shift_ballast(static_cast<int>(win_.first() - first));
   return moved;

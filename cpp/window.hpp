@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <functional>
 #include <initializer_list>
 #include <utility>
@@ -107,6 +108,17 @@ class WindowFollower {
   // True if it moved; changed: whether a support's properties changed.
   bool follow(double rear_x, double& origin, SimState& st, std::initializer_list<Accel*> accs,
               bool* changed = nullptr);
+  // follow() for the workspace sys (System or LinearSystem) at time t [s]: its rearmost wheel
+  // and its origin, moved with the window.
+  template <class Sys>
+  bool follow_wheels(Sys& sys, double t, SimState& st, std::initializer_list<Accel*> accs) {
+    double rear = sys.x_at(0, t);
+    for (int w = 1; w < sys.n_wheels(); ++w) rear = std::min(rear, sys.x_at(w, t));
+    double origin = sys.origin();
+    const bool moved = follow(rear, origin, st, accs);
+    sys.set_origin(origin);
+    return moved;
+  }
 
  private:
   WindowShift shift_;
