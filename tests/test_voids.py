@@ -21,6 +21,7 @@ import dataclasses as dc
 
 import numpy as np
 import pytest
+from test_system import central_difference_error
 
 import trackwheel as tw
 from trackwheel import _core
@@ -201,13 +202,7 @@ def test_iteration_matrix_with_open_and_closed_sleepers_matches_central_differen
     nf, ns = model.n_free, len(closed)
     h = np.full(len(x0), 1e3)
     h[nf + 2] = 1.0  # lambda [N]
-    cols = []
-    for i in range(len(x0)):
-        xp, xm = x0.copy(), x0.copy()
-        xp[i] += h[i]
-        xm[i] -= h[i]
-        cols.append(-(R(xp)["residual"] - R(xm)["residual"]) / (2.0 * h[i]))
-    err = np.max(np.abs(J - np.stack(cols, axis=1)), axis=0) / np.max(np.abs(J), axis=0)
+    err = central_difference_error(R, x0, J, h)
     assert np.max(err) < 1e-6, (int(np.argmax(err)), float(np.max(err)))
     # the open sleeper's diagonal lacks the closed ones' beta' h^2 k_b + gamma' h c_b
     dz = np.diag(J)[-ns:]
