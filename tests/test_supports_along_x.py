@@ -271,6 +271,24 @@ def test_a_sweep_keeps_a_stiffness_that_varies_and_tabulates_functions(tmp_path)
     assert '"stiffness": [' in record.read_text()
 
 
+def test_the_command_line_table_says_along_x_for_a_stiffness_that_varies(tmp_path, capsys):
+    """The CLI's sweep table prints "along X", not the column's NaN, for the scene's own
+    supports, and the largest ballast force (kN) and its X when the sweep measured one."""
+    from trackwheel.cli.commands.sweep import _print_sweep
+
+    base = tw.Scene.ballasted_track(12.0)
+    scene = dc.replace(base, supports=base.supports.transition(
+        6.0, stiffness=(120e6, 180e6), ballast_stiffness=(50e6, 200e6)))
+    df = tw.sweep(scene, [tw.kmh(100)], store=tmp_path, max_workers=1, progress=False,
+                  fidelity="linear/hertz")
+    _print_sweep(df, tmp_path, "smooth")
+    out = capsys.readouterr().out
+    header, row = out.splitlines()[1:3]
+    assert "along X" in row and "nan" not in row
+    assert "max F_b [kN]" in header
+    assert f"{df['max_ballast_force_N'].iloc[0] / 1e3:.2f}" in row
+
+
 # ---------------------------------------------------------------------------------------------
 # statics of a stiffness step against an independent linear finite-element track
 def fe_track(scene: tw.Scene, x_load: float, load: float, *, max_element: float = 0.075):

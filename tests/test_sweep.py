@@ -268,6 +268,30 @@ def test_a_store_written_before_the_columns_carried_units_is_read(tmp_path, coun
         tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
 
 
+def test_a_store_written_before_the_support_force_columns_is_read(tmp_path, counted):
+    """Format-4 records (no support-force columns) resume without a run, NaN in those columns
+    and every other column as computed."""
+    from trackwheel.study.sweep import store as records_module
+
+    store = tmp_path / "s"
+    first = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    added = list(records_module.ADDED_IN_5)
+    assert first[added].notna().all().all()  # computed today (single springs: the spring's)
+    for p in records(store):
+        rec = json.loads(p.read_text())
+        rec.pop("checksum")
+        rec["format_version"] = 4
+        rec["row"] = {k: val for k, val in rec["row"].items() if k not in added}
+        rec["checksum"] = hashlib.sha256(records_module.canonical(rec)).hexdigest()
+        p.write_text(json.dumps(rec))
+    n_runs = len(counted)
+    again = tw.sweep(SCENE, SPEEDS, STIFF, max_workers=1, store=store, progress=False, **KW)
+    assert again.attrs["computed"] == 0 and len(counted) == n_runs
+    assert again[added].isna().all().all()
+    pd.testing.assert_frame_equal(again.drop(columns=added), first.drop(columns=added),
+                                  check_exact=True)
+
+
 def test_the_sweep_documents_every_column():
     """The column table is the sweep's docs: every column with its unit in the docstring."""
     for c in sweep_mod.COLUMNS:

@@ -357,4 +357,28 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
         acc_contact=one.acc_contact, acc_A=one.acc_A, acc_B=one.acc_B,
         acc_C=one.acc_C, acc_D=one.acc_D, acc_E=one.acc_E,
         slide_duration=float(np.sum(one.sliding)) * dt,
-        locked_duration=float(np.sum(one.locked)) * dt, forces=forces)
+        locked_duration=float(np.sum(one.locked)) * dt, forces=forces,
+        **support_peaks(result, float(x[0]), float(x[-1])))
+
+
+def support_peaks(result: Result, x_from: float, x_to: float) -> dict:
+    """The largest ballast and rail-seat forces [N] over the run at the supports standing in
+    [x_from, x_to] [m] (the wheel's measured stretch: the start-up and the rail's ends left
+    out as they are for the wheel), and the X [m] of the ballast's; NaN where no support
+    stands there. From the run's envelope along the track (``Result.support_envelope``),
+    which every run keeps, on a fixed rail and on a travelling window alike."""
+    env = result.support_envelope
+    nan = {"max_ballast_force": math.nan, "max_ballast_force_x": math.nan,
+           "max_rail_seat_force": math.nan}
+    if env is None:
+        return nan
+    X = np.asarray(env["x"], dtype=float)
+    tiny = 1e-9 * max(1.0, abs(x_to))
+    inside = np.flatnonzero((X >= x_from - tiny) & (X <= x_to + tiny))
+    if inside.size == 0:
+        return nan
+    fb = np.asarray(env["ballast_force_max"], dtype=float)[inside]
+    k = int(np.argmax(fb))
+    return {"max_ballast_force": float(fb[k]), "max_ballast_force_x": float(X[inside[k]]),
+            "max_rail_seat_force": float(np.max(np.asarray(env["rail_seat_force_max"],
+                                                           dtype=float)[inside]))}

@@ -40,6 +40,16 @@ OUTPUTS: tuple[Quantity, ...] = (
     Quantity("p1_time", "s", "time of P1"),
     Quantity("p2", "N", "P2, the later, lower-frequency peak of N after the joint"),
     Quantity("p2_time", "s", "time of P2"),
+    Quantity("max_ballast_force", "N", "the largest ballast force (compression positive) under "
+             "any sleeper standing in the wheel's measured stretch of X, over the run (every "
+             "wheel's load on it, on a vehicle; single springs: the spring's force; NaN: no "
+             "support in the stretch)", symbol="max F_b", display=("kN", 1e-3)),
+    Quantity("max_ballast_force_x", "m", "X of the sleeper that carried max_ballast_force",
+             symbol="at X"),
+    Quantity("max_rail_seat_force", "N", "the largest rail-seat (pad) force (compression "
+             "positive) at any support standing in the wheel's measured stretch of X, over the "
+             "run",
+             symbol="max F_p", display=("kN", 1e-3)),
 )
 _OUT = by_name(OUTPUTS)
 
@@ -83,6 +93,9 @@ ANALYSIS_FIELDS: tuple[Quantity, ...] = (
              "brake beyond adhesion; it slides meanwhile)"),
     Quantity("forces", "", "the contact-force statistics of N "
              "(trackwheel.force_statistics.force_statistics)", "ForceStatistics"),
+    _OUT["max_ballast_force"],
+    _OUT["max_ballast_force_x"],
+    _OUT["max_rail_seat_force"],
 )
 
 
@@ -167,6 +180,9 @@ PERIODIC_OUTPUTS: dict[str, str | None] = {
     "p1_time": None,
     "p2": None,
     "p2_time": None,
+    "max_ballast_force": None,  # no support forces in the steady state's outputs
+    "max_ballast_force_x": None,
+    "max_rail_seat_force": None,
 }
 #: the columns of the sweep table that hold floats (NaN where a case failed)
 FLOAT_COLUMNS: tuple[str, ...] = tuple(c.label for c in SWEEP_COLUMNS if c.dtype == "float64")

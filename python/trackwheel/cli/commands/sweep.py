@@ -64,6 +64,7 @@ _ROW = ((_OUT["amplitude"], ">14.3f"), (_OUT["main_frequency"], ">11.1f"),
         (_OUT["frequency_resolution"], ">6.1f"))
 _N_MIN, _N_MAX, _FACTOR, _LOST = (_OUT[n] for n in ("min_contact_force", "max_contact_force",
                                                      "dynamic_factor", "lost_contact"))
+_FB, _FB_X = _OUT["max_ballast_force"], _OUT["max_ballast_force_x"]
 _SEED, _ERROR, _SPEED = (label(n) for n in ("seed", "error", "speed"))
 
 
@@ -78,13 +79,15 @@ def _print_sweep(df, store: Path, excitation: str, track: str | None = None) -> 
               f"{auto['sample_speed'] * 3.6:g} km/h, "
               + ("the scene's supports)" if k is None else f"{k / 1e6:g} MN/m)"))
     seeded = bool(df[_SEED].notna().any())
+    ballast = bool(df[_FB.label].notna().any())
     n_range = f"{_N_MAX.symbol} min..max [{_N_MAX.display[0]}]"
     print("  ".join(f"{q.header:>{_width(fmt)}}" for q, fmt in _TABLE) + "  "
           + ("seed  " if seeded else "")
           + "  ".join(f"{q.header:>{_width(fmt)}}" for q, fmt in _ROW)
-          + f"  {n_range:>15}  {_FACTOR.header:>6}  {_LOST.header}  error")
+          + f"  {n_range:>15}  {_FACTOR.header:>6}  {_LOST.header}"
+          + (f"  {_FB.header:>13}  {_FB_X.header:>9}" if ballast else "") + "  error")
     for _, row in df.iterrows():
-        head = ("  ".join(f"{q.shown(row[q.label]):{fmt}}" for q, fmt in _TABLE) + "  "
+        head = ("  ".join(_cell(q, row[q.label], fmt) for q, fmt in _TABLE) + "  "
                 + (f"{row[_SEED]:>4}  " if seeded else ""))
         if row[_ERROR]:
             print(f"{head}{row[_ERROR]}")
@@ -92,11 +95,21 @@ def _print_sweep(df, store: Path, excitation: str, track: str | None = None) -> 
         print(head + "  ".join(f"{q.shown(row[q.label]):{fmt}}" for q, fmt in _ROW)
               + f"  {_N_MIN.shown(row[_N_MIN.label]):>6.2f}.."
               f"{_N_MAX.shown(row[_N_MAX.label]):<7.2f}  "
-              f"{row[_FACTOR.label]:>6.3f}  {'yes' if row[_LOST.label] else 'no':>4}")
+              f"{row[_FACTOR.label]:>6.3f}  {'yes' if row[_LOST.label] else 'no':>4}"
+              + (f"  {_FB.shown(row[_FB.label]):>13.2f}  {row[_FB_X.label]:>9.2f}"
+                 if ballast else ""))
     if seeded and (df[_ERROR] == "").any():
         _print_seed_summary(df)
     print(f"{len(df)} cases: {df.attrs.get('computed', 0)} computed, "
           f"{df.attrs.get('from_store', 0)} from the store {store}")
+
+
+def _cell(q, value, fmt: str) -> str:
+    """A case axis' cell: the value in the displayed unit, or "along X" for a support stiffness
+    the scene varies along the track (the table's NaN there)."""
+    if q is SUPPORT_STIFFNESS and value != value:
+        return f"{'along X':>{_width(fmt)}}"
+    return f"{q.shown(value):{fmt}}"
 
 
 def _width(fmt: str) -> int:

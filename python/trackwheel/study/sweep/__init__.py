@@ -39,10 +39,12 @@ written with ``repr`` so they round-trip exactly) of ::
      "simulate": {the simulate keyword arguments given to sweep},
      "version": trackwheel.__version__}
 
-The file holds ``{"format": "trackwheel.sweep.case", "format_version": 4, "inputs_hash": <full
+The file holds ``{"format": "trackwheel.sweep.case", "format_version": 5, "inputs_hash": <full
 hash>, "inputs": {...}, "row": {column: value}, "checksum": <SHA-256 of the canonical JSON of
-everything but the checksum>}``; NaN and inf are written as ``null``. Records of format 3 (the
-same, with the columns named without their units) are read too, their columns renamed. Each
+everything but the checksum>}``; NaN and inf are written as ``null``. Records of format 4
+(written before the support-force columns ``max_ballast_force_N``, ``max_ballast_force_x_m``,
+``max_rail_seat_force_N``) are read with NaN in those, and records of format 3 (also with the
+columns named without their units) are read with their columns renamed. Each
 record is written to a temporary file in the same directory, flushed to disk and renamed over
 the final name (``os.replace``, atomic on POSIX and Windows), by the process that runs the
 sweep, as soon as its case completes; so an interrupted sweep (Ctrl-C, a crashed worker, a

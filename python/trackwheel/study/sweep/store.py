@@ -1,9 +1,10 @@
 """The sweep store: one JSON record per finished case, so that a sweep resumes (the format is
 described in :mod:`trackwheel.study.sweep`).
 
-Records of format 4 hold their row by the sweep table's column names (with units); records of
-format 3, written before the columns carried their units, are read and their rows renamed, so
-an older store keeps resuming; any other format is recomputed.
+Records of format 5 hold their row by the sweep table's column names (with units); records of
+format 4, written before the support-force columns, are read with NaN there, and those of
+format 3, written before the columns carried their units, also have their rows renamed, so an
+older store keeps resuming; any other format is recomputed.
 """
 
 from __future__ import annotations
@@ -31,9 +32,12 @@ if TYPE_CHECKING:  # pandas is imported when a table is built: keeps `import tra
 
 FORMAT = "trackwheel.sweep.case"
 #: 2: the seed axis and the contact-force columns; 3: the vehicle's ``wheel`` column and
-#: per-wheel ``wheels`` outputs; 4: the columns named with their units. Older records than 3
-#: are recomputed.
-FORMAT_VERSION = 4
+#: per-wheel ``wheels`` outputs; 4: the columns named with their units; 5: the support-force
+#: columns. Older records than 3 are recomputed.
+FORMAT_VERSION = 5
+#: the columns format 5 added: NaN in the rows of older records
+ADDED_IN_5 = tuple(label(n) for n in ("max_ballast_force", "max_ballast_force_x",
+                                      "max_rail_seat_force"))
 #: format 3's column names -> format 4's (the same rows otherwise)
 RENAMED = {old_name(c): c.label for c in SWEEP_COLUMNS}
 
@@ -118,7 +122,7 @@ def read_record(path: Path) -> tuple[dict | None, str]:
     if not isinstance(payload, dict) or payload.get("format") != FORMAT:
         return None, "not a trackwheel sweep record"
     version = payload.get("format_version")
-    if version not in (3, FORMAT_VERSION):
+    if version not in (3, 4, FORMAT_VERSION):
         return None, f"format version {version!r} != {FORMAT_VERSION}"
     checksum = payload.pop("checksum", None)
     if checksum != hashlib.sha256(canonical(payload)).hexdigest():
@@ -130,9 +134,19 @@ def read_record(path: Path) -> tuple[dict | None, str]:
         return None, "inputs hash mismatch"
     if version == 3:
         payload["row"] = row = _renamed(row)
+    if version in (3, 4):
+        payload["row"] = row = _with_added(row)
     if set(row) - {"wheels"} != set(COLUMNS) - {label("worst")}:
         return None, "wrong columns"
     return payload, ""
+
+
+def _with_added(row: dict) -> dict:
+    """A row of format 3 or 4 with format 5's new columns (None: NaN, not computed then)."""
+    out = {**row, **{c: row.get(c) for c in ADDED_IN_5}}
+    if out.get("wheels"):
+        out["wheels"] = [{**w, **{c: w.get(c) for c in ADDED_IN_5}} for w in out["wheels"]]
+    return out
 
 
 def _renamed(row: dict) -> dict:
