@@ -97,12 +97,13 @@ void finish(const RailModel& rail, const Eigen::VectorXd& e, const Eigen::Vector
 // A unilateral ballast is an active set: each iteration sets the sleepers' states at its iterate
 // (the first keeps those of the start, closed where a sleeper touches its bed) and takes the
 // exact Jacobian of that state; converged when the correction is small and no state changed
-// (a sleeper flipping back and forth is frozen after Sleepers::kMaxFlips flips).
-std::vector<StaticResult> newton_static(const RailModel& rail,
-                                        const std::vector<const WheelParams*>& wheels,
-                                        const std::vector<ContactParams>& contacts,
-                                        const std::vector<double>& xs, Eigen::VectorXd e,
-                                        std::vector<double> ys) {
+// (a sleeper flipping back and forth is frozen after Sleepers::kMaxFlips flips). closed_start:
+// every sleeper starts closed instead (see newton_static).
+std::vector<StaticResult> newton_from(const RailModel& rail,
+                                      const std::vector<const WheelParams*>& wheels,
+                                      const std::vector<ContactParams>& contacts,
+                                      const std::vector<double>& xs, Eigen::VectorXd e,
+                                      std::vector<double> ys, bool closed_start) {
   const int nf = rail.n_free();
   const int m = static_cast<int>(wheels.size());
   StaticSystem sys(nf, m);
@@ -118,7 +119,10 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
   std::vector<int> identity(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
   Eigen::VectorXd z = sl.static_z(e), rs, dz;
-  sl.init_states(z);
+  if (closed_start)
+    sl.init_states(Eigen::VectorXd::Constant(sl.size(), -std::numeric_limits<double>::infinity()));
+  else
+    sl.init_states(z);
   sl.begin_step();
   for (int it = 0; it < 60; ++it) {
     const int changed = it > 0 ? sl.update_states(z, nullptr) : 0;
@@ -165,6 +169,27 @@ std::vector<StaticResult> newton_static(const RailModel& rail,
   msg << "static solve did not converge in 60 Newton iterations (x_wheel = "
       << (xs.empty() ? 0.0 : xs[0]) << " m)";
   throw std::runtime_error(msg.str());
+}
+
+// newton_from with the states at rest; if that fails on a track with unilateral ballast, again
+// from every sleeper closed (the intact track's stiffness). From the unloaded rail the states at
+// rest leave the voided sleepers under a wheel open, and where several neighbours hang the first
+// correction of a rail carried by no ballast there overshoots far (the wheel then misses the
+// rail); the closed start's first iterate is the intact track's, and the sleepers that hang at
+// the solution open in the next ones. The problem is convex but for the rail's small geometric
+// nonlinearity, so both starts converge to the same state; the states at rest are tried first
+// so that every solve that converged from them stays as it was.
+std::vector<StaticResult> newton_static(const RailModel& rail,
+                                        const std::vector<const WheelParams*>& wheels,
+                                        const std::vector<ContactParams>& contacts,
+                                        const std::vector<double>& xs, const Eigen::VectorXd& e,
+                                        const std::vector<double>& ys) {
+  try {
+    return newton_from(rail, wheels, contacts, xs, e, ys, false);
+  } catch (const std::runtime_error&) {
+    if (!rail.supports().any_unilateral()) throw;
+  }
+  return newton_from(rail, wheels, contacts, xs, e, ys, true);
 }
 
 // Y_A of a wheel just touching the rail below, pressed in by its static load; the contact is
