@@ -79,12 +79,23 @@ class Sato(CurveLaw):
 
     Sato, Y. (1995), Japanese studies on deterioration of ballasted track, Vehicle System
     Dynamics 24 (sup1), 197-208 (there y = gamma (1 - e^(-alpha x)) + beta x; here a, b, c). The
-    coefficients are fits to a site's measurements; none are built in. They hold at the peak
-    ballast force ``reference_force`` F0 and scale with the peak force F of a cycle:
+    coefficients hold at the peak ballast force ``reference_force`` F0 and scale with the peak
+    force F of a cycle:
     ``c(F) = c (F/F0)^load_exponent`` (Sato's settlement rate grows with the load) and
     ``a(F) = a (F/F0)^compaction_exponent``; the default exponents 1 make the whole curve
     proportional to the load, so that an unloaded sleeper does not settle; 0 makes a term
     independent of the load. ``hardening``: how a varying load accumulates (module docstring).
+
+    No defaults (a, b, c and F0 are required): the coefficients are fits to one site's or one
+    test's settlement, and a default would need published values together with the peak
+    ballast force under one sleeper at which they hold (or the track and load data to compute
+    it). None of the sources consulted gives them in that form: of the reviews of Dahlberg
+    (Railway track settlements - a literature review, SUPERTRACK report, Linkoping 2004) and
+    Abadi et al. (2016, Procedia Engineering 143, 999-1006) only the openings, without
+    coefficient values, were at hand, and ROSE (Deltares' settlement tool) takes Sato's three
+    coefficients as required arguments, without a load dependence. Fit a, b, c to settlement
+    against cycles measured at a known peak ballast force F0 (a box test, an instrumented
+    sleeper).
     """
 
     #: a, initial compaction at F0 [m], in [0, 1]
@@ -156,11 +167,17 @@ class Shenton(CurveLaw):
     """Shenton (1985): ``S(N) = k1 N^0.2 + k2 N``, with k1, k2 proportional to the load.
 
     Shenton, M. J. (1985), Ballast deformation and track deterioration, in Track Technology
-    (Proc. Conf. Univ. Nottingham 1984), Thomas Telford, London, 253-265. k1 and k2 are fits to
-    a line's measurements; none are built in. They hold at the peak ballast force
-    ``reference_force`` F0 and scale as ``(F/F0)^load_exponent`` (1: proportional to the load,
-    as Shenton found; the first term dominates below about 10^6 cycles). ``exponent`` is
-    Shenton's 0.2. ``hardening``: how a varying load accumulates (module docstring).
+    (Proc. Conf. Univ. Nottingham 1984), Thomas Telford, London, 253-265. k1 and k2 hold at the
+    peak ballast force ``reference_force`` F0 and scale as ``(F/F0)^load_exponent`` (1:
+    proportional to the load, as Shenton found; the first term dominates below about 10^6
+    cycles). ``exponent`` is Shenton's 0.2. ``hardening``: how a varying load accumulates
+    (module docstring).
+
+    No defaults (k1, k2 and F0 are required), for the reason given under :class:`Sato`: k1 and
+    k2 are fits to a line's or a test's measurements, and no source consulted gives values
+    together with the peak ballast force per sleeper they hold at (ROSE's Shenton model also
+    takes k1, k2 as required arguments). Fit them to settlement against cycles measured at a
+    known peak ballast force F0.
     """
 
     #: k1, the settlement after the first cycle at F0 [m], in [0, 1]
