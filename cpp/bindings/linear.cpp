@@ -2,6 +2,7 @@
 // track (the GIL released while the kernel runs) and the linear track's quasi-static line.
 #include "common.hpp"
 #include "linear_track.hpp"
+#include "static_line.hpp"
 
 namespace trackwheel::bindings {
 
@@ -47,6 +48,12 @@ void bind_linear(py::module_& m) {
         "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
         "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; "
         "element_compliance: the element's own deflection under the load G(X_i) P included.");
+  m.def("linear_static_line_selected", &linear_static_line_selected, py::arg("rail"),
+        py::arg("beam"), py::arg("load"), py::arg("x"), py::arg("element_compliance") = false,
+        py::call_guard<py::gil_scoped_release>(),
+        "linear_static_line in all coordinates from the selected inverse of K (the entries of "
+        "K^-1 within its band): O(1) per position after one factorisation; a unilateral "
+        "ballast falls back to a solve per position.");
 }
 
 }  // namespace trackwheel::bindings

@@ -169,11 +169,32 @@ def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = Non
     """
     _check_scene(scene)
     x = v.positions("positions", positions, 0.0, scene.rail.length)
+    if n_modes is None:
+        return linear_line_of(scene, static_rail(scene, n_elements), scene.static_load, x)
     model = kernel.rail_model(scene, mesh(scene, n_elements))
-    modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
+    modes = v.integer("n_modes", n_modes, low=1)
     return np.asarray(_core.linear_static_line(model, kernel.beam_params(scene),
                                                scene.static_load, x.tolist(), modes,
                                                kernel.element_compliance(scene)))
+
+
+def static_rail(scene: Scene, n_elements: int | None = None,
+                support_origin: float = 0.0) -> _core.RailModel:
+    """The kernel's rail of ``scene`` for the linear track's statics, which do not read the
+    rail profile: without it (building a random profile's table would cost more than the
+    line), its supports the track's at X = ``support_origin`` + x [m]."""
+    return _core.RailModel(kernel.rail_params(scene, mesh(scene, n_elements)),
+                           kernel.support_params(scene, support_origin), _core.Profile())
+
+
+def linear_line_of(scene: Scene, model, load: float, x: np.ndarray) -> np.ndarray:
+    """The linear track's static line [m] in all its coordinates on the kernel rail ``model``
+    under ``load`` [N] at the rail coordinates ``x`` [m]: y(X) = s(X) . q_g - P s(X)^T K^-1 s(X)
+    from the entries of K^-1 within its band (the selected inverse, one O(n) pass), O(1) per
+    position; with a unilateral ballast a solve per position (an active set under each load)."""
+    return np.asarray(_core.linear_static_line_selected(
+        model, kernel.beam_params(scene), load, np.asarray(x, dtype=float).tolist(),
+        kernel.element_compliance(scene)))
 
 
 def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -> np.ndarray:
@@ -188,13 +209,12 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     rear, front = veh.span
     x_ref = v.positions("x_ref", x_ref, -rear, scene.rail.length - front)
     loads = veh.static_loads(scene.gravity)
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    model = static_rail(scene, n_elements)
     beam = kernel.beam_params(scene)
     X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
     y = np.empty_like(X)
     for i in range(veh.n_wheels):
-        y[:, i] = _core.linear_static_line(model, beam, loads[i], X[:, i].tolist(), 0,
-                                                  kernel.element_compliance(scene))
+        y[:, i] = linear_line_of(scene, model, loads[i], X[:, i])
     for k in range(X.shape[0]):
         alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
                                             [0.0])).real.reshape(veh.n_wheels, veh.n_wheels)

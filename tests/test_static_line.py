@@ -1,0 +1,222 @@
+"""The quasi-static line ``analyse`` measures from (docs: Model § Outputs), on long rails and on
+the travelling window over supports that vary along X.
+
+Checks: the linear track's line from the selected inverse of K (the entries of K^-1 within its
+band, O(1) per position) equals a band solve per position (the independent route it replaced)
+to round-off on every kind of track; the selected inverse equals the dense inverse within the
+band; on a window over a stiffness transition and a scattered bed the line is the window's own
+statics where the run's window stands (a run starts on it: d(0) = 0), it follows a long fixed
+rail's statics within the window's truncation, and the periodic mapping it replaced is far off
+there; the line is bit-identical whatever was cached before.
+"""
+
+from __future__ import annotations
+
+import dataclasses as dc
+
+import numpy as np
+import pytest
+
+import trackwheel as tw
+from trackwheel import _core
+from trackwheel.run import kernel
+from trackwheel.run.statics import linear_line_of, static_rail
+from trackwheel.study import static_line
+
+#: Round-off bound of the line against the deflection: the static flexibility s^T K^-1 s comes
+#: from the same band LU by two routes (a solve per position, the Takahashi recurrence), each
+#: backward stable, so they differ by a small multiple of cond(K) eps in the flexibility, and
+#: the flexibility's error is damped into y by the own-weight part; measured <= 8.3e-15 on the
+#: tracks below. 1e-12 leaves a margin of 100 and is 1e-4 of the line's documented error
+#: (1e-8 of the deflection).
+ROUND_OFF = 1e-12
+
+
+def _transition(scene: tw.Scene, at: float) -> tw.Scene:
+    """The scene with a cosine ballast-stiffness transition 50 -> 200 MN/m over 3 m at X = at
+    and a lognormal scatter (cv 0.3) per sleeper on it."""
+    sup = scene.supports.transition(at, ramp=3.0, shape="cosine",
+                                    ballast_stiffness=(50e6, 200e6)).scattered(0.3, seed=1)
+    return dc.replace(scene, supports=sup)
+
+
+def _points(scene: tw.Scene, lo: float, hi: float, n: int = 301) -> np.ndarray:
+    return np.linspace(lo, hi, n)
+
+
+TRACKS = {
+    "paper (single springs)": lambda: tw.Scene.kato2005(),
+    "ballasted 60 m (pads, sleepers, ballast)": lambda: tw.Scene.ballasted_track(length=60.0),
+    "ballasted, Timoshenko rail": lambda: dc.replace(
+        tw.Scene.ballasted_track(length=30.0),
+        rail=dc.replace(tw.Scene.ballasted_track(length=30.0).rail, beam="timoshenko")),
+    "ballasted, transition and scatter": lambda: _transition(
+        tw.Scene.ballasted_track(length=60.0), 30.0),
+}
+
+
+@pytest.mark.parametrize("name", list(TRACKS))
+def test_selected_inverse_line_equals_a_solve_per_position(name):
+    """y(X) = s . q_g - P s^T K^-1 s from the band of K^-1 against K^-1 s solved at each X
+    (``_core.linear_static_line``, the line as it was computed before): equal to round-off,
+    element compliance included, over the whole rail (its rigid ends too)."""
+    scene = TRACKS[name]()
+    ne = scene.rail.n_elements
+    x = _points(scene, 0.0, scene.rail.length, 997)
+    for compliance in (False, True):
+        ref = np.asarray(_core.linear_static_line(
+            kernel.rail_model(scene, ne), kernel.beam_params(scene), scene.static_load,
+            x.tolist(), 0, compliance))
+        got = np.asarray(_core.linear_static_line_selected(
+            static_rail(scene, ne), kernel.beam_params(scene), scene.static_load, x.tolist(),
+            compliance))
+        deflection = np.max(np.abs(ref))
+        assert np.max(np.abs(got - ref)) < ROUND_OFF * deflection
+
+
+def test_flexibility_from_the_selected_inverse_is_the_receptance_at_0_hz():
+    """s^T K^-1 s from the band of K^-1 (the line's load-proportional part: y(0) - y(1 N))
+    against the track's receptance at 0 Hz (``_core.receptance``, the frequency-domain solve),
+    at nodes and inside elements of the paper's rail (well conditioned: to 1e-10)."""
+    scene = dc.replace(tw.Scene.kato2005(), rail=dc.replace(tw.Scene.kato2005().rail,
+                                                            n_elements=10))
+    model = static_rail(scene)
+    beam = kernel.beam_params(scene)
+    x = np.linspace(0.0, scene.rail.length, 41)
+    flex = (np.asarray(_core.linear_static_line_selected(model, beam, 0.0, x.tolist()))
+            - np.asarray(_core.linear_static_line_selected(model, beam, 1.0, x.tolist())))
+    alpha = np.array([np.asarray(_core.receptance(model, beam, [xi], [xi], [0.0])).real.ravel()[0]
+                      for xi in x])
+    assert np.max(alpha) > 1e-9
+    assert np.allclose(flex, alpha, rtol=1e-10, atol=1e-12 * np.max(alpha))
+
+
+def test_a_unilateral_ballast_falls_back_to_the_active_set():
+    """A tensionless bed has no superposition: the selected-inverse binding solves the active
+    set per position, as linear_static_line does (equal exactly: the same solves)."""
+    scene = tw.Scene.ballasted_track(length=18.0)
+    scene = dc.replace(scene, supports=dc.replace(scene.supports, ballast_tensionless=True))
+    x = np.linspace(6.0, 12.0, 25).tolist()
+    ne = scene.rail.n_elements
+    a = np.asarray(_core.linear_static_line(kernel.rail_model(scene, ne),
+                                            kernel.beam_params(scene), scene.static_load, x, 0,
+                                            False))
+    b = np.asarray(_core.linear_static_line_selected(static_rail(scene, ne),
+                                                     kernel.beam_params(scene),
+                                                     scene.static_load, x, False))
+    assert np.array_equal(a, b)
+
+
+def test_linear_quasi_static_series_matches_direct_solves_on_a_long_rail():
+    """analyse's line (the Chebyshev series of 8 points per element) on a 120 m ballasted rail,
+    against direct static solves at random positions: within the documented 1e-8 of the
+    deflection (the series is exact to round-off for the degree-6 polynomial it represents)."""
+    scene = tw.Scene.ballasted_track(length=120.0)
+    ne = scene.rail.n_elements
+    x = np.sort(np.random.default_rng(5).uniform(10.0, 110.0, 200))
+    y, err = static_line.quasi_static_line(scene, ne, x, linear=True)
+    ref = np.asarray(_core.linear_static_line(kernel.rail_model(scene, ne),
+                                              kernel.beam_params(scene), scene.static_load,
+                                              x.tolist(), 0, kernel.element_compliance(scene)))
+    deflection = np.max(np.abs(ref))
+    assert err < 1e-8 * deflection
+    assert np.max(np.abs(y - ref)) < 1e-8 * deflection
+
+
+# --------------------------------------------------------------------------------------------
+# the travelling window over supports that vary along X
+@pytest.fixture(scope="module")
+def windowed():
+    """The ballasted preset on its default window (20 + 1 + 20 bays) over a transition at
+    X = 30 m with scatter, and the same track on a fixed 90 m rail."""
+    base = tw.Scene.ballasted_track(window=tw.Window())
+    fixed = tw.Scene.ballasted_track(length=90.0)
+    return _transition(base, 30.0), _transition(fixed, 30.0)
+
+
+def _window_direct(scene: tw.Scene, x: np.ndarray, linear: bool) -> np.ndarray:
+    """The static line at each X solved directly on the window's rail as the run has it with
+    its wheel at X: origin X_w = (floor(X / d) - bays_behind) d, supports the track's at
+    X_w + x_j, the wheel at X - X_w."""
+    d, nb = scene.supports.spacing, scene.window.bays_behind
+    out = []
+    for xi in x:
+        origin = (np.floor(xi / d + 1e-9) - nb) * d
+        model = kernel.rail_model(scene, scene.rail.n_elements, support_origin=origin)
+        if linear:
+            out.append(_core.linear_static_line(model, kernel.beam_params(scene),
+                                                scene.static_load, [xi - origin], 0,
+                                                kernel.element_compliance(scene))[0])
+        else:
+            out.append(_core.static_solve(model, kernel.wheel_params(scene),
+                                          kernel.contact_params(scene), xi - origin)
+                       ["y_contact"])
+    return np.asarray(out)
+
+
+@pytest.mark.parametrize("linear", [True, False], ids=["linear", "ancf"])
+def test_window_line_over_a_transition_is_the_windows_own_statics(windowed, linear):
+    """Bay by bay on the window's rail where the run's window stands: equal to a direct static
+    solve there at positions across the transition, within the documented 1e-8 of the
+    deflection (measured: 3.7e-15 linear, 2.5e-10 ANCF, whose series estimates its own error
+    at 3.1e-9 here: the nonlinear line is not exactly the degree-6 polynomial)."""
+    scene, _ = windowed
+    x = np.sort(np.random.default_rng(2).uniform(27.0, 33.0, 40 if linear else 12))
+    y, err = static_line.quasi_static_line(scene, scene.rail.n_elements, x, linear=linear)
+    ref = _window_direct(scene, x, linear)
+    deflection = np.max(np.abs(ref))
+    assert err < 1e-8 * deflection
+    assert np.max(np.abs(y - ref)) < 1e-8 * deflection + 1e-12
+
+
+def test_window_line_follows_the_fixed_rail_and_the_periodic_one_did_not(windowed):
+    """Across the transition the window's line is a long fixed rail's statics to the window's
+    truncation (its rigid ends 20 bays = 12 m from the wheel: measured 1.1e-8 of the
+    deflection, bound 1e-7), while the periodic mapping it replaced (every X read in the
+    window's own bay at the start's supports) is off by the change of the track's stiffness:
+    measured 54 % of the deflection on this 4x stiffening, asserted > 2 %."""
+    scene, fixed = windowed
+    x = np.linspace(25.0, 35.0, 101)
+    y, _ = static_line.quasi_static_line(scene, scene.rail.n_elements, x, linear=True)
+    ref = tw.linear_quasi_static(fixed, x)
+    deflection = np.max(np.abs(ref))
+    assert np.max(np.abs(y - ref)) < 1e-7 * deflection
+    old = tw.linear_quasi_static(scene, static_line.in_window(scene, x))
+    assert np.max(np.abs(old - ref)) > 0.02 * deflection
+
+
+def test_a_linear_window_run_over_a_transition_starts_on_its_line(windowed):
+    """A linear run on the window starts in static equilibrium on the window's rail where it
+    stands: its d(0) is 0 to round-off (measured <= 2e-14 of y_qs), at starts on either side
+    of the transition and on it."""
+    scene, _ = windowed
+    for x0 in (27.3, 29.95, 31.4):
+        r = tw.simulate(scene, tw.kmh(100), x_start=x0, distance=0.3, fidelity="linear/hertz",
+                        progress=False)
+        a = tw.analyse(r, measure="run")
+        assert abs(a.dynamic[0]) < 1e-9 * abs(a.y_qs[0])
+
+
+def test_window_line_is_bit_identical_whatever_was_cached(windowed):
+    """The same X give the same bits whether the bays were solved for them alone, for a
+    longer passage before, or with the cache cleared."""
+    scene, _ = windowed
+    ne = scene.rail.n_elements
+    x = np.linspace(28.0, 31.0, 57)
+    static_line.window_bay_series.cache_clear()
+    a, _ = static_line.quasi_static_line(scene, ne, x, linear=True)
+    static_line.window_bay_series.cache_clear()
+    static_line.quasi_static_line(scene, ne, np.linspace(20.0, 40.0, 500), linear=True)
+    b, _ = static_line.quasi_static_line(scene, ne, x, linear=True)
+    assert np.array_equal(a, b)
+
+
+def test_linear_line_at_a_position_does_not_depend_on_the_others():
+    """Each position's value comes from the same band of K^-1 whatever else is asked for, so
+    a series solved for a short range or inside a long one holds the same bits."""
+    scene = tw.Scene.ballasted_track(length=30.0)
+    model = static_rail(scene)
+    x = np.linspace(5.0, 25.0, 401)
+    alone = linear_line_of(scene, model, scene.static_load, x[100:110])
+    inside = linear_line_of(scene, static_rail(scene), scene.static_load, x)
+    assert np.array_equal(alone, inside[100:110])
