@@ -12,6 +12,7 @@ run's window stands then, its supports those of the track there (:func:`window_b
 
 from __future__ import annotations
 
+import dataclasses as dc
 import math
 from functools import lru_cache
 
@@ -20,13 +21,15 @@ from numpy.polynomial import chebyshev
 
 from .. import _core
 from ..run import kernel
+from ..run import profile as rail_profile
+from ..run.stretch import END_DECAY, end_clearance
 from ..run.statics import (linear_line_of, linear_quasi_static, linear_vehicle_line,
                            quasi_static, static_rail, vehicle_static)
 from ..scene import Scene
 
 __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_breakpoints",
            "vehicle_qs_series", "vehicle_quasi_static_line", "window_bay_series",
-           "window_reference"]
+           "window_reference", "PIECE_DECAY", "piece_bays", "piece_bay_series"]
 
 #: Degree of the polynomial that represents the quasi-static line inside each rail element.
 #: With the wheel at X, the static contact-point displacement is, to within the geometric
@@ -41,6 +44,15 @@ __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_
 #: as many solves for an error of 2e-11 m. Each analysis reports an estimate of its own error,
 #: |c_7| + |c_8| of the Chebyshev coefficients (``Analysis.y_qs_error``, ~1e-12 m here).
 QS_DEGREE = 8
+
+#: The ANCF line (the full level) on a long fixed rail is solved bay by bay on a piece of the
+#: rail around the wheel's bay (:func:`piece_bay_series`), far enough either side that the
+#: piece's rigid ends change the static deflection under the wheel by about this fraction of it
+#: [-]: a load's bowl on the track decays as exp(-beta x), beta = (k_f / 4 EI)^(1/4), so the
+#: piece reaches ln(1 / PIECE_DECAY) / beta beyond the bay. Measured against the whole rail
+#: (benchmarks/static_line.py): 1.7e-9 of the deflection at beta x = 17 on the ballasted preset,
+#: 4e-10 at 35 (the static solver's tolerance); the line's budget is 1e-8.
+PIECE_DECAY = 1e-9
 
 def _lobatto_points(a: np.ndarray, w: np.ndarray) -> np.ndarray:
     """The QS_DEGREE + 1 Chebyshev-Lobatto points of each interval [a_i, a_i + w_i] [m], the
@@ -80,6 +92,95 @@ def qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
     else:
         y = quasi_static(scene, x, n_elements=n_elements).y_contact
     return _series(y, n_el)
+
+
+def piece_bays(scene: Scene, n_elements: int) -> int:
+    """B: the ANCF line of a fixed rail is solved for each bay on the piece of the rail B bays
+    either side of it (:data:`PIECE_DECAY`), or 0 to solve it on the whole rail: a rail no
+    longer than such a piece (the paper's 5 m), a travelling window, supports at given
+    positions or given one value per support (they number the rail's supports, not places on
+    the track), a pinned far end (the piece's far end would hold the rail axially where the
+    rail does not), or a mesh that is not whole elements per bay."""
+    if (scene.window is not None or scene.supports.positions is not None
+            or scene.rail.far_end != "roller"
+            or any(isinstance(getattr(scene.supports, name), tuple)
+                   for name in kernel.STREAMED_PROPERTIES)):
+        return 0
+    d, L = scene.supports.spacing, scene.rail.length
+    n_bays = round(L / d)
+    if abs(n_bays * d - L) > 1e-9 * L or n_elements % n_bays:
+        return 0
+    beta = math.log(1.0 / END_DECAY) / end_clearance(scene)
+    if not math.isfinite(beta) or beta <= 0.0:
+        return 0
+    bays = math.ceil(math.log(1.0 / PIECE_DECAY) / beta / d)
+    return bays if 2 * bays + 1 < n_bays else 0
+
+
+@lru_cache(maxsize=4)
+def _profile_table(scene: Scene):
+    """The rail profile's spline table over the whole rail, (x0 [m], h [m], c (4, n)), as
+    :func:`trackwheel.run.profile.rail_profile` builds it for the rail, or None without one;
+    the pieces take their part of it."""
+    irr = scene.irregularity
+    if irr is None or not irr.parts:
+        return None
+    dx = min(rail_profile.PROFILE_DX,
+             irr.shortest_wavelength() / rail_profile.PROFILE_POINTS_PER_WAVELENGTH)
+    L = scene.rail.length
+    if scene.contact.patch_filter:
+        x0, h, c, _, _ = rail_profile._filtered_table(
+            irr, L, dx, rail_profile.contact_half_width(scene))
+    else:
+        x0, h, c, _, _ = rail_profile.spline_table(irr, 0.0, L, dx)
+    return x0, h, c
+
+
+def _piece_profile(scene: Scene, origin: float, length: float) -> _core.Profile:
+    """The rail profile over [origin, origin + length] [m] of the track, in the piece's rail
+    coordinate x = X - origin (the whole rail's spline, its intervals there)."""
+    table = _profile_table(scene)
+    if table is None:
+        return _core.Profile()
+    x0, h, c = table
+    i0 = max(0, math.floor((origin - x0) / h) - 2)
+    i1 = min(c.shape[1], math.ceil((origin + length - x0) / h) + 2)
+    return _core.Profile(x0 + i0 * h - origin, h, np.ascontiguousarray(c[:, i0:i1]))
+
+
+@lru_cache(maxsize=1024)
+def piece_bay_series(scene: Scene, n_elements: int, bay: int, bays: int):
+    """Chebyshev series of the ANCF line over bay ``bay`` [-] of a long fixed rail, solved on
+    the piece of the rail ``bays`` bays either side of it (at the rail's near end the piece's
+    end is the rail's): its supports, profile and mesh those of the rail there, its ends rigid
+    as the rail's. O(1) per bay in the rail's length; the last ``bays`` bays on the whole rail.
+    Cached per (scene, mesh, bay) and computed the same way whatever asked for it. Returns
+    (coefficients (QS_DEGREE + 1, elements per bay) [m], error estimate [m])."""
+    d = scene.supports.spacing
+    n_bays = round(scene.rail.length / d)
+    epb = n_elements // n_bays
+    le = scene.rail.length / n_elements
+    width = 2 * bays + 1
+    if bay + bays >= n_bays:
+        # a piece that reaches the rail's far end (a roller: the rail slides there, held
+        # axially only at its near end) would hold it stiffer: where the rigid end's bowl is
+        # steep, the contact force's horizontal part then moves the contact point differently
+        # (measured 9e-7 of the deflection in the last metre). These ``bays`` bays are
+        # solved on the whole rail in one warm-started sweep: O(L) together.
+        e0 = (n_bays - bays) * epb
+        coef, err = qs_series(scene, n_elements, e0, n_elements, False)
+        j = (bay - (n_bays - bays)) * epb
+        return coef[:, j:j + epb], err
+    first = max(bay - bays, 0)
+    origin = first * d
+    piece = dc.replace(scene, rail=dc.replace(scene.rail, length=width * d,
+                                              n_elements=width * epb, absorbing_ends=None))
+    model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
+                            _piece_profile(scene, origin, width * d))
+    x = _lobatto_points(((bay - first) * epb + np.arange(epb)) * le, np.full(epb, le))
+    y = np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
+                                      kernel.contact_params(piece), x.tolist())["y_contact"])
+    return _series(y, epb)
 
 
 def _streams(scene: Scene) -> bool:
@@ -133,20 +234,21 @@ def in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
     return scene.window.bays_behind * d + np.mod(x, d)
 
 
-def _window_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool):
-    """y_qs [m] at X = ``x`` [m] on a travelling window over supports that vary along X, bay by
-    bay (:func:`window_bay_series`), and the largest error estimate [m]."""
-    d = scene.supports.spacing
-    nb = scene.window.bays_behind
-    epb = n_elements // round(scene.rail.length / d)
+def _bay_line(scene: Scene, n_elements: int, x: np.ndarray, series):
+    """y_qs [m] at X = ``x`` [m] bay by bay, ``series(bay)`` the (coefficients, error) of the
+    bay's elements, and the largest error estimate [m]."""
+    n_bays = round(scene.rail.length / scene.supports.spacing)
+    epb = n_elements // n_bays
     le = scene.rail.length / n_elements
     bay = _bay(scene, x)
+    if scene.window is None:  # X = L is the last bay's end
+        bay = np.clip(bay, 0, n_bays - 1)
     y = np.empty_like(x)
     err = 0.0
     for b in np.unique(bay):
         at = bay == b
-        coef, e = window_bay_series(scene, n_elements, int(b), linear)
-        s = (x[at] - (b - nb) * d) / le - nb * epb  # elements into the bay
+        coef, e = series(int(b))
+        s = x[at] / le - b * epb  # elements into the bay
         k = np.clip(np.floor(s).astype(np.int64), 0, epb - 1)
         t = np.clip(2.0 * (s - k) - 1.0, -1.0, 1.0)
         y[at] = chebyshev.chebval(t, coef[:, k], tensor=False)
@@ -158,7 +260,12 @@ def quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool
     """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
     x = np.asarray(x, dtype=float)
     if _streams(scene):
-        return _window_line(scene, n_elements, x, linear)
+        return _bay_line(scene, n_elements, x,
+                         lambda b: window_bay_series(scene, n_elements, b, linear))
+    bays = 0 if linear else piece_bays(scene, n_elements)
+    if bays:
+        return _bay_line(scene, n_elements, x,
+                         lambda b: piece_bay_series(scene, n_elements, b, bays))
     x = in_window(scene, x)
     le = scene.rail.length / n_elements
     e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
