@@ -10,9 +10,11 @@ rail (every element: 8 n_el + 1 positions):
     pass, then O(1) per position: O(L)). Both on the same points in the same process, the
     cases alternated, the median of --repeats; the largest difference of the two lines against
     the static deflection. "line" also times the whole of ``qs_series`` (the fit included).
-(b) the ANCF line (the full level, ``trackwheel.quasi_static``, warm-started Newton per
-    position over the whole rail): the cost per position against L (O(n) each), on 32
-    positions mid-rail, and the passage's cost as 8 n_el + 1 times that.
+(b) the ANCF line (the full level): before, a warm-started Newton per position on the whole
+    rail (O(n) each: O(L^2) per passage); now, bay by bay on a piece of the rail B bays either
+    side (``static_line.piece_bays``; the last B bays on the whole rail): O(L). Whole passages
+    timed up to --whole-passage-up-to; longer ones from the measured cost per position (32
+    positions mid-rail) and per bay (one piece).
 (c) what a windowed ANCF solve would cost in accuracy: the ANCF line at 17 points of the middle
     bay of a 60 m rail solved on a piece of the rail B bays either side of that bay (its ends
     rigid, as the rail's), against the whole rail, for B = 5 .. 40.
@@ -100,21 +102,51 @@ def linear_rows(lengths, repeats: int) -> list[dict]:
     return rows
 
 
-def ancf_rows(lengths, repeats: int) -> list[dict]:
+def ancf_rows(lengths, repeats: int, whole_passage_up_to: float) -> list[dict]:
+    """The full level's line: before, the whole rail per position; now, pieces per bay (and
+    the last B bays on the whole rail). Whole passages timed up to ``whole_passage_up_to`` m;
+    beyond, the passage's cost from the measured cost per position (whole rail) and per bay
+    (piece): before = c_pos (8 n_el + 1), now = c_bay (n_bays - B) + c_pos 8 epb B."""
     rows = []
     for L in lengths:
         scene = tw.Scene.ballasted_track(length=L)
+        ne = scene.rail.n_elements
+        n_bays = round(L / scene.supports.spacing)
+        epb = ne // n_bays
+        bays = static_line.piece_bays(scene, ne)
         x = 0.5 * L + np.linspace(0.0, 1.2, 32)
         tw.quasi_static(scene, x[:2])  # the model built and cached
-        wall, _ = timed(lambda: tw.quasi_static(scene, x), max(1, repeats // 2))
-        per = wall / x.size
-        n_pos = 8 * scene.rail.n_elements + 1
-        rows.append(dict(part="b", length_m=L, n_elements=scene.rail.n_elements,
-                         positions=n_pos, before_s=per * n_pos, after_s=np.nan, line_s=np.nan,
-                         ratio=np.nan, max_diff_rel=np.nan, bays=np.nan,
-                         ancf_per_position_ms=per * 1e3))
-        print(f"ANCF line, L = {L:6.1f} m: {per * 1e3:.3f} ms per position; a passage over the "
-              f"rail ({n_pos} positions) {per * n_pos:.1f} s")
+        per_pos, _ = timed(lambda: tw.quasi_static(scene, x), max(1, repeats // 2))
+        per_pos /= x.size
+        mid = n_bays // 2
+
+        def one_bay(b=mid):
+            static_line.piece_bay_series.cache_clear()
+            return static_line.piece_bay_series(scene, ne, b, bays)
+
+        per_bay = timed(one_bay, max(1, repeats // 2))[0] if bays else np.nan
+        n_pos = 8 * ne + 1
+        before = per_pos * n_pos
+        after = (per_bay * (n_bays - bays) + per_pos * 8 * epb * bays) if bays else before
+        measured = L <= whole_passage_up_to
+        if measured:  # the whole passage, both routes
+            xs = passage_points(scene)
+            static_line.qs_series.cache_clear()
+            t0 = time.perf_counter()
+            static_line.qs_series(scene, ne, 0, ne, False)
+            before = time.perf_counter() - t0
+            static_line.qs_series.cache_clear()
+            static_line.piece_bay_series.cache_clear()
+            t0 = time.perf_counter()
+            static_line.quasi_static_line(scene, ne, xs)
+            after = time.perf_counter() - t0
+        rows.append(dict(part="b", length_m=L, n_elements=ne, positions=n_pos, before_s=before,
+                         after_s=after, line_s=np.nan, ratio=before / after,
+                         max_diff_rel=np.nan, bays=bays, ancf_per_position_ms=per_pos * 1e3))
+        print(f"ANCF line, L = {L:6.1f} m, B = {bays}: {per_pos * 1e3:.3f} ms per position on "
+              f"the whole rail, {per_bay * 1e3:.1f} ms per bay on a piece; a passage over the "
+              f"rail ({n_pos} positions) {before:.1f} s -> {after:.1f} s "
+              f"({'measured' if measured else 'from the costs per position and per bay'})")
     return rows
 
 
@@ -153,12 +185,15 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--lengths", type=float, nargs="*", default=LENGTHS)
-    ap.add_argument("--ancf-lengths", type=float, nargs="*", default=(25.2, 50.4, 100.2, 199.8))
+    ap.add_argument("--ancf-lengths", type=float, nargs="*", default=LENGTHS)
     ap.add_argument("--bays", type=int, nargs="*", default=(5, 10, 20, 30, 40))
+    ap.add_argument("--whole-passage-up-to", type=float, default=60.0,
+                    help="time the full level's whole passage on rails up to this long [m]")
     args = ap.parse_args(argv)
     print(f"trackwheel {tw.__version__}, {platform.processor() or platform.machine()}, "
           f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")
-    rows = (linear_rows(args.lengths, args.repeats) + ancf_rows(args.ancf_lengths, args.repeats)
+    rows = (linear_rows(args.lengths, args.repeats) + ancf_rows(args.ancf_lengths, args.repeats,
+                                                                  args.whole_passage_up_to)
             + window_rows(args.bays))
     print(f"load average at the end {os.getloadavg()[0]:.1f}")
     write_csv("static_line.csv", rows)
