@@ -19,13 +19,25 @@
 
 namespace trackwheel {
 
-// The entries of A^-1 within the band of A (|i - j| <= b), A symmetric, from lu, A's in-place
-// band LU without pivoting (BandMatrix::factorize). For symmetric A the LU is A = L D L^T with
-// U = D L^T, and Z = A^-1 = U^-1 L^-1 satisfies U Z = L^-1, whose upper triangle gives
-//   Z_ij = (delta_ij - sum_{k = i+1}^{i+b} U_ik Z_kj) / U_ii   for i <= j <= i + b,
-// every Z_kj on the right inside the band (Z_kj = Z_jk for k > j); rows from the last to the
-// first, in each row j from i + b down to i. Returns Z in the same band storage (both halves).
-BandMatrix band_selected_inverse(const BandMatrix& lu);
+// The entries Z_ij = (A^-1)_ij with |i - j| <= m of a symmetric band matrix A of half bandwidth
+// b <= m, from lu, A's in-place band LU without pivoting (BandMatrix::factorize). For symmetric
+// A the LU is A = L D L^T with U = D L^T, and Z = A^-1 = U^-1 L^-1 satisfies U Z = L^-1, whose
+// upper triangle gives
+//   Z_ij = (delta_ij - sum_{k = i+1}^{i+b} U_ik Z_kj) / U_ii   for i <= j <= i + m,
+// every Z_kj on the right within distance m of the diagonal (Z_kj = Z_jk for k > j): rows from
+// the last to the first, in each row j from i + m down to i (Takahashi, Fagan & Chin 1973;
+// Erisman & Tinney 1975). O(n m b) operations, O(n m) memory.
+class BandInverse {
+ public:
+  BandInverse(const BandMatrix& lu, int m);
+  int width() const { return m_; }
+  bool covers(int i, int j) const { return i - j <= m_ && j - i <= m_; }
+  double at(int i, int j) const { return i <= j ? up_(j - i, i) : up_(i - j, j); }
+
+ private:
+  int m_;
+  Eigen::MatrixXd up_;  // (m + 1) x n: up_(j - i, i) = Z_ij, j >= i
+};
 
 // The quasi-static line of the linear track in all its coordinates, as linear_static_line with
 // n_modes = 0 (same arguments and result, equal to rounding), in O(1) per position after an
@@ -34,5 +46,16 @@ BandMatrix band_selected_inverse(const BandMatrix& lu);
 Eigen::VectorXd linear_static_line_selected(const RailModel& rail, const BeamParams& beam,
                                             double load, const std::vector<double>& x,
                                             bool element_compliance = false);
+
+// The linear track's static flexibility between pairs of positions, s(xa_k)^T K^-1 s(xb_k)
+// [m/N] for each k (K with the sleepers condensed at rest, as linear_static_line's; the
+// receptance at 0 Hz): from the entries of K^-1 within the largest coordinate distance of a
+// pair (BandInverse), O(n m) once and O(1) per pair; where that band would hold more than
+// kMaxInverseEntries entries, one band solve per pair instead.
+Eigen::VectorXd linear_static_flexibility(const RailModel& rail, const BeamParams& beam,
+                                          const std::vector<double>& xa,
+                                          const std::vector<double>& xb);
+
+constexpr double kMaxInverseEntries = 2e7;  // 160 MB of doubles
 
 }  // namespace trackwheel

@@ -283,3 +283,63 @@ def test_ancf_pieces_are_bit_identical_whatever_was_cached():
     static_line.quasi_static_line(scene, ne, np.linspace(8.0, 12.0, 40))
     b, _ = static_line.quasi_static_line(scene, ne, x)
     assert np.array_equal(a, b)
+
+
+# --------------------------------------------------------------------------------------------
+# a vehicle's line: the static flexibility between its wheels
+def _receptance_0(scene: tw.Scene, model, xa, xb) -> np.ndarray:
+    beam = kernel.beam_params(scene)
+    return np.array([np.asarray(_core.receptance(model, beam, [b], [a], [0.0])).real.ravel()[0]
+                     for a, b in zip(xa, xb)])
+
+
+@pytest.mark.parametrize("name", ["paper (single springs)",
+                                  "ballasted 60 m (pads, sleepers, ballast)",
+                                  "ballasted, transition and scatter"])
+def test_static_flexibility_between_wheels_is_the_receptance_at_0_hz(name):
+    """s(X_a)^T K^-1 s(X_b) from the entries of K^-1 within the pairs' span against the
+    receptance at 0 Hz (a pivoted complex band solve per force): pairs 0 .. 2.6 m apart, at
+    nodes and inside elements, to round-off (1e-10 of the point flexibility)."""
+    scene = TRACKS[name]()
+    L = scene.rail.length
+    rng = np.random.default_rng(4)
+    xa = rng.uniform(0.1 * L, 0.6 * L, 20)
+    xb = np.minimum(xa + rng.uniform(0.0, min(2.6, 0.3 * L), 20), L)
+    model = static_rail(scene)
+    got = np.asarray(_core.linear_static_flexibility(model, kernel.beam_params(scene),
+                                                     xa.tolist(), xb.tolist()))
+    ref = _receptance_0(scene, model, xa, xb)
+    scale = np.max(np.abs(_receptance_0(scene, model, xa, xa)))
+    assert np.max(np.abs(got - ref)) < 1e-10 * scale
+
+
+def test_static_flexibility_too_wide_to_hold_solves_per_pair():
+    """Pairs 30 m apart on a 500 m rail of 10 000 elements would need 2.4e7 entries of K^-1
+    (more than kMaxInverseEntries): a band solve per pair instead, the same numbers."""
+    base = tw.Scene.kato2005()
+    scene = dc.replace(base, rail=dc.replace(base.rail, length=500.0, n_elements=10000))
+    model = static_rail(scene)
+    xa, xb = [200.01, 240.3], [230.02, 210.1]
+    got = np.asarray(_core.linear_static_flexibility(model, kernel.beam_params(scene), xa, xb))
+    ref = _receptance_0(scene, model, xa, xb)
+    assert np.max(np.abs(got - ref)) < 1e-10 * np.max(np.abs(ref)) + 1e-22
+
+
+def test_vehicle_line_on_a_long_rail_is_the_superposition():
+    """A bogie's wheels' line on the linear 60 m ballasted track: each wheel's own line minus
+    its neighbour's load times the static flexibility, against the receptance route it
+    replaced, to round-off of the deflection."""
+    scene = dc.replace(tw.Scene.ballasted_track(length=60.0), vehicle=tw.Vehicle.bogie())
+    x_ref = np.linspace(10.0, 40.0, 61)
+    y = tw.run.statics.linear_vehicle_line(scene, x_ref)
+    veh = scene.active_vehicle
+    loads = veh.static_loads(scene.gravity)
+    model = static_rail(scene)
+    X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
+    ref = np.empty_like(X)
+    for i in range(veh.n_wheels):
+        ref[:, i] = linear_line_of(scene, model, loads[i], X[:, i])
+        for j in range(veh.n_wheels):
+            if j != i:
+                ref[:, i] -= loads[j] * _receptance_0(scene, model, X[:, i], X[:, j])
+    assert np.max(np.abs(y - ref)) < ROUND_OFF * np.max(np.abs(ref))

@@ -54,6 +54,11 @@ void bind_linear(py::module_& m) {
         "linear_static_line in all coordinates from the selected inverse of K (the entries of "
         "K^-1 within its band): O(1) per position after one factorisation; a unilateral "
         "ballast falls back to a solve per position.");
+  m.def("linear_static_flexibility", &linear_static_flexibility, py::arg("rail"), py::arg("beam"),
+        py::arg("xa"), py::arg("xb"), py::call_guard<py::gil_scoped_release>(),
+        "The linear track's static flexibility s(xa_k)^T K^-1 s(xb_k) [m/N] for each pair k "
+        "(the receptance at 0 Hz), from the entries of K^-1 within the pairs' largest "
+        "coordinate distance: O(1) per pair after one pass over the rail.");
 }
 
 }  // namespace trackwheel::bindings

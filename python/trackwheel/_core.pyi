@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import typing
 import types
-__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'ENVELOPE_FIELDS', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SUPPORT_FIELDS', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_line', 'linear_static_line_selected', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'ENVELOPE_FIELDS', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SUPPORT_FIELDS', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_flexibility', 'linear_static_line', 'linear_static_line_selected', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
 class RailParams:
     exact_curvature: bool
     pin_far_end: bool
@@ -1039,6 +1039,10 @@ def explicit_stability_limit(arg0: typing.SupportsFloat | typing.SupportsIndex) 
 def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
+    """
+def linear_static_flexibility(rail: RailModel, beam: BeamParams, xa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], xb: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    The linear track's static flexibility s(xa_k)^T K^-1 s(xb_k) [m/N] for each pair k (the receptance at 0 Hz), from the entries of K^-1 within the pairs' largest coordinate distance: O(1) per pair after one pass over the rail.
     """
 def linear_static_line(rail: RailModel, beam: BeamParams, load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """

@@ -203,7 +203,9 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     point at each of ``x_ref`` [m], every wheel under its lever-rule load: the linear track's
     statics superpose, so it is the wheel's own line under its load P_i minus
     sum_j P_j alpha_0(X_i, X_j) over the other wheels, alpha_0 the track's static flexibility
-    (the receptance at 0 Hz of the same linear track)."""
+    (the receptance at 0 Hz of the same linear track), from the entries of K^-1 within the
+    vehicle's span (O(1) per position after one pass over the rail; a unilateral bed takes
+    the receptance position by position)."""
     _check_scene(scene)
     veh = scene.active_vehicle
     rear, front = veh.span
@@ -215,10 +217,23 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     y = np.empty_like(X)
     for i in range(veh.n_wheels):
         y[:, i] = linear_line_of(scene, model, loads[i], X[:, i])
-    for k in range(X.shape[0]):
-        alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
-                                            [0.0])).real.reshape(veh.n_wheels, veh.n_wheels)
-        # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
-        for i in range(veh.n_wheels):
-            y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(veh.n_wheels) if j != i)
+    nw = veh.n_wheels
+    if scene.supports.unilateral:  # the receptance's bilateral bed, position by position
+        for k in range(X.shape[0]):
+            alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
+                                                [0.0])).real.reshape(nw, nw)
+            # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
+            for i in range(nw):
+                y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(nw) if j != i)
+        return y
+    # the same flexibility from the entries of K^-1 within the vehicle's span: O(1) a pair
+    pairs = [(i, j) for i in range(nw) for j in range(nw) if j != i]
+    if not pairs:
+        return y
+    xa = np.concatenate([X[:, i] for i, _ in pairs])
+    xb = np.concatenate([X[:, j] for _, j in pairs])
+    flex = np.asarray(_core.linear_static_flexibility(model, beam, xa.tolist(), xb.tolist()))
+    flex = flex.reshape(len(pairs), X.shape[0])
+    for i in range(nw):
+        y[:, i] -= sum(loads[j] * flex[p] for p, (a, j) in enumerate(pairs) if a == i)
     return y
