@@ -343,3 +343,19 @@ def test_vehicle_line_on_a_long_rail_is_the_superposition():
             if j != i:
                 ref[:, i] -= loads[j] * _receptance_0(scene, model, X[:, i], X[:, j])
     assert np.max(np.abs(y - ref)) < ROUND_OFF * np.max(np.abs(ref))
+
+
+@pytest.mark.parametrize("vehicle", [None, "bogie"])
+def test_an_asymmetric_window_measures_from_its_own_bay(vehicle):
+    """The run holds its (rear) wheel in the window's bay ``bays_behind``, not in the middle
+    bay: a window of 10 bays behind and 30 ahead starts on its line (d(0) = 0 to round-off),
+    where the middle bay (20), 6 m further from the rear end than the run's, gave d(0) =
+    2.5e-4 of y_qs (measured)."""
+    scene = tw.Scene.ballasted_track()
+    if vehicle:
+        scene = dc.replace(scene, vehicle=tw.Vehicle.bogie())
+    scene = scene.windowed(tw.Window(bays_behind=10, bays_ahead=30))
+    r = tw.simulate(scene, tw.kmh(100), x_start=30.1, distance=0.3, fidelity="linear/hertz",
+                    progress=False)
+    a = tw.analyse(r, measure="run", wheel=0 if vehicle else None)
+    assert abs(a.dynamic[0]) < 1e-9 * abs(a.y_qs[0])

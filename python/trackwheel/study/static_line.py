@@ -218,7 +218,7 @@ def window_bay_series(scene: Scene, n_elements: int, bay: int, linear: bool):
     else:
         model = _core.RailModel(kernel.rail_params(scene, n_elements),
                                 kernel.support_params(scene, origin),
-                                kernel.profile.rail_profile(scene))
+                                rail_profile.rail_profile(scene))
         y = np.asarray(_core.quasi_static(model, kernel.wheel_params(scene),
                                           kernel.contact_params(scene), x.tolist())["y_contact"])
     return _series(y, epb)
