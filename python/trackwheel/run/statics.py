@@ -18,6 +18,7 @@ from ..base import validate as v
 from ..base.fields import Quantity, by_name, dataclass_fields, generated_doc
 from ..scene import Scene
 from . import kernel
+from . import profile as rail_profile
 from .defaults import mesh
 from .results import STATIC_FIELDS, static_from_kernel
 
@@ -237,3 +238,36 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     for i in range(nw):
         y[:, i] -= sum(loads[j] * flex[p] for p, (a, j) in enumerate(pairs) if a == i)
     return y
+
+
+def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -> np.ndarray:
+    """The quasi-static line [m] on the scene's own rail (a travelling window's) with the
+    supports of the track at X = ``origin`` + x [m], the wheel at the rail coordinates ``x``
+    [m]: of the linear track in all its coordinates (``linear``) or of the ANCF model (the
+    rail's profile read as on the window's start rail)."""
+    x = np.asarray(x, dtype=float)
+    if linear:
+        return linear_line_of(scene, static_rail(scene, n_elements, origin), scene.static_load,
+                              x)
+    model = _core.RailModel(kernel.rail_params(scene, n_elements),
+                            kernel.support_params(scene, origin),
+                            rail_profile.rail_profile(scene))
+    return np.asarray(_core.quasi_static(model, kernel.wheel_params(scene),
+                                         kernel.contact_params(scene), x.tolist())["y_contact"])
+
+
+def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.ndarray:
+    """The ANCF quasi-static line [m] of a fixed rail solved on the piece of it from bay
+    ``first`` over ``width`` bays [-] (rigid ends, as the rail's), at the piece's rail
+    coordinates ``x`` [m] (X - first d): its supports, profile and mesh those of the rail
+    there. The wheel's static solves warm-start one from the next."""
+    d = scene.supports.spacing
+    epb = n_elements // round(scene.rail.length / d)
+    origin = first * d
+    piece = dataclasses.replace(scene, rail=dataclasses.replace(
+        scene.rail, length=width * d, n_elements=width * epb, absorbing_ends=None))
+    model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
+                            rail_profile.profile_part(scene, origin, width * d))
+    return np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
+                                         kernel.contact_params(piece),
+                                         np.asarray(x, dtype=float).tolist())["y_contact"])

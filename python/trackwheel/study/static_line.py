@@ -12,19 +12,16 @@ run's window stands then, its supports those of the track there (:func:`window_b
 
 from __future__ import annotations
 
-import dataclasses as dc
 import math
 from functools import lru_cache
 
 import numpy as np
 from numpy.polynomial import chebyshev
 
-from .. import _core
 from ..run import kernel
-from ..run import profile as rail_profile
 from ..run.stretch import END_DECAY, end_clearance
-from ..run.statics import (linear_line_of, linear_quasi_static, linear_vehicle_line,
-                           quasi_static, static_rail, vehicle_static)
+from ..run.statics import (linear_quasi_static, linear_vehicle_line, piece_line, quasi_static,
+                           vehicle_static, window_line)
 from ..scene import Scene
 
 __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_breakpoints",
@@ -117,37 +114,6 @@ def piece_bays(scene: Scene, n_elements: int) -> int:
     return bays if 2 * bays + 1 < n_bays else 0
 
 
-@lru_cache(maxsize=4)
-def _profile_table(scene: Scene):
-    """The rail profile's spline table over the whole rail, (x0 [m], h [m], c (4, n)), as
-    :func:`trackwheel.run.profile.rail_profile` builds it for the rail, or None without one;
-    the pieces take their part of it."""
-    irr = scene.irregularity
-    if irr is None or not irr.parts:
-        return None
-    dx = min(rail_profile.PROFILE_DX,
-             irr.shortest_wavelength() / rail_profile.PROFILE_POINTS_PER_WAVELENGTH)
-    L = scene.rail.length
-    if scene.contact.patch_filter:
-        x0, h, c, _, _ = rail_profile._filtered_table(
-            irr, L, dx, rail_profile.contact_half_width(scene))
-    else:
-        x0, h, c, _, _ = rail_profile.spline_table(irr, 0.0, L, dx)
-    return x0, h, c
-
-
-def _piece_profile(scene: Scene, origin: float, length: float) -> _core.Profile:
-    """The rail profile over [origin, origin + length] [m] of the track, in the piece's rail
-    coordinate x = X - origin (the whole rail's spline, its intervals there)."""
-    table = _profile_table(scene)
-    if table is None:
-        return _core.Profile()
-    x0, h, c = table
-    i0 = max(0, math.floor((origin - x0) / h) - 2)
-    i1 = min(c.shape[1], math.ceil((origin + length - x0) / h) + 2)
-    return _core.Profile(x0 + i0 * h - origin, h, np.ascontiguousarray(c[:, i0:i1]))
-
-
 @lru_cache(maxsize=1024)
 def piece_bay_series(scene: Scene, n_elements: int, bay: int, bays: int):
     """Chebyshev series of the ANCF line over bay ``bay`` [-] of a long fixed rail, solved on
@@ -172,14 +138,8 @@ def piece_bay_series(scene: Scene, n_elements: int, bay: int, bays: int):
         j = (bay - (n_bays - bays)) * epb
         return coef[:, j:j + epb], err
     first = max(bay - bays, 0)
-    origin = first * d
-    piece = dc.replace(scene, rail=dc.replace(scene.rail, length=width * d,
-                                              n_elements=width * epb, absorbing_ends=None))
-    model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
-                            _piece_profile(scene, origin, width * d))
     x = _lobatto_points(((bay - first) * epb + np.arange(epb)) * le, np.full(epb, le))
-    y = np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
-                                      kernel.contact_params(piece), x.tolist())["y_contact"])
+    y = piece_line(scene, n_elements, first, width, x)
     return _series(y, epb)
 
 
@@ -212,15 +172,7 @@ def window_bay_series(scene: Scene, n_elements: int, bay: int, linear: bool):
     le = scene.rail.length / n_elements
     origin = (bay - nb) * d
     x = _lobatto_points((nb * epb + np.arange(epb)) * le, np.full(epb, le))
-    if linear:
-        model = static_rail(scene, n_elements, origin)
-        y = linear_line_of(scene, model, scene.static_load, x)
-    else:
-        model = _core.RailModel(kernel.rail_params(scene, n_elements),
-                                kernel.support_params(scene, origin),
-                                rail_profile.rail_profile(scene))
-        y = np.asarray(_core.quasi_static(model, kernel.wheel_params(scene),
-                                          kernel.contact_params(scene), x.tolist())["y_contact"])
+    y = window_line(scene, n_elements, origin, x, linear)
     return _series(y, epb)
 
 
