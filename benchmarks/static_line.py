@@ -8,8 +8,8 @@ rail (every element: 8 n_el + 1 positions):
     (``_core.linear_static_line``, O(n) each: O(L^2) per passage); now the selected inverse
     (``trackwheel.run.statics.linear_line_of``: the entries of K^-1 within its band in one O(n)
     pass, then O(1) per position: O(L)). Both on the same points in the same process, the
-    cases alternated, the median of --repeats; the largest difference of the two lines against
-    the static deflection. "line" also times the whole of ``qs_series`` (the fit included).
+    cases alternated, the median CPU time of --repeats; the largest difference of the two lines
+    against the static deflection. "line" also times the whole of ``qs_series`` (the fit included).
 (b) the ANCF line (the full level): before, a warm-started Newton per position on the whole
     rail (O(n) each: O(L^2) per passage); now, bay by bay on a piece of the rail B bays either
     side (``static_line.piece_bays``; the last B bays on the whole rail): O(L). Whole passages
@@ -53,12 +53,14 @@ def passage_points(scene: tw.Scene) -> np.ndarray:
 
 
 def timed(fn, repeats: int) -> tuple[float, object]:
-    walls, out = [], None
+    """(median CPU time of ``repeats`` calls [s], the last result): CPU time, not wall, as the
+    machine is shared (every call here is single-threaded)."""
+    cpu, out = [], None
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         out = fn()
-        walls.append(time.perf_counter() - t0)
-    return statistics.median(walls), out
+        cpu.append(time.process_time() - t0)
+    return statistics.median(cpu), out
 
 
 def linear_rows(lengths, repeats: int) -> list[dict]:
@@ -132,14 +134,14 @@ def ancf_rows(lengths, repeats: int, whole_passage_up_to: float) -> list[dict]:
         if measured:  # the whole passage, both routes
             xs = passage_points(scene)
             static_line.qs_series.cache_clear()
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             static_line.qs_series(scene, ne, 0, ne, False)
-            before = time.perf_counter() - t0
+            before = time.process_time() - t0
             static_line.qs_series.cache_clear()
             static_line.piece_bay_series.cache_clear()
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             static_line.quasi_static_line(scene, ne, xs)
-            after = time.perf_counter() - t0
+            after = time.process_time() - t0
         rows.append(dict(part="b", length_m=L, n_elements=ne, positions=n_pos, before_s=before,
                          after_s=after, line_s=np.nan, ratio=before / after,
                          max_diff_rel=np.nan, bays=bays, ancf_per_position_ms=per_pos * 1e3))
@@ -166,11 +168,11 @@ def window_rows(bays_list) -> list[dict]:
         origin = (mid - B) * d
         model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
                                 _core.Profile())
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         y = np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
                                           kernel.contact_params(piece),
                                           (x - origin).tolist())["y_contact"])
-        wall = time.perf_counter() - t0
+        wall = time.process_time() - t0
         err = float(np.max(np.abs(y - full)))
         rows.append(dict(part="c", length_m=(2 * B + 1) * d, n_elements=(2 * B + 1) * epb,
                          positions=x.size, before_s=np.nan, after_s=wall, line_s=np.nan,
