@@ -2,6 +2,7 @@
 // track (the GIL released while the kernel runs) and the linear track's quasi-static line.
 #include "common.hpp"
 #include "linear_track.hpp"
+#include "static_line.hpp"
 
 namespace trackwheel::bindings {
 
@@ -47,6 +48,17 @@ void bind_linear(py::module_& m) {
         "Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at "
         "each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; "
         "element_compliance: the element's own deflection under the load G(X_i) P included.");
+  m.def("linear_static_line_selected", &linear_static_line_selected, py::arg("rail"),
+        py::arg("beam"), py::arg("load"), py::arg("x"), py::arg("element_compliance") = false,
+        py::call_guard<py::gil_scoped_release>(),
+        "linear_static_line in all coordinates from the selected inverse of K (the entries of "
+        "K^-1 within its band): O(1) per position after one factorisation; a unilateral "
+        "ballast falls back to a solve per position.");
+  m.def("linear_static_flexibility", &linear_static_flexibility, py::arg("rail"), py::arg("beam"),
+        py::arg("xa"), py::arg("xb"), py::call_guard<py::gil_scoped_release>(),
+        "The linear track's static flexibility s(xa_k)^T K^-1 s(xb_k) [m/N] for each pair k "
+        "(the receptance at 0 Hz), from the entries of K^-1 within the pairs' largest "
+        "coordinate distance: O(1) per pair after one pass over the rail.");
 }
 
 }  // namespace trackwheel::bindings

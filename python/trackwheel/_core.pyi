@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import typing
 import types
-__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'ENVELOPE_FIELDS', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SUPPORT_FIELDS', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_line', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
+__all__: list[str] = ['BeamParams', 'BodyParams', 'ContactLaw', 'ContactParams', 'ENVELOPE_FIELDS', 'GAUSS_RANGE', 'Integrator', 'LinearOptions', 'MAX_DENSE_EIGEN_DOF', 'MAX_ELEMENTS', 'MAX_SPEED', 'MAX_SUPPORTS', 'OUTPUT_FIELDS', 'PeriodicTrackParams', 'Profile', 'RailModel', 'RailParams', 'SUPPORT_FIELDS', 'SimSettings', 'SimState', 'SlipState', 'SupportParams', 'SuspensionParams', 'VehicleParams', 'WheelModel', 'WheelParams', 'WheelState', 'WindowParams', 'axial_modes', 'contact_eval', 'direction_pencil', 'explicit_stability_limit', 'highest_frequency', 'linear_static_flexibility', 'linear_static_line', 'linear_static_line_selected', 'periodic_receptance_matrix', 'quasi_static', 'rail_static', 'receptance', 'simulate', 'simulate_linear', 'static_bodies', 'static_solve', 'static_solve_wheels', 'testing', 'vehicle_matrices', 'vertical_modes']
 class RailParams:
     exact_curvature: bool
     pin_far_end: bool
@@ -1040,9 +1040,17 @@ def highest_frequency(arg0: RailModel, arg1: WheelParams, arg2: ContactParams, a
     """
     omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system
     """
+def linear_static_flexibility(rail: RailModel, beam: BeamParams, xa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], xb: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    The linear track's static flexibility s(xa_k)^T K^-1 s(xb_k) [m/N] for each pair k (the receptance at 0 Hz), from the entries of K^-1 within the pairs' largest coordinate distance: O(1) per pair after one pass over the rail.
+    """
 def linear_static_line(rail: RailModel, beam: BeamParams, load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], n_modes: typing.SupportsInt | typing.SupportsIndex = 0, element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
     Quasi-static line of the linear track: y(X_i) [m] under the load P [N] resting at each X_i [m] (K q = Q_g - P s(X)); n_modes > 0: of its modal reduction; element_compliance: the element's own deflection under the load G(X_i) P included.
+    """
+def linear_static_line_selected(rail: RailModel, beam: BeamParams, load: typing.SupportsFloat | typing.SupportsIndex, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], element_compliance: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    linear_static_line in all coordinates from the selected inverse of K (the entries of K^-1 within its band): O(1) per position after one factorisation; a unilateral ballast falls back to a solve per position.
     """
 def periodic_receptance_matrix(track: PeriodicTrackParams, speed: typing.SupportsFloat | typing.SupportsIndex, omega: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsInt | typing.SupportsIndex, offsets: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, stats: bool = False) -> typing.Any:
     """

@@ -152,6 +152,37 @@ def rail_profile(scene: Scene, end: float | None = None, shift: float = 0.0) -> 
     return _core.Profile(x0 - shift, h, n - 1, chunks())
 
 
+@lru_cache(maxsize=4)
+def rail_table(scene: Scene):
+    """The rail profile's spline table over the whole rail [0, L] as :func:`rail_profile`
+    gives it to the kernel (patch-filtered if ``scene.contact.patch_filter``), held whole:
+    (x0 [m], h [m], c (4, n)), or None without a profile. For the statics of pieces of a long
+    rail (:func:`profile_part`)."""
+    irr = scene.irregularity
+    if irr is None or not irr.parts:
+        return None
+    dx = min(PROFILE_DX, irr.shortest_wavelength() / PROFILE_POINTS_PER_WAVELENGTH)
+    L = scene.rail.length
+    if scene.contact.patch_filter:
+        x0, h, c, _, _ = _filtered_table(irr, L, dx, contact_half_width(scene))
+    else:
+        x0, h, c, _, _ = spline_table(irr, 0.0, L, dx)
+    return x0, h, c
+
+
+def profile_part(scene: Scene, origin: float, length: float) -> _core.Profile:
+    """The rail profile of the track over [origin, origin + length] [m] in the rail coordinate
+    x = X - ``origin`` of a piece of the rail: the whole rail's spline (:func:`rail_table`),
+    its intervals there (an empty profile without one)."""
+    table = rail_table(scene)
+    if table is None:
+        return _core.Profile()
+    x0, h, c = table
+    i0 = max(0, math.floor((origin - x0) / h) - 2)
+    i1 = min(c.shape[1], math.ceil((origin + length - x0) / h) + 2)
+    return _core.Profile(x0 + i0 * h - origin, h, np.ascontiguousarray(c[:, i0:i1]))
+
+
 def stream_retention(scene: Scene) -> float:
     """How far behind the furthest X read a streamed profile keeps its chunks [m]: the
     vehicle's span (its rear wheels read that far behind the leading one) four times over,

@@ -18,6 +18,7 @@ from ..base import validate as v
 from ..base.fields import Quantity, by_name, dataclass_fields, generated_doc
 from ..scene import Scene
 from . import kernel
+from . import profile as rail_profile
 from .defaults import mesh
 from .results import STATIC_FIELDS, static_from_kernel
 
@@ -165,15 +166,38 @@ def linear_quasi_static(scene: Scene, positions, *, n_elements: int | None = Non
 
     A linear run starts on this line whatever its contact law (at rest N = P), and it differs
     from :func:`quasi_static`'s ANCF line only by the ANCF model's nonlinearity. ``n_modes``:
-    the line of the modal reduction the run used (None: all coordinates).
+    the line of the modal reduction the run used (None: all coordinates). In all coordinates
+    it costs O(1) per position after one O(n) pass over the rail (the entries of K^-1 within
+    its band, :func:`linear_line_of`): a line over a long rail costs O(L).
     """
     _check_scene(scene)
     x = v.positions("positions", positions, 0.0, scene.rail.length)
+    if n_modes is None:
+        return linear_line_of(scene, static_rail(scene, n_elements), scene.static_load, x)
     model = kernel.rail_model(scene, mesh(scene, n_elements))
-    modes = 0 if n_modes is None else v.integer("n_modes", n_modes, low=1)
+    modes = v.integer("n_modes", n_modes, low=1)
     return np.asarray(_core.linear_static_line(model, kernel.beam_params(scene),
                                                scene.static_load, x.tolist(), modes,
                                                kernel.element_compliance(scene)))
+
+
+def static_rail(scene: Scene, n_elements: int | None = None,
+                support_origin: float = 0.0) -> _core.RailModel:
+    """The kernel's rail of ``scene`` for the linear track's statics, which do not read the
+    rail profile: without it (building a random profile's table would cost more than the
+    line), its supports the track's at X = ``support_origin`` + x [m]."""
+    return _core.RailModel(kernel.rail_params(scene, mesh(scene, n_elements)),
+                           kernel.support_params(scene, support_origin), _core.Profile())
+
+
+def linear_line_of(scene: Scene, model, load: float, x: np.ndarray) -> np.ndarray:
+    """The linear track's static line [m] in all its coordinates on the kernel rail ``model``
+    under ``load`` [N] at the rail coordinates ``x`` [m]: y(X) = s(X) . q_g - P s(X)^T K^-1 s(X)
+    from the entries of K^-1 within its band (the selected inverse, one O(n) pass), O(1) per
+    position; with a unilateral ballast a solve per position (an active set under each load)."""
+    return np.asarray(_core.linear_static_line_selected(
+        model, kernel.beam_params(scene), load, np.asarray(x, dtype=float).tolist(),
+        kernel.element_compliance(scene)))
 
 
 def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -> np.ndarray:
@@ -182,23 +206,70 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     point at each of ``x_ref`` [m], every wheel under its lever-rule load: the linear track's
     statics superpose, so it is the wheel's own line under its load P_i minus
     sum_j P_j alpha_0(X_i, X_j) over the other wheels, alpha_0 the track's static flexibility
-    (the receptance at 0 Hz of the same linear track)."""
+    (the receptance at 0 Hz of the same linear track), from the entries of K^-1 within the
+    vehicle's span (O(1) per position after one pass over the rail; a unilateral bed takes
+    the receptance position by position)."""
     _check_scene(scene)
     veh = scene.active_vehicle
     rear, front = veh.span
     x_ref = v.positions("x_ref", x_ref, -rear, scene.rail.length - front)
     loads = veh.static_loads(scene.gravity)
-    model = kernel.rail_model(scene, mesh(scene, n_elements))
+    model = static_rail(scene, n_elements)
     beam = kernel.beam_params(scene)
     X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
     y = np.empty_like(X)
     for i in range(veh.n_wheels):
-        y[:, i] = _core.linear_static_line(model, beam, loads[i], X[:, i].tolist(), 0,
-                                                  kernel.element_compliance(scene))
-    for k in range(X.shape[0]):
-        alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
-                                            [0.0])).real.reshape(veh.n_wheels, veh.n_wheels)
-        # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
-        for i in range(veh.n_wheels):
-            y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(veh.n_wheels) if j != i)
+        y[:, i] = linear_line_of(scene, model, loads[i], X[:, i])
+    nw = veh.n_wheels
+    if scene.supports.unilateral:  # the receptance's bilateral bed, position by position
+        for k in range(X.shape[0]):
+            alpha = np.asarray(_core.receptance(model, beam, X[k].tolist(), X[k].tolist(),
+                                                [0.0])).real.reshape(nw, nw)
+            # alpha[j, i]: wheel i's displacement under a unit (upward) force at wheel j
+            for i in range(nw):
+                y[k, i] -= sum(loads[j] * alpha[j, i] for j in range(nw) if j != i)
+        return y
+    # the same flexibility from the entries of K^-1 within the vehicle's span: O(1) a pair
+    pairs = [(i, j) for i in range(nw) for j in range(nw) if j != i]
+    if not pairs:
+        return y
+    xa = np.concatenate([X[:, i] for i, _ in pairs])
+    xb = np.concatenate([X[:, j] for _, j in pairs])
+    flex = np.asarray(_core.linear_static_flexibility(model, beam, xa.tolist(), xb.tolist()))
+    flex = flex.reshape(len(pairs), X.shape[0])
+    for i in range(nw):
+        y[:, i] -= sum(loads[j] * flex[p] for p, (a, j) in enumerate(pairs) if a == i)
     return y
+
+
+def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -> np.ndarray:
+    """The quasi-static line [m] on the scene's own rail (a travelling window's) with the
+    supports of the track at X = ``origin`` + x [m], the wheel at the rail coordinates ``x``
+    [m]: of the linear track in all its coordinates (``linear``) or of the ANCF model (the
+    rail's profile read as on the window's start rail)."""
+    x = np.asarray(x, dtype=float)
+    if linear:
+        return linear_line_of(scene, static_rail(scene, n_elements, origin), scene.static_load,
+                              x)
+    model = _core.RailModel(kernel.rail_params(scene, n_elements),
+                            kernel.support_params(scene, origin),
+                            rail_profile.rail_profile(scene))
+    return np.asarray(_core.quasi_static(model, kernel.wheel_params(scene),
+                                         kernel.contact_params(scene), x.tolist())["y_contact"])
+
+
+def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.ndarray:
+    """The ANCF quasi-static line [m] of a fixed rail solved on the piece of it from bay
+    ``first`` over ``width`` bays [-] (rigid ends, as the rail's), at the piece's rail
+    coordinates ``x`` [m] (X - first d): its supports, profile and mesh those of the rail
+    there. The wheel's static solves warm-start one from the next."""
+    d = scene.supports.spacing
+    epb = n_elements // round(scene.rail.length / d)
+    origin = first * d
+    piece = dataclasses.replace(scene, rail=dataclasses.replace(
+        scene.rail, length=width * d, n_elements=width * epb, absorbing_ends=None))
+    model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
+                            rail_profile.profile_part(scene, origin, width * d))
+    return np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
+                                         kernel.contact_params(piece),
+                                         np.asarray(x, dtype=float).tolist())["y_contact"])

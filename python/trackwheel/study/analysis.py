@@ -273,7 +273,9 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     per element crossed (cached per scene, mesh, model and range) and interpolated by each
     element's degree-8 Chebyshev series (see :data:`QS_DEGREE`): the error (< 2e-13 m for the
     paper's scene, ``Analysis.y_qs_error`` estimates it for any scene) is negligible against
-    the dynamic part. The spectrum and main frequency are those of :func:`main_frequency` on
+    the dynamic part. Its cost grows as the passage, not as passage x rail: the linear
+    track's line from the band of K^-1, the full level's on a long fixed rail bay by bay on
+    pieces of the rail (:mod:`trackwheel.study.static_line`). The spectrum and main frequency are those of :func:`main_frequency` on
     d(t) (``n_fft`` as there); the sampling interval is ``dt x output_every``.
 
     The contact-force statistics (``Analysis.forces``, see
@@ -291,8 +293,10 @@ def analyse(result: Result, *, n_fft: int | None = None, defect_at: float | None
     d starts at 0 as a single wheel's does, and the neighbours' static deflection is not
     counted as dynamic.
 
-    On a travelling window (``scene.window``) the quasi-static line is the periodic track's:
-    solved in the window's middle bay at the wheel's (the vehicle's) position in its bay.
+    On a travelling window (``scene.window``) the quasi-static line is the window's own: over a
+    periodic track solved in the window's bay ``bays_behind`` (where the run holds the rear
+    wheel) at the wheel's (the vehicle's) position in its bay; over supports that vary along X
+    (one wheel) bay by bay on the window's rail as the run has it there.
 
     Raises ValueError if fewer than 4 samples are measured, if ``defect_at`` is not passed
     in them, if the run has several wheels and ``wheel`` is not given, or for a bad

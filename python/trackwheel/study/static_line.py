@@ -2,6 +2,12 @@
 contact-point displacement with the wheel resting at X -- one wheel's, or a vehicle wheel's with
 the whole vehicle resting on the track -- solved at Chebyshev points where it is smooth and
 interpolated, cached per scene, mesh, model and range.
+
+The linear track's line costs O(1) per position after one O(n) pass over the rail (the entries
+of K^-1 within its band, :func:`trackwheel.run.statics.linear_line_of`), so a passage over a
+rail of length L costs O(L). On a travelling window over supports that vary along X the line at
+X is solved on the window's rail as the run has it with the wheel at X: its origin where the
+run's window stands then, its supports those of the track there (:func:`window_bay_series`).
 """
 
 from __future__ import annotations
@@ -12,11 +18,15 @@ from functools import lru_cache
 import numpy as np
 from numpy.polynomial import chebyshev
 
-from ..run.statics import linear_quasi_static, linear_vehicle_line, quasi_static, vehicle_static
+from ..run import kernel
+from ..run.stretch import END_DECAY, end_clearance
+from ..run.statics import (linear_quasi_static, linear_vehicle_line, piece_line, quasi_static,
+                           vehicle_static, window_line)
 from ..scene import Scene
 
 __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_breakpoints",
-           "vehicle_qs_series", "vehicle_quasi_static_line", "window_reference"]
+           "vehicle_qs_series", "vehicle_quasi_static_line", "window_bay_series",
+           "window_reference", "PIECE_DECAY", "piece_bays", "piece_bay_series"]
 
 #: Degree of the polynomial that represents the quasi-static line inside each rail element.
 #: With the wheel at X, the static contact-point displacement is, to within the geometric
@@ -32,43 +42,182 @@ __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_
 #: |c_7| + |c_8| of the Chebyshev coefficients (``Analysis.y_qs_error``, ~1e-12 m here).
 QS_DEGREE = 8
 
-@lru_cache(maxsize=128)
-def qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
-    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh: of the ANCF model or
-    (``linear``) of the linear track in all its coordinates.
+#: The ANCF line (the full level) on a long fixed rail is solved bay by bay on a piece of the
+#: rail around the wheel's bay (:func:`piece_bay_series`), far enough either side that the
+#: piece's rigid ends change the static deflection under the wheel by about this fraction of it
+#: [-]: a load's bowl on the track decays as exp(-beta x), beta = (k_f / 4 EI)^(1/4), so the
+#: piece reaches ln(1 / PIECE_DECAY) / beta beyond the bay. Measured against the whole rail
+#: (benchmarks/static_line.py): 1.7e-9 of the deflection at beta x = 17 on the ballasted preset,
+#: 4e-10 at 35 (the static solver's tolerance); the line's budget is 1e-8.
+PIECE_DECAY = 1e-9
 
-    Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
-    mesh, element range): the same range is always solved the same way (one warm-started
-    sweep), so the line is bit-identical whichever process or earlier analysis computed it.
-    """
+def _lobatto_points(a: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The QS_DEGREE + 1 Chebyshev-Lobatto points of each interval [a_i, a_i + w_i] [m], the
+    end points shared with the neighbours: (QS_DEGREE n + 1,) for n intervals."""
+    t = -np.cos(np.pi * np.arange(QS_DEGREE + 1) / QS_DEGREE)
+    x = (a[:, None] + 0.5 * (t[None, :-1] + 1.0) * w[:, None]).ravel()
+    return np.append(x, a[-1] + w[-1])
+
+
+def _series(y: np.ndarray, n_el: int):
+    """Each interval's Chebyshev coefficients (QS_DEGREE + 1, n_el) [m] from the values ``y`` at
+    :func:`_lobatto_points`, and the error estimate |c_7| + |c_8| [m]."""
     n = QS_DEGREE
-    le = scene.rail.length / n_elements
-    t = -np.cos(np.pi * np.arange(n + 1) / n)  # Chebyshev-Lobatto points on [-1, 1]
-    n_el = e1 - e0
-    x = ((np.arange(e0, e1)[:, None] + 0.5 * (t[None, :-1] + 1.0)) * le).ravel()
-    x = np.minimum(np.append(x, e1 * le), scene.rail.length)
-    if linear:
-        y = linear_quasi_static(scene, x, n_elements=n_elements)
-    else:
-        y = quasi_static(scene, x, n_elements=n_elements).y_contact
+    t = -np.cos(np.pi * np.arange(n + 1) / n)
     values = y[np.arange(n_el)[:, None] * n + np.arange(n + 1)[None, :]]  # (n_el, n + 1)
     coef = np.linalg.solve(chebyshev.chebvander(t, n), values.T)  # (n + 1, n_el)
     coef.setflags(write=False)
     return coef, float(np.max(np.abs(coef[-2]) + np.abs(coef[-1])))
 
 
+@lru_cache(maxsize=128)
+def qs_series(scene: Scene, n_elements: int, e0: int, e1: int, linear: bool):
+    """Chebyshev series of y_qs on each element e0 .. e1-1 of the mesh: of the ANCF model or
+    (``linear``) of the linear track in all its coordinates.
+
+    Returns (coefficients (QS_DEGREE + 1, e1 - e0) [m], error estimate [m]). Cached per (scene,
+    mesh, element range): the same range is always solved the same way (the ANCF line in one
+    warm-started sweep; the linear line's values do not depend on the range), so the line is
+    bit-identical whichever process or earlier analysis computed it.
+    """
+    le = scene.rail.length / n_elements
+    n_el = e1 - e0
+    x = np.minimum(_lobatto_points(np.arange(e0, e1) * le, np.full(n_el, le)),
+                   scene.rail.length)
+    if linear:
+        y = linear_quasi_static(scene, x, n_elements=n_elements)
+    else:
+        y = quasi_static(scene, x, n_elements=n_elements).y_contact
+    return _series(y, n_el)
+
+
+def piece_bays(scene: Scene, n_elements: int) -> int:
+    """B: the ANCF line of a fixed rail is solved for each bay on the piece of the rail B bays
+    either side of it (:data:`PIECE_DECAY`), or 0 to solve it on the whole rail: a rail no
+    longer than such a piece (the paper's 5 m), a travelling window, supports at given
+    positions or given one value per support (they number the rail's supports, not places on
+    the track), a pinned far end (the piece's far end would hold the rail axially where the
+    rail does not), or a mesh that is not whole elements per bay."""
+    if (scene.window is not None or scene.supports.positions is not None
+            or scene.rail.far_end != "roller"
+            or any(isinstance(getattr(scene.supports, name), tuple)
+                   for name in kernel.STREAMED_PROPERTIES)):
+        return 0
+    d, L = scene.supports.spacing, scene.rail.length
+    n_bays = round(L / d)
+    if abs(n_bays * d - L) > 1e-9 * L or n_elements % n_bays:
+        return 0
+    beta = math.log(1.0 / END_DECAY) / end_clearance(scene)
+    if not math.isfinite(beta) or beta <= 0.0:
+        return 0
+    bays = math.ceil(math.log(1.0 / PIECE_DECAY) / beta / d)
+    return bays if 2 * bays + 1 < n_bays else 0
+
+
+@lru_cache(maxsize=1024)
+def piece_bay_series(scene: Scene, n_elements: int, bay: int, bays: int):
+    """Chebyshev series of the ANCF line over bay ``bay`` [-] of a long fixed rail, solved on
+    the piece of the rail ``bays`` bays either side of it (at the rail's near end the piece's
+    end is the rail's): its supports, profile and mesh those of the rail there, its ends rigid
+    as the rail's. O(1) per bay in the rail's length; the last ``bays`` bays on the whole rail.
+    Cached per (scene, mesh, bay) and computed the same way whatever asked for it. Returns
+    (coefficients (QS_DEGREE + 1, elements per bay) [m], error estimate [m])."""
+    d = scene.supports.spacing
+    n_bays = round(scene.rail.length / d)
+    epb = n_elements // n_bays
+    le = scene.rail.length / n_elements
+    width = 2 * bays + 1
+    if bay + bays >= n_bays:
+        # a piece that reaches the rail's far end (a roller: the rail slides there, held
+        # axially only at its near end) would hold it stiffer: where the rigid end's bowl is
+        # steep, the contact force's horizontal part then moves the contact point differently
+        # (measured 9e-7 of the deflection in the last metre). These ``bays`` bays are
+        # solved on the whole rail in one warm-started sweep: O(L) together.
+        e0 = (n_bays - bays) * epb
+        coef, err = qs_series(scene, n_elements, e0, n_elements, False)
+        j = (bay - (n_bays - bays)) * epb
+        return coef[:, j:j + epb], err
+    first = max(bay - bays, 0)
+    x = _lobatto_points(((bay - first) * epb + np.arange(epb)) * le, np.full(epb, le))
+    y = piece_line(scene, n_elements, first, width, x)
+    return _series(y, epb)
+
+
+def _streams(scene: Scene) -> bool:
+    """A travelling window over supports that vary along X: the window's rail changes with
+    its place."""
+    return scene.window is not None and not scene.supports.uniform
+
+
+def _bay(scene: Scene, x: np.ndarray) -> np.ndarray:
+    """The track's bay [-] that holds X [m] as the run's window counts it (its origin a whole
+    number of bays, the rear wheel's bay ``bays_behind`` bays in)."""
+    return np.floor(np.asarray(x) / scene.supports.spacing + 1e-9).astype(np.int64)
+
+
+@lru_cache(maxsize=1024)
+def window_bay_series(scene: Scene, n_elements: int, bay: int, linear: bool):
+    """Chebyshev series of y_qs over track bay ``bay`` [-] of a travelling window over supports
+    that vary along X: the window's rail with its origin X_w = (bay - bays_behind) d (where
+    the run's window stands while its wheel is in that bay), its supports the track's at
+    X_w + x, the wheel at the rail coordinates x = X - X_w of the bay (the window's bay
+    ``bays_behind``). One rail per bay, so O(1) per bay in the distance run.
+
+    Returns (coefficients (QS_DEGREE + 1, elements per bay) [m], error estimate [m]); cached
+    per (scene, mesh, bay) and computed the same way whatever asked for it.
+    """
+    d = scene.supports.spacing
+    nb = scene.window.bays_behind
+    epb = n_elements // round(scene.rail.length / d)
+    le = scene.rail.length / n_elements
+    origin = (bay - nb) * d
+    x = _lobatto_points((nb * epb + np.arange(epb)) * le, np.full(epb, le))
+    y = window_line(scene, n_elements, origin, x, linear)
+    return _series(y, epb)
+
+
 def in_window(scene: Scene, x: np.ndarray) -> np.ndarray:
-    """X [m] as the rail coordinate of a fixed rail, or on a travelling window the same place
-    in its bay in the window's middle bay (the quasi-static line of the periodic track)."""
+    """X [m] as the rail coordinate of a fixed rail, or on a travelling window over a periodic
+    track the same place in its bay in the window's bay ``bays_behind`` (where the run holds
+    its wheel: the quasi-static line of the periodic track)."""
     if scene.window is None:
         return x
     d = scene.supports.spacing
-    middle = round(scene.rail.length / d) // 2
-    return middle * d + np.mod(x, d)
+    return scene.window.bays_behind * d + np.mod(x, d)
+
+
+def _bay_line(scene: Scene, n_elements: int, x: np.ndarray, series):
+    """y_qs [m] at X = ``x`` [m] bay by bay, ``series(bay)`` the (coefficients, error) of the
+    bay's elements, and the largest error estimate [m]."""
+    n_bays = round(scene.rail.length / scene.supports.spacing)
+    epb = n_elements // n_bays
+    le = scene.rail.length / n_elements
+    bay = _bay(scene, x)
+    if scene.window is None:  # X = L is the last bay's end
+        bay = np.clip(bay, 0, n_bays - 1)
+    y = np.empty_like(x)
+    err = 0.0
+    for b in np.unique(bay):
+        at = bay == b
+        coef, e = series(int(b))
+        s = x[at] / le - b * epb  # elements into the bay
+        k = np.clip(np.floor(s).astype(np.int64), 0, epb - 1)
+        t = np.clip(2.0 * (s - k) - 1.0, -1.0, 1.0)
+        y[at] = chebyshev.chebval(t, coef[:, k], tensor=False)
+        err = max(err, e)
+    return y, err
 
 
 def quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool = False):
     """y_qs at the wheel positions x [m] and the estimate of its error [m]."""
+    x = np.asarray(x, dtype=float)
+    if _streams(scene):
+        return _bay_line(scene, n_elements, x,
+                         lambda b: window_bay_series(scene, n_elements, b, linear))
+    bays = 0 if linear else piece_bays(scene, n_elements)
+    if bays:
+        return _bay_line(scene, n_elements, x,
+                         lambda b: piece_bay_series(scene, n_elements, b, bays))
     x = in_window(scene, x)
     le = scene.rail.length / n_elements
     e0 = max(0, min(n_elements - 1, math.floor(float(x.min()) / le)))
@@ -80,15 +229,14 @@ def quasi_static_line(scene: Scene, n_elements: int, x: np.ndarray, linear: bool
 
 
 def window_reference(scene: Scene, x_ref: np.ndarray) -> np.ndarray:
-    """The vehicle's reference positions [m] on a fixed rail, or on a travelling window the same
-    place in the bay with the vehicle in the window's middle (the periodic track's line)."""
+    """The vehicle's reference positions [m] on a fixed rail, or on a travelling window over a
+    periodic track the same place in the bay with the rear wheel in the window's bay
+    ``bays_behind`` (where the run holds it: the periodic track's line)."""
     if scene.window is None:
         return x_ref
     d = scene.supports.spacing
-    rear, front = scene.active_vehicle.span
-    n_bays = round(scene.rail.length / d)
-    first = max((n_bays - math.ceil((front - rear) / d - 1e-9)) // 2, 0)
-    return first * d + np.mod(x_ref + rear, d) - rear
+    rear, _ = scene.active_vehicle.span
+    return scene.window.bays_behind * d + np.mod(x_ref + rear, d) - rear
 
 
 @lru_cache(maxsize=16)

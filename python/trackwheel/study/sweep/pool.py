@@ -30,8 +30,10 @@ def make_pool(workers: int) -> ProcessPoolExecutor:
         ctx = multiprocessing.get_context("forkserver")
         # The server (started once per session) imports trackwheel once; the workers of every
         # sweep fork from it ready to run: ~0.1 s instead of ~0.5-1 s per pool. "__main__" is
-        # the default preload. No effect if the server already runs.
-        ctx.set_forkserver_preload(["__main__", cases.__name__])
+        # the default preload; scipy.interpolate is what a case imports on first use (the rail
+        # profile's spline), which each worker would otherwise pay at its first rough case
+        # (half a second or more). No effect if the server already runs.
+        ctx.set_forkserver_preload(["__main__", cases.__name__, "scipy.interpolate"])
     else:
         ctx = multiprocessing.get_context("spawn")
     return ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_ignore_ctrl_c)
