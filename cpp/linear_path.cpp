@@ -21,9 +21,9 @@ LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOut
   const LinearTrack& tr = sys.track();
   Eigen::VectorXd q = tr.Qg, z;
   LinearRest(tr, sys.sleepers()).solve(q, z);
-  win_ = WindowFollower(
-      WindowShift(sys.model().rail, wp, tr.y_of_full, tr.nq, sys.sleepers().size()), q, z,
-      &sys.sleepers());
+  win_ =
+      WindowFollower(WindowShift(sys.model().rail, wp, tr.y_of_full, tr.nq, sys.sleepers().size()),
+                     q, z, &sys.sleepers());
 }
 
 void LinearStepper::stream_supports(SupportFeed& feed) {

@@ -71,8 +71,9 @@ void Sleepers::take_properties(const RailModel& rail) {
     const double g = s.void_gap.empty() ? 0.0 : s.void_gap[j];
     const unsigned char uni = s.unilateral(j) ? 1 : 0;
     if (uni && !any_unilateral_)
-      throw std::logic_error("Sleepers::take_properties: a unilateral ballast in a run set up "
-                             "without one");
+      throw std::logic_error(
+          "Sleepers::take_properties: a unilateral ballast in a run set up "
+          "without one");
     if (!uni && uni_[j] && !closed_[j]) {  // the linear ballast is always on its bed
       closed_[j] = committed_[j] = 1;
       ++version_;

@@ -122,8 +122,8 @@ SupportFeed::SupportFeed(const WindowParams& p, RailModel& rail) : stream_(p.sup
       if ((stream_.unilateral(k) || stream_.ballast_stiffness[k] == 0.0) &&
           !(stream_.stiffness[k] > 0.0))
         throw std::invalid_argument(
-            "window: support stream entry " + std::to_string(k) + " at X = " +
-            format3(stream_.position[k]) +
+            "window: support stream entry " + std::to_string(k) +
+            " at X = " + format3(stream_.position[k]) +
             " m: a sleeper that can lose its ballast (void_gap > 0, tensionless or "
             "ballast_stiffness = 0) needs a pad stiffness > 0 N/m to hang on");
   rail_ = &rail;
