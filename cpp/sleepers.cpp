@@ -74,8 +74,12 @@ void Sleepers::take_properties(const RailModel& rail) {
       throw std::logic_error(
           "Sleepers::take_properties: a unilateral ballast in a run set up "
           "without one");
-    if (!uni && uni_[j] && !closed_[j]) {  // the linear ballast is always on its bed
-      closed_[j] = committed_[j] = 1;
+    // the linear ballast is always on its bed; a sleeper whose void changed (the fresh one at
+    // the front) stands as at rest without weight until join_at_rest(), so that the matrix
+    // factorised with the new properties is mostly the one of its state at rest
+    const unsigned char want = !uni || g == 0.0 ? 1 : 0;
+    if ((uni != uni_[j] || g != gap_[j]) && want != closed_[j]) {
+      closed_[j] = committed_[j] = want;
       ++version_;
     }
     gap_[j] = g;

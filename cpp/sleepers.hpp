@@ -80,7 +80,8 @@ class Sleepers {
   long version() const { return version_; }
   // A travelling window streamed new properties into the rail's supports (the same
   // positions, after shift()): the sleepers take them, their voids and unilateral flags too,
-  // keeping their states and record (a sleeper whose ballast became linear is closed).
+  // keeping their states and record (a sleeper whose void or flag changed stands as at rest
+  // without weight, closed where g = 0 or linear, until join_at_rest()).
   void take_properties(const RailModel& rail);
   // The travelling window moved k bays back: sleeper j takes the state, flips, void and
   // unilateral flag of sleeper j + k (the same physical sleeper); the k fresh sleepers at the
