@@ -1,15 +1,19 @@
-"""The travelling window over supports that vary from bay to bay: cost per metre against the
-uniform window.
+"""The travelling window over supports that vary from bay to bay, and over voids: cost per
+metre against the uniform window.
 
 The ballasted preset on a window of 20 + 1 + 20 bays at 300 km/h, default mesh and step, one
-sample kept every 20 steps. Each case runs the same distance twice in one process, the uniform
-bed and the varied bed alternately (``repeats`` times each; the medians and their ratio): the
+sample kept every 20 steps. Each case runs the same distance over three beds in one process,
+alternately (``repeats`` times each; the medians and their ratios to the uniform bed): the
 varied bed is a lognormal scatter per sleeper (cv 0.3 on k_b, 0.2 on k_p, 0.1 on m_s and c_b)
 with a transition (k_b x3, k_p x1.5 over a linear ramp of 1.2 m) at a third of the distance, so
-that nearly every shift changes the window's supports. Reported per case: the wall time of the
-kernel per metre (``Result.wall_time / distance``: the time loop, which holds the shifts, their
-re-assembly and refactorisation and the rest state's solve), Newton's iterations per step and,
-on the linear path, the factorisations (counts, the same on any machine).
+that nearly every shift changes the window's supports; the voided bed is the varied bed with a
+0.15 mm void under every fourth sleeper (the wheel closes each and leaves it open behind:
+about two ballast events per voided sleeper), alternated with the other two. Reported per case:
+the wall time of the kernel per metre (``Result.wall_time / distance``: the time loop, which
+holds the shifts, their re-assembly and refactorisation and the rest state's solve) and the
+process's CPU time per metre over the same call (robust to waiting for a core), Newton's
+iterations per step, the factorisations and the ballast events (counts, the same on any
+machine).
 
 - ``linear 1 km``: ``fidelity="linear/hertz"``, 1 km (the issue's target distance), 3 repeats;
 - ``linear 100 m``: the same over 100 m, 5 repeats (cost per metre constant in the distance:
@@ -26,6 +30,7 @@ from __future__ import annotations
 import dataclasses as dc
 import statistics
 import sys
+import time
 
 import numpy as np
 
@@ -55,57 +60,81 @@ def factors(x: np.ndarray, at: float) -> dict:
     return out
 
 
-def supports(scene, x, position, at) -> _core.SupportParams:
+#: the voided bed's void [m] under every VOID_EVERY-th sleeper
+VOID, VOID_EVERY = 1.5e-4, 4
+
+
+def supports(scene, x, position, at, voids=False) -> _core.SupportParams:
     s = kernel._supports_at(scene, x, position)
     for name, f in factors(x, at).items():
         setattr(s, name, list(np.asarray(getattr(s, name)) * f))
+    if voids:
+        s.void_gap = list(np.where(np.rint(x / D).astype(int) % VOID_EVERY == 0, VOID, 0.0))
     return s
 
 
 def plans(fidelity: str, distance: float):
-    """(uniform plan, varied plan) of the window over ``distance`` [m]."""
+    """(uniform plan, varied plan, voided plan) of the window over ``distance`` [m]."""
     scene = tw.Scene.ballasted_track(window=tw.Window(20, 20))
     kw = dict(x_start=12.3, distance=distance, fidelity=fidelity, output_every=20,
               n_elements=scene.rail.n_elements)
     uniform = sim.plan_run(scene, V, **kw)
+    return uniform, varied(scene, kw, distance, False), varied(scene, kw, distance, True)
+
+
+def varied(scene, kw, distance, voids):
     p = sim.plan_run(scene, V, **kw)
     w, x = p.window, np.asarray(scene.support_positions)
     at = p.settings.x_start + distance / 3
     model = _core.RailModel(kernel.rail_params(scene, p.settings.n_elements),
-                            supports(scene, w.origin + x, x, at), p.model.profile)
+                            supports(scene, w.origin + x, x, at, voids), p.model.profile)
     n = len(x) + int(np.ceil(distance / D)) + 2
-    w.supports = supports(scene, w.origin + x[0] + D * np.arange(n), None, at)
+    w.supports = supports(scene, w.origin + x[0] + D * np.arange(n), None, at, voids)
     init = p.init
     if init is not None:
         from trackwheel.run.start import initial_state
         init = initial_state(scene, model, V, p.settings.x_start - w.origin, "static", 0.0)
-    return uniform, dc.replace(p, model=model, window=w, init=init)
+    return dc.replace(p, model=model, window=w, init=init)
 
 
 def run(plan):
     s = sim.kernel_settings(plan)
+    cpu = time.process_time()
     out, wall = sim.run_kernel(plan, s, False)
-    return wall, out["steps"], out["newton_iterations"], out["factorizations"]
+    cpu = time.process_time() - cpu
+    return (wall, cpu, out["steps"], out["newton_iterations"], out["factorizations"],
+            out["ballast_events"])
+
+
+KEYS = ("uniform", "varied", "voided")
 
 
 def case(name: str, fidelity: str, distance: float, repeats: int) -> dict:
-    uniform, varied = plans(fidelity, distance)
-    walls = {"uniform": [], "varied": []}
+    cases = dict(zip(KEYS, plans(fidelity, distance)))
+    walls = {k: [] for k in KEYS}
+    cpus = {k: [] for k in KEYS}
     counts = {}
     for _ in range(repeats):
-        for key, plan in (("uniform", uniform), ("varied", varied)):
-            wall, steps, newton, fact = run(plan)
+        for key, plan in cases.items():
+            wall, cpu, *counts[key] = run(plan)
             walls[key].append(wall)
-            counts[key] = (steps, newton, fact)
-    mu, mv = (statistics.median(walls[k]) for k in ("uniform", "varied"))
-    row = {"case": name, "distance_m": distance, "repeats": repeats,
-           "uniform_ms_per_m": round(1e3 * mu / distance, 3),
-           "varied_ms_per_m": round(1e3 * mv / distance, 3),
-           "ratio": round(mv / mu, 3),
-           "newton_per_step_uniform": round(counts["uniform"][1] / counts["uniform"][0], 4),
-           "newton_per_step_varied": round(counts["varied"][1] / counts["varied"][0], 4),
-           "factorizations_uniform": counts["uniform"][2],
-           "factorizations_varied": counts["varied"][2]}
+            cpus[key].append(cpu)
+    med = {k: statistics.median(walls[k]) for k in KEYS}
+    mcpu = {k: statistics.median(cpus[k]) for k in KEYS}
+    row = {"case": name, "distance_m": distance, "repeats": repeats}
+    row.update({f"{k}_ms_per_m": round(1e3 * med[k] / distance, 3) for k in KEYS})
+    row["ratio"] = round(med["varied"] / med["uniform"], 3)
+    row["ratio_voided"] = round(med["voided"] / med["uniform"], 3)
+    # the process's CPU time: what the run itself took on a shared machine (a wall time also
+    # holds the time the run waited for a core)
+    row.update({f"{k}_cpu_ms_per_m": round(1e3 * mcpu[k] / distance, 3) for k in KEYS})
+    row["cpu_ratio"] = round(mcpu["varied"] / mcpu["uniform"], 3)
+    row["cpu_ratio_voided"] = round(mcpu["voided"] / mcpu["uniform"], 3)
+    for k in KEYS:
+        steps, newton, fact, events = counts[k]
+        row[f"newton_per_step_{k}"] = round(newton / steps, 4)
+        row[f"factorizations_{k}"] = fact
+        row[f"ballast_events_{k}"] = events
     print(row, flush=True)
     return row
 

@@ -20,12 +20,11 @@ FullStepper::FullStepper(System& sys, SimState& st, Eval& ev, Accel& acc, SimOut
   sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
-  check_window_voids(rail.supports());
   std::vector<int> map(rail.n_dof());
   for (int i = 0; i < rail.n_dof(); ++i) map[i] = rail.full_to_free()[i] >= 0 ? i : -1;
   const StaticResult rest = solve_track_static(rail);
   win_ = WindowFollower(WindowShift(rail, wp, map, rail.n_dof(), sys.sleepers().size()), rest.e,
-                        rest.z);
+                        rest.z, &sys.sleepers());
 }
 
 void FullStepper::stream_supports(SupportFeed& feed) {
@@ -42,14 +41,10 @@ void FullStepper::stream_supports(SupportFeed& feed) {
 
 // What moves is the departure from the rest state (the ANCF x coordinates: the displacement,
 // not the position); the wheels' rail coordinates and warm starts drop by a bay with the
-// origin's step.
+// origin's step, a unilateral ballast's states with their sleepers (WindowFollower).
 bool FullStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   if (!win_.active()) return false;
-  const long first = win_.first();
-  const bool moved = win_.follow_wheels(sys_, t1, st_, accs);
-  // a unilateral ballast's states move with their sleepers
-  if (moved) sys_.sleepers().shift(static_cast<int>(win_.first() - first));
-  return moved;
+  return win_.follow_wheels(sys_, t1, st_, accs);
 }
 
 void FullStepper::record_sample(double t) {

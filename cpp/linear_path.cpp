@@ -18,12 +18,12 @@ LinearStepper::LinearStepper(LinearSystem& sys, SimState& st, Accel& acc, SimOut
   sys.sleepers().reset_record();  // the start state's ballast states: no event
   const WindowParams& wp = sys.settings().window;
   if (!wp.active()) return;
-  check_window_voids(sys.model().rail.supports());
   const LinearTrack& tr = sys.track();
   Eigen::VectorXd q = tr.Qg, z;
   LinearRest(tr, sys.sleepers()).solve(q, z);
-  win_ = WindowFollower(
-      WindowShift(sys.model().rail, wp, tr.y_of_full, tr.nq, sys.sleepers().size()), q, z);
+  win_ =
+      WindowFollower(WindowShift(sys.model().rail, wp, tr.y_of_full, tr.nq, sys.sleepers().size()),
+                     q, z, &sys.sleepers());
 }
 
 void LinearStepper::stream_supports(SupportFeed& feed) {
@@ -40,11 +40,12 @@ void LinearStepper::stream_supports(SupportFeed& feed) {
 
 bool LinearStepper::shift_window(double t1, std::initializer_list<Accel*> accs) {
   if (!win_.active()) return false;
-  const long first = win_.first();
   const bool moved = win_.follow_wheels(sys_, t1, st_, accs);
-  if (moved) sys_.drop_cached_columns();
-  if (moved) sys_.shift_ballast(static_cast<int>(win_.first() - first));
-  return moved;
+  if (!moved) return false;
+  sys_.drop_cached_columns();
+  // the ballast states moved with their sleepers (WindowFollower), the fresh one joined at rest
+  if (sys_.sync_ballast()) ++out_.factorizations;
+  return true;
 }
 
 bool LinearStepper::finite() const {

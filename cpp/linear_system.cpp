@@ -52,7 +52,7 @@ LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const Lin
       c_(set.rho_inf, set.dt),
       nw_(model.n_wheels()),
       nb_(model.n_bodies()),
-      sl_(model.rail),
+      sl_(model.rail, set.window.streams_unilateral()),
       damped_(!tr_.C.is_zero()),
       vehicle_(model.vehicle, layout()),
       static_load_(static_wheel_loads(model)),
@@ -76,6 +76,7 @@ void LinearSystem::factorize_iteration_matrix() {
   if (sl_.unilateral()) A0_ = A_;
   sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
+  ballast_version_ = sl_.version();
 }
 
 // Only the supports change: rebuilding the whole track would assemble the beam's elements again
@@ -84,9 +85,12 @@ void LinearSystem::assemble_supports() {
   const RailModel& rail = model_.rail;
   const SupportParams& sp = rail.supports();
   if (support_s_.empty()) {
-    SupportParams bare = sp;
-    std::fill(bare.stiffness.begin(), bare.stiffness.end(), 0.0);
-    std::fill(bare.damping.begin(), bare.damping.end(), 0.0);
+    // the beam alone: no pads, and no sleepers (they are condensed apart, Sleepers), so no
+    // void that would need a pad to hang on
+    SupportParams bare;
+    bare.position = sp.position;
+    bare.stiffness.assign(sp.position.size(), 0.0);
+    bare.damping.assign(sp.position.size(), 0.0);
     const LinearTrack beam(RailModel(rail.params(), bare), opt_.n_modes, opt_.beam);
     Kbeam_ = beam.K;
     Cbeam_ = beam.C;
@@ -123,16 +127,17 @@ int LinearSystem::update_ballast(const SimState& s1) {
   return changed;
 }
 
-void LinearSystem::shift_ballast(int k) {
-  if (!sl_.unilateral() || k <= 0) return;
-  sl_.shift(k);
+bool LinearSystem::sync_ballast() {
+  if (!sl_.unilateral() || sl_.version() == ballast_version_) return false;
   refactorize_ballast();
+  return true;
 }
 
 void LinearSystem::refactorize_ballast() {
   A_ = A0_;
   sl_.condense_matrix(tr_.y_of_full, A_);
   if (!A_.factorize()) throw std::runtime_error("iteration matrix is singular");
+  ballast_version_ = sl_.version();
   drop_cached_columns();
 }
 

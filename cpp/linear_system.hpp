@@ -133,9 +133,10 @@ class LinearSystem {
   // frozen in this step excepted); if any changed, the iteration matrix is refactorised in the
   // new states and the wheels' cached columns dropped (couple() again). Returns the changes.
   int update_ballast(const SimState& s1);
-  // The travelling window moved k bays: the sleepers' states move with it (Sleepers::shift) and
-  // the iteration matrix is refactorised in them.
-  void shift_ballast(int k);
+  // The travelling window moved the sleepers' states with it (Sleepers::shift, join_at_rest):
+  // if any changed since the iteration matrix was factorised, it is refactorised in them (and
+  // the wheels' cached columns dropped). True if it was.
+  bool sync_ballast();
   Sleepers& sleepers() { return sl_; }
 
  private:
@@ -159,6 +160,7 @@ class LinearSystem {
   Sleepers sl_;    // layered supports (sleepers.hpp): z'' condensed into A_
   BandMatrix A_;   // M + cv C + cq K, factorised once (again when a ballast state changes)
   BandMatrix A0_;  // M + cv C + cq K unfactorised, kept for a unilateral ballast
+  long ballast_version_ = -1;  // the sleepers' states A_ was factorised in (Sleepers::version)
   bool damped_;
   VehicleRows vehicle_;
   std::vector<double> static_load_;  // [N]

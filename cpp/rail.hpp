@@ -72,8 +72,9 @@ struct SupportParams {
   bool any_unilateral() const;
 };
 
-// f(v) for every per-support property vector of s (every field but the positions): the fields
-// a travelling window streams (window.hpp). A new per-support field is added here too.
+// f(v) for every per-support property vector of s (every field but the positions and the
+// run-wide tensionless switch): the fields a travelling window streams (window.hpp). A new
+// per-support field is added here too.
 template <class S, class F>
 void for_each_support_property(S& s, F f) {
   f(s.stiffness);
@@ -81,6 +82,7 @@ void for_each_support_property(S& s, F f) {
   f(s.sleeper_mass);
   f(s.ballast_stiffness);
   f(s.ballast_damping);
+  f(s.void_gap);
 }
 
 // Where a material point s lies in the mesh.

@@ -8,15 +8,7 @@ namespace trackwheel {
 
 bool is_layered(const SupportParams& s) { return !s.sleeper_mass.empty(); }
 
-void check_window_voids(const SupportParams& s) {
-  for (double g : s.void_gap)
-    if (g > 0.0)
-      throw std::invalid_argument(
-          "the travelling window does not take voids (void_gap > 0 under a sleeper): run the "
-          "voided track on a fixed rail (tensionless ballast without voids is fine)");
-}
-
-Sleepers::Sleepers(const RailModel& rail) {
+Sleepers::Sleepers(const RailModel& rail, bool unilateral) {
   const SupportParams& s = rail.supports();
   if (!is_layered(s)) return;
   for (size_t j = 0; j < s.position.size(); ++j) pt_.push_back(rail.locate(s.position[j]));
@@ -37,8 +29,9 @@ Sleepers::Sleepers(const RailModel& rail) {
     any_unilateral_ |= uni_[j] != 0;
     closed_[j] = gap_[j] == 0.0;  // at rest: a sleeper over a void hangs
   }
+  any_unilateral_ |= unilateral;
   committed_ = closed_;
-  contact_time_ = Eigen::VectorXd::Zero(n);
+  contact_time_.assign(n, 0.0);
 }
 
 double Sleepers::ballast(int j, double z, double zdot) const {
@@ -74,26 +67,62 @@ void Sleepers::take_properties(const RailModel& rail) {
   cp_ = s.damping;
   kb_ = s.ballast_stiffness;
   cb_ = s.ballast_damping;
-  for (int j = 0; j < size(); ++j) set_coefficient(j);
+  for (int j = 0; j < size(); ++j) {
+    const double g = s.void_gap.empty() ? 0.0 : s.void_gap[j];
+    const unsigned char uni = s.unilateral(j) ? 1 : 0;
+    if (uni && !any_unilateral_)
+      throw std::logic_error(
+          "Sleepers::take_properties: a unilateral ballast in a run set up "
+          "without one");
+    // the linear ballast is always on its bed; a sleeper whose void changed (the fresh one at
+    // the front) stands as at rest without weight until join_at_rest(), so that the matrix
+    // factorised with the new properties is mostly the one of its state at rest
+    const unsigned char want = !uni || g == 0.0 ? 1 : 0;
+    if ((uni != uni_[j] || g != gap_[j]) && want != closed_[j]) {
+      closed_[j] = committed_[j] = want;
+      ++version_;
+    }
+    gap_[j] = g;
+    uni_[j] = uni;
+    set_coefficient(j);
+  }
 }
 
 void Sleepers::shift(int k) {
-  if (k <= 0 || !any_unilateral_) return;
+  if (k <= 0) return;
   const int n = size();
+  first_ += k;
+  fresh_ = std::min(fresh_ + k, n);
+  contact_time_.resize(static_cast<std::size_t>(first_ + n), 0.0);
+  if (!any_unilateral_) return;
   for (int j = 0; j < n; ++j) {
     if (j + k < n) {
       closed_[j] = closed_[j + k];
       committed_[j] = committed_[j + k];
       flips_[j] = flips_[j + k];
-      contact_time_(j) = contact_time_(j + k);
+      gap_[j] = gap_[j + k];
+      uni_[j] = uni_[j + k];
     } else {
       closed_[j] = committed_[j] = gap_[j] == 0.0;
       flips_[j] = 0;
-      contact_time_(j) = 0.0;
     }
     set_coefficient(j);
   }
   ++version_;
+}
+
+void Sleepers::join_at_rest(const Eigen::VectorXd& z_rest) {
+  const int n = size();
+  const int k = fresh_;
+  fresh_ = 0;
+  if (!any_unilateral_) return;
+  for (int j = n - k; j < n; ++j) {
+    const unsigned char want = !uni_[j] || -z_rest(j) - gap_[j] >= 0.0 ? 1 : 0;
+    if (want == closed_[j]) continue;
+    closed_[j] = committed_[j] = want;
+    set_coefficient(j);
+    ++version_;
+  }
 }
 
 void Sleepers::begin_step() { std::fill(flips_.begin(), flips_.end(), 0); }
@@ -115,14 +144,17 @@ void Sleepers::init_states(const Eigen::VectorXd& z) {
 void Sleepers::reset_record() {
   committed_ = closed_;
   events_ = frozen_ = 0;
-  contact_time_.setZero(size());
+  first_ = 0;
+  fresh_ = 0;
+  contact_time_.assign(size(), 0.0);
 }
 
 void Sleepers::commit(double dt) {
+  double* time = contact_time_.data() + first_;
   for (int j = 0; j < size(); ++j) {
     events_ += committed_[j] != closed_[j];
     committed_[j] = closed_[j];
-    if (closed_[j]) contact_time_(j) += dt;
+    if (closed_[j]) time[j] += dt;
   }
 }
 

@@ -44,17 +44,16 @@ namespace trackwheel {
 
 // True if the supports carry sleepers (SupportParams::sleeper_mass is given).
 bool is_layered(const SupportParams& supports);
-// The travelling window shifts the track by whole bays over sleepers that stay identical: a
-// void, fixed to one sleeper, cannot travel with it (tensionless ballast can). Throws
-// std::invalid_argument if supports has a void.
-void check_window_voids(const SupportParams& supports);
 
 class Sleepers {
  public:
   // State flips of one sleeper within a step before it is frozen for the rest of the step.
   static constexpr int kMaxFlips = 4;
 
-  explicit Sleepers(const RailModel& rail);
+  // The sleepers of rail's supports. unilateral: the run's sleepers can lose their ballast even
+  // if none of rail's can yet (a travelling window streams voids in, window.hpp): the steppers
+  // decide their code paths by unilateral() once, at the start.
+  explicit Sleepers(const RailModel& rail, bool unilateral = false);
   int size() const { return static_cast<int>(m_.size()); }  // 0: single springs
   bool empty() const { return m_.empty(); }
 
@@ -80,19 +79,32 @@ class Sleepers {
   // at another count is stale).
   long version() const { return version_; }
   // A travelling window streamed new properties into the rail's supports (the same
-  // positions): the sleepers take them, keeping their states and record.
+  // positions, after shift()): the sleepers take them, their voids and unilateral flags too,
+  // keeping their states and record (a sleeper whose void or flag changed stands as at rest
+  // without weight, closed where g = 0 or linear, until join_at_rest()).
   void take_properties(const RailModel& rail);
-  // The travelling window moved k bays back: sleeper j takes the state, flips and record of
-  // sleeper j + k; the k fresh sleepers at the front join at rest (closed where they touch their
-  // bed, no event, no time on it yet).
+  // The travelling window moved k bays back: sleeper j takes the state, flips, void and
+  // unilateral flag of sleeper j + k (the same physical sleeper); the k fresh sleepers at the
+  // front stand provisionally as if at rest without weight (closed where they touch their bed)
+  // until join_at_rest(). The record stays with the physical sleepers.
   void shift(int k);
+  // The fresh sleepers of the shifts since the last call take their states at the window's rest
+  // z_rest (the window's own rest after its properties streamed in): closed where the sleeper
+  // touches or presses its bed, -z_j - g_j >= 0 (init_states' convention), no event.
+  void join_at_rest(const Eigen::VectorXd& z_rest);
   // The run's record: events (state changes between committed steps), how many sleepers were
-  // frozen, and each sleeper's time on its ballast [s].
+  // frozen, and each physical sleeper's time on its ballast [s].
   void reset_record();  // at the start state
   void commit(double dt);
   long events() const { return events_; }
   long frozen() const { return frozen_; }
-  const Eigen::VectorXd& contact_time() const { return contact_time_; }
+  // Per physical sleeper in the order the run met them: the rail's sleepers on a fixed rail;
+  // on a travelling window the start window's, then one per shift (the envelope's order,
+  // output.hpp), each counting its time in the window only.
+  Eigen::VectorXd contact_time() const {
+    return Eigen::Map<const Eigen::VectorXd>(contact_time_.data(),
+                                             static_cast<Eigen::Index>(contact_time_.size()));
+  }
 
   // y_j = s_j . u over u's indexing (map: full index -> index in u).
   double rail_y(int j, const Eigen::VectorXd& u, const std::vector<int>& map) const;
@@ -180,7 +192,9 @@ class Sleepers {
   std::vector<int> flips_;
   bool any_unilateral_ = false;
   long version_ = 0, events_ = 0, frozen_ = 0;
-  Eigen::VectorXd contact_time_;
+  long first_ = 0;  // the physical index of sleeper 0: the window's shifts since reset_record()
+  int fresh_ = 0;   // the front sleepers that joined since the last join_at_rest()
+  std::vector<double> contact_time_;  // per physical sleeper, sleeper j's at first_ + j
   double g_ = 0.0;
   double cm_ = 0.0, cv_ = 0.0, cq_ = 0.0;
   Eigen::VectorXd a_, D_;

@@ -26,6 +26,9 @@ struct WindowParams {
   SupportParams supports;
   bool active() const { return bay > 0.0; }
   bool streams() const { return active() && !supports.position.empty(); }
+  // The stream has a sleeper that can lose its ballast (a void, tensionless): the run's
+  // sleepers are unilateral from the start (Sleepers' unilateral).
+  bool streams_unilateral() const { return streams() && supports.any_unilateral(); }
 };
 
 // Numerical settings of one run (the physics is in Model).

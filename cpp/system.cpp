@@ -16,7 +16,7 @@ System::System(const Model& model, const SimSettings& set)
       nb_(model.n_bodies()),
       vehicle_(model.vehicle, layout()),
       static_load_(static_wheel_loads(model)),
-      sl_(model.rail),
+      sl_(model.rail, set.window.streams_unilateral()),
       identity_(model.rail.n_dof()) {
   for (int i = 0; i < model.rail.n_dof(); ++i) identity_[i] = i;
   Mfac_ = model.rail.mass();

@@ -82,9 +82,18 @@ SupportFeed::SupportFeed(const WindowParams& p, RailModel& rail) : stream_(p.sup
                                   " is at X = " + format3(stream_.position[k]) +
                                   " m; the window's supports stand at X = " + format3(X) + " m");
   }
+  if (stream_.tensionless != sup.tensionless)
+    throw std::invalid_argument(
+        "window: the support stream and the rail's supports must agree on tensionless");
+  // A stream with voids gives the window's supports a void field even where the start window
+  // has none (g = 0 there: the linear ballast), so that every sleeper it meets can take one.
+  window_ = sup;
+  const bool add_voids = !stream_.void_gap.empty() && window_.void_gap.empty();
+  if (add_voids) window_.void_gap.assign(ns, 0.0);
   // each property the rail has, the stream has for every support, and no other
   std::vector<std::size_t> sizes;
-  for_each_support_property(sup, [&](const std::vector<double>& v) { sizes.push_back(v.size()); });
+  for_each_support_property(window_,
+                            [&](const std::vector<double>& v) { sizes.push_back(v.size()); });
   std::size_t i = 0;
   for_each_support_property(stream_, [&](const std::vector<double>& v) {
     if (v.size() != (sizes[i++] > 0 ? nk : 0))
@@ -106,8 +115,19 @@ SupportFeed::SupportFeed(const WindowParams& p, RailModel& rail) : stream_(p.sup
   check(stream_.sleeper_mass, "sleeper_mass", true);
   check(stream_.ballast_stiffness, "ballast_stiffness", true);
   check(stream_.ballast_damping, "ballast_damping", false);
-  window_ = sup;
+  check(stream_.void_gap, "void_gap", false);
+  // as rail.cpp asks of its own supports: a sleeper that can lose its ballast hangs on its pad
+  if (!stream_.sleeper_mass.empty())
+    for (std::size_t k = 0; k < nk; ++k)
+      if ((stream_.unilateral(k) || stream_.ballast_stiffness[k] == 0.0) &&
+          !(stream_.stiffness[k] > 0.0))
+        throw std::invalid_argument(
+            "window: support stream entry " + std::to_string(k) +
+            " at X = " + format3(stream_.position[k]) +
+            " m: a sleeper that can lose its ballast (void_gap > 0, tensionless or "
+            "ballast_stiffness = 0) needs a pad stiffness > 0 N/m to hang on");
   rail_ = &rail;
+  if (add_voids) rail.set_support_properties(window_);
   feed(0);
 }
 
@@ -156,7 +176,11 @@ bool WindowFollower::follow(double rear_x, double& origin, SimState& st,
     }
     origin += wp.bay;
     ++first_;
+    // the ballast states move before the properties stream in: the rest's active set starts
+    // from them and each sleeper's void meets its own state
+    if (sleepers_ != nullptr) sleepers_->shift(1);
     if (restream_ && restream_(first_, e_rest_, z_rest_) && changed != nullptr) *changed = true;
+    if (sleepers_ != nullptr) sleepers_->join_at_rest(z_rest_);
     st.e += e_rest_;
     if (st.z.size() > 0) st.z += z_rest_;
     moved = true;

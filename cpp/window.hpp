@@ -10,7 +10,11 @@
 // the window do not change. A track whose supports differ from bay to bay streams them in
 // (SupportFeed): after each shift support j takes the properties of the physical sleeper now
 // at its place, the rail's support bands and the sleepers' rows are re-assembled and the rest
-// state is solved again; where no property changed nothing is rebuilt.
+// state is solved again; where no property changed nothing is rebuilt. A void streams in like
+// any property and stays with its physical sleeper: the sleepers' ballast states shift with the
+// state (Sleepers::shift), the properties stream in, the rest is solved again (its sleepers by
+// their active set) and the fresh front sleeper joins on or off its bed as it stands at that
+// rest (Sleepers::join_at_rest).
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +25,7 @@
 #include <vector>
 
 #include "rail.hpp"
+#include "sleepers.hpp"
 #include "state.hpp"
 
 namespace trackwheel {
@@ -91,11 +96,13 @@ class WindowFollower {
   using Restream =
       std::function<bool(long first, Eigen::VectorXd& e_rest, Eigen::VectorXd& z_rest)>;
   WindowFollower() = default;
+  // sleepers: the run's (their ballast states and record move with the window), or null.
   WindowFollower(WindowShift shift, Eigen::VectorXd e_rest, Eigen::VectorXd z_rest,
-                 Restream restream = nullptr)
+                 Sleepers* sleepers, Restream restream = nullptr)
       : shift_(std::move(shift)),
         e_rest_(std::move(e_rest)),
         z_rest_(std::move(z_rest)),
+        sleepers_(sleepers),
         restream_(std::move(restream)) {}
   bool active() const { return shift_.active(); }
   void set_restream(Restream r) { restream_ = std::move(r); }
@@ -103,19 +110,21 @@ class WindowFollower {
   long first() const { return first_; }
   // While the rearmost wheel, at the track coordinate rear_x [m], is at or past the hold point
   // of the window of origin X_w = origin [m]: moves the state one bay back (the departures of e
-  // and z from rest, their rates, each wheel's contact warm start s), each of accs likewise (e''
-  // and z'' as they are) and origin one bay on, streaming the supports in after each shift.
-  // True if it moved; changed: whether a support's properties changed.
+  // and z from rest, their rates, each wheel's contact warm start s, the sleepers' ballast
+  // states), each of accs likewise (e'' and z'' as they are) and origin one bay on, streaming
+  // the supports in after each shift and joining the fresh sleeper at the rest. True if it
+  // moved; changed: whether a support's properties changed.
   bool follow(double rear_x, double& origin, SimState& st, std::initializer_list<Accel*> accs,
               bool* changed = nullptr);
   // follow() for the workspace sys (System or LinearSystem) at time t [s]: its rearmost wheel
   // and its origin, moved with the window.
   template <class Sys>
-  bool follow_wheels(Sys& sys, double t, SimState& st, std::initializer_list<Accel*> accs) {
+  bool follow_wheels(Sys& sys, double t, SimState& st, std::initializer_list<Accel*> accs,
+                     bool* changed = nullptr) {
     double rear = sys.x_at(0, t);
     for (int w = 1; w < sys.n_wheels(); ++w) rear = std::min(rear, sys.x_at(w, t));
     double origin = sys.origin();
-    const bool moved = follow(rear, origin, st, accs);
+    const bool moved = follow(rear, origin, st, accs, changed);
     sys.set_origin(origin);
     return moved;
   }
@@ -123,6 +132,7 @@ class WindowFollower {
  private:
   WindowShift shift_;
   Eigen::VectorXd e_rest_, z_rest_;
+  Sleepers* sleepers_ = nullptr;
   Restream restream_;
   long first_ = 0;
 };

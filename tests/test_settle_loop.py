@@ -284,10 +284,3 @@ def test_real_stage_halving():
     assert 1.5 < d1 / d2 < 2.5
     assert d2 < 0.03 * np.ptp(runs[2])
 
-
-def test_window_feedback_is_refused():
-    """A travelling window cannot carry a settled bed's voids: feedback=True is refused there
-    with the way out named."""
-    scene = tw.Scene.ballasted_track(window=tw.Window())
-    with pytest.raises(ValueError, match="fixed rail"):
-        tw.settle(scene, 50.0, 100, x_start=5.0, x_end=10.0, progress=False)

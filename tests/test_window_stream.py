@@ -212,11 +212,3 @@ def test_public_path_streams_a_transition_with_scatter():
     for name in ("ballast_force_max", "ballast_force_min"):
         assert np.abs(ew[name].to_numpy() - ef[name].to_numpy()).max() < 1e-3 * P_STATIC
 
-
-def test_window_refuses_voids():
-    """A void is fixed to one sleeper: the window, whose sleepers travel, refuses it (the
-    voided track runs on a fixed rail)."""
-    scene = tw.Scene.ballasted_track(window=tw.Window(10, 10))
-    scene = dc.replace(scene, supports=scene.supports.hanging(9.0, gap=1e-3))
-    with pytest.raises(ValueError, match="does not take voids"):
-        tw.simulate(scene, V, x_start=6.1, x_end=10.1, fidelity="linear/hertz", progress=False)

@@ -93,9 +93,10 @@ def unilateral_ballast(sv, s: _core.SupportParams) -> None:
 
 
 #: The per-support properties the travelling window streams (the kernel's
-#: for_each_support_property): SupportParams' fields other than the positions.
+#: for_each_support_property): SupportParams' fields other than the positions and the
+#: tensionless switch (one for the run).
 STREAMED_PROPERTIES = ("stiffness", "damping", "sleeper_mass", "ballast_stiffness",
-                       "ballast_damping")
+                       "ballast_damping", "void_gap")
 
 
 def support_stream(scene: Scene, window, travel: float):
@@ -103,7 +104,9 @@ def support_stream(scene: Scene, window, travel: float):
     ``travel`` [m] of its rear wheel, one per sleeper from the start window's rear support at
     X_0 = origin + X_0,rail on, X_k = X_0 + k d (every sleeper that joins the window, O(travel
     / d) of them), as a ``_core.SupportParams`` for ``window.supports``; None if every one has
-    the same properties (the window's rail is the track, as without streaming)."""
+    the same properties (the window's rail is the track, as without streaming). A void streams
+    like any property: it stays with its sleeper as the window travels (the kernel makes the
+    window's sleepers unilateral from the start if any sleeper of the stream is)."""
     if scene.supports.uniform:
         return None
     d = window.bay
@@ -111,10 +114,6 @@ def support_stream(scene: Scene, window, travel: float):
     n = len(rail_x) + int(np.ceil(travel / d - 1e-9)) + 2  # one more shift at each end
     x = window.origin + rail_x[0] + d * np.arange(n)
     stream = _supports_at(scene, x)
-    if any(g > 0.0 for g in stream.void_gap):
-        raise ValueError("the travelling window does not take voids (Supports.void > 0 at a "
-                         "sleeper it meets): run the voided track on a fixed rail "
-                         "(tensionless ballast without voids is fine)")
     if all(len(set(getattr(stream, f))) <= 1 for f in STREAMED_PROPERTIES):
         return None
     return stream

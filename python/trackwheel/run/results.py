@@ -291,7 +291,9 @@ def _result_doc() -> str:
               "that passed): :meth:`sleeper_envelope` as a DataFrame.", "",
               "``ballast_events``: a unilateral ballast's open/closed changes over the run",
               "(voids, tensionless ballast; 0 otherwise); ``ballast_contact_time`` [s]: each",
-              "sleeper's time on its ballast (None without sleepers)."]
+              "sleeper's time on its ballast (None without sleepers; on a travelling window one",
+              "entry per sleeper the run met, the rows of :meth:`sleeper_envelope`, each",
+              "counting its time in the window)."]
     return "\n".join(lines)
 
 

@@ -80,7 +80,8 @@ class Scene:
                              "unloaded (F + M g = 0 N); allowed: Wheel.load > 0 or "
                              "Scene.gravity > 0")
         # supports must lie on the rail, with valid properties at each
-        self.supports.check_at(self.supports.resolve(self.rail.length))
+        self.supports.check_at(self.supports.resolve(self.rail.length),
+                               along_track=self.window is not None)
         if self.window is not None:
             self._check_window()
         self._check_sag()

@@ -250,11 +250,20 @@ class Supports:
                              f"X = {x.ravel()[off][0]:.6g} m is not one of its supports")
         return np.asarray(value)[j].reshape(x.shape)
 
-    def check_at(self, positions) -> SupportValues:
+    def check_at(self, positions, *, along_track: bool = False) -> SupportValues:
         """:meth:`values` at ``positions`` [m], the units of a stiffness given as a function
         checked on its softest value (a PlausibilityWarning), and every voided sleeper of a
-        :class:`Voids` recipe on a support (ValueError otherwise): what a Scene checks."""
+        :class:`Voids` recipe on a support (ValueError otherwise): what a Scene checks.
+        ``along_track``: the rail is a travelling window over a track with a sleeper every
+        ``spacing`` (X = k spacing), and a void may stand at any of them."""
         vals = self.values(positions)
+        if along_track and isinstance(self.void, Voids):
+            for x in self.void.positions:
+                if abs(x / self.spacing - round(x / self.spacing)) * self.spacing > 1e-6:
+                    raise ValueError(f"Supports.void: no sleeper at X = {x:g} m for its void "
+                                     f"(the track's sleepers stand every {self.spacing:g} m; "
+                                     "Supports.hanging puts a void at one)")
+            return vals
         for name in ("stiffness", "ballast_stiffness"):
             arr = getattr(vals, name)
             if callable(getattr(self, name)) and arr is not None and arr.size:

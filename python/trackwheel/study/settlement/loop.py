@@ -47,9 +47,9 @@ def settle(scene: Scene, traffic, cycles, law: SettlementLaw | None = None, *,
         wheel (``history.static_deflection``).
     increment : that fraction (0, 10] [-], default 0.1.
     feedback : True (default): each stage's passages run on the settled bed, the settlement
-        in the track as voids (a fixed rail only). False: every stage uses the intact bed's
-        forces (the open-loop estimate of tools without feedback, for comparison; on a
-        travelling window too); the bed is not settled into the track.
+        in the track as voids (on a fixed rail or a travelling window). False: every stage
+        uses the intact bed's forces (the open-loop estimate of tools without feedback, for
+        comparison); the bed is not settled into the track.
     datum : "min" (default): the track sinks as a whole by the least settlement of the settling
         sleepers, only the settlement beyond it opens voids (the rail, continuous over
         kilometres, follows a uniform settlement; a rail of finite length on rigid end supports

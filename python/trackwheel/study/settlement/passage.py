@@ -29,6 +29,7 @@ from ...run.defaults import default_settings
 from ...run.results import sample_bytes
 from ...run.simulate import TIME_DOMAIN_LEVELS, simulate
 from ...scene import Scene
+from ...scene.support_fields import Voids
 
 #: the passage that stands the wheels still above each sleeper (no time integration)
 STATIC_LEVEL = "static"
@@ -46,13 +47,15 @@ HISTORY_BYTES = 256 * 2**20
 @dataclass(frozen=True)
 class PassageTask:
     """One passage: the ``scene`` (the traffic item's vehicle on the track as given), the
-    ``voids`` (N,) [m] of every support of the settled bed (None: the scene's own), the forward
+    ``voids`` of the settled bed (None: the scene's own): (N,) [m] one per support of a fixed
+    rail, or on a travelling window the :class:`~trackwheel.scene.support_fields.Voids` at the
+    track's sleepers (:func:`bed_voids`), the forward
     ``speed`` [m/s], the ``fidelity`` (:data:`PASSAGE_LEVELS`), the reference point's start and
     end ``x_start``, ``x_end`` [m] (resolved), the settling sleepers' positions ``sleepers``
     [m] and the other :func:`trackwheel.simulate` keywords ``simulate_kwargs``."""
 
     scene: Scene
-    voids: tuple[float, ...] | None
+    voids: tuple[float, ...] | Voids | None
     speed: float
     fidelity: str
     x_start: float
@@ -61,7 +64,7 @@ class PassageTask:
     simulate_kwargs: dict = field(default_factory=dict)
 
     def bed(self) -> Scene:
-        """The scene on the settled bed: ``Supports.void`` the ``voids`` per support."""
+        """The scene on the settled bed: ``Supports.void`` the ``voids``."""
         if self.voids is None:
             return self.scene
         return replace(self.scene, supports=replace(self.scene.supports, void=self.voids))
@@ -121,6 +124,32 @@ def run_passage(task: PassageTask) -> PassageForces:
     force = np.asarray(result.normal_force, dtype=float).reshape(len(result.t), -1)
     return PassageForces(peak_ballast_forces(result, scene, sleepers), force.max(axis=0),
                          force.min(axis=0), loads)
+
+
+def track_supports(scene: Scene, x_range) -> np.ndarray:
+    """X [m] of every support the passages meet: the rail's on a fixed rail; on a travelling
+    window each sleeper of the track (X = k d) it can cover over the runs, from a window's
+    length (and a bay) behind the earliest start ``x_range`` (start, end) [m] pairs of the
+    reference point to one ahead of the latest end, the vehicle's span included."""
+    if scene.window is None:
+        return np.asarray(scene.support_positions, dtype=float)
+    d = scene.supports.spacing
+    rear, front = scene.active_vehicle.span
+    reach = scene.rail.length + d
+    lo = min(x0 for x0, _ in x_range) + rear - reach
+    hi = max(x1 for _, x1 in x_range) + front + reach
+    return d * np.arange(math.floor(lo / d), math.ceil(hi / d) + 1)
+
+
+def bed_voids(scene: Scene, supports: np.ndarray, voids: np.ndarray):
+    """The ``PassageTask.voids`` of a bed with the gaps ``voids`` (N,) [m] under the supports
+    at ``supports`` (N,) [m] (:func:`track_supports`): the tuple of gaps on a fixed rail; on a
+    travelling window (which takes a void as a function of X, the sleepers it meets streaming
+    in) the :class:`~trackwheel.scene.support_fields.Voids` at those sleepers."""
+    if scene.window is None:
+        return tuple(np.asarray(voids, dtype=float).tolist())
+    return Voids(tuple(np.asarray(supports, dtype=float).tolist()),
+                 tuple(np.asarray(voids, dtype=float).tolist()))
 
 
 def passage_output_every(task: PassageTask, several: bool) -> int:

@@ -22,7 +22,7 @@ from ...run.stretch import default_end, default_start
 from ...scene import Scene
 from ..sweep import pool
 from ..sweep.store import jsonable
-from .passage import PASSAGE_LEVELS, PassageForces, PassageTask
+from .passage import PASSAGE_LEVELS, PassageForces, PassageTask, bed_voids, track_supports
 from .state import MAX_CYCLES, SettlementLaw, whole
 from .traffic import Traffic
 from .varandas import Varandas
@@ -83,13 +83,9 @@ def setup(scene, traffic, cycles, law, stages, increment, feedback, datum, fidel
     v.boolean("feedback", feedback)
     v.choice("datum", datum, DATUMS)
     v.choice("fidelity", fidelity, PASSAGE_LEVELS)
-    if feedback and scene.window is not None:
-        raise ValueError("feedback=True needs a fixed rail: a travelling window cannot carry "
-                         "the settled bed's voids (a void belongs to one sleeper); use "
-                         "feedback=False (the open-loop estimate) or a fixed rail")
     item_scenes = tuple(item.scene(scene) for item in traffic.items)
     x_range = tuple(_x_range(s, x_start, x_end) for s in item_scenes)
-    supports = np.asarray(scene.support_positions, dtype=float)
+    supports = track_supports(scene, x_range)
     sleepers = _zone(supports, item_scenes, x_range, scene.supports.spacing)
     stiffness = _support_values(scene, "static_stiffness", supports)
     zone = np.isin(supports, sleepers)
@@ -185,7 +181,7 @@ def tasks(su: Setup, voids_all: np.ndarray) -> list[PassageTask]:
     same = np.array_equal(voids_all, su.base_void)
     out = []
     for item, scene, (x0, x1) in zip(su.traffic.items, su.item_scenes, su.x_range):
-        voids = None if same else tuple(voids_all.tolist())
+        voids = None if same else bed_voids(su.scene, su.supports, voids_all)
         out.append(PassageTask(scene, voids, item.speed, su.fidelity, x0, x1,
                                tuple(su.sleepers.tolist()), su.simulate_kwargs))
     return out
