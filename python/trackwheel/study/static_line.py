@@ -18,11 +18,11 @@ from functools import lru_cache
 import numpy as np
 from numpy.polynomial import chebyshev
 
-from ..run import kernel
 from ..run.stretch import END_DECAY, end_clearance
 from ..run.statics import (linear_quasi_static, linear_vehicle_line, piece_line, quasi_static,
                            vehicle_static, window_line)
 from ..scene import Scene
+from ..scene.support_fields import PER_SUPPORT
 
 __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_breakpoints",
            "vehicle_qs_series", "vehicle_quasi_static_line", "window_bay_series",
@@ -100,8 +100,7 @@ def piece_bays(scene: Scene, n_elements: int) -> int:
     rail does not), or a mesh that is not whole elements per bay."""
     if (scene.window is not None or scene.supports.positions is not None
             or scene.rail.far_end != "roller"
-            or any(isinstance(getattr(scene.supports, name), tuple)
-                   for name in kernel.STREAMED_PROPERTIES)):
+            or any(isinstance(getattr(scene.supports, name), tuple) for name in PER_SUPPORT)):
         return 0
     d, L = scene.supports.spacing, scene.rail.length
     n_bays = round(L / d)
