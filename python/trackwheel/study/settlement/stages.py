@@ -32,8 +32,9 @@ from .varandas import Varandas
 DATUMS = ("min", "none")
 #: most stages a run may take [-]
 MAX_STAGES = 10_000
-#: default largest settlement increment of an adaptive stage, a fraction of the static
-#: deflection [-]
+#: default largest change of a void in an adaptive stage, a fraction of the static
+#: deflection [-]: halving it changes the final settlement by a few per cent of the
+#: differential settlement on a stiffness step (docs: Model § The settlement loop)
 DEFAULT_INCREMENT = 0.1
 
 
@@ -157,8 +158,8 @@ def inputs(su: Setup, passage) -> dict:
     return jsonable({
         "scene": dataclasses.asdict(su.scene), "traffic": su.traffic.to_dict(),
         "law": su.law.to_dict(), "cycles": su.cycles, "stages": su.stages,
-        "increment": su.increment, "feedback": su.feedback, "datum": su.datum,
-        "fidelity": su.fidelity, "x_range": [list(r) for r in su.x_range],
+        "increment": su.increment, "stage_limit": "voids", "feedback": su.feedback,
+        "datum": su.datum, "fidelity": su.fidelity, "x_range": [list(r) for r in su.x_range],
         "simulate": su.simulate_kwargs, "version": __version__,
         "passage": f"{getattr(passage, '__module__', '?')}."
                    f"{getattr(passage, '__qualname__', type(passage).__qualname__)}"})
