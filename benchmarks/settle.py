@@ -11,6 +11,7 @@ with ROSE's parameters.
     python benchmarks/settle.py --increment 0.1 0.05    # the default and its halving
     python benchmarks/settle.py --increment --stages 20 40     # the fixed schedule
     python benchmarks/settle.py --fidelity full --increment 0.4
+    python benchmarks/settle.py --step --increment 0.4 0.2 0.1 0.05   # the 24 m step
 
 Each run prints its wall time and its passages (the machine-independent cost: one passage per
 traffic item and state of the bed).
@@ -27,19 +28,25 @@ import numpy as np
 import trackwheel as tw
 
 
-def scene() -> tw.Scene:
-    base = tw.Scene.ballasted_track(72.0)
-    supports = base.supports.transition(36.0, ramp=6.0, shape="linear",
-                                        ballast_stiffness=(50e6, 200e6))
+def scene(step: bool = False) -> tw.Scene:
+    """The benchmark's 72 m transition, or (``step``) the tests' 24 m step at X = 12 m."""
+    if step:
+        base = tw.Scene.ballasted_track(24.0)
+        supports = base.supports.transition(12.0, ballast_stiffness=(50e6, 200e6))
+    else:
+        base = tw.Scene.ballasted_track(72.0)
+        supports = base.supports.transition(36.0, ramp=6.0, shape="linear",
+                                            ballast_stiffness=(50e6, 200e6))
     return dataclasses.replace(base, supports=supports)
 
 
 def run(fidelity: str, stages: int | None, cycles: float, feedback: bool,
-        increment: float = 0.1) -> tuple[tw.settlement.SettlementHistory, float, float]:
+        increment: float = 0.1,
+        step: bool = False) -> tuple[tw.settlement.SettlementHistory, float, float]:
     """The history, its wall time and this process's CPU time [s] (the passages run here, one
     thread: on a shared machine the CPU time is the cost, the wall time includes waiting)."""
     t0, c0 = time.perf_counter(), time.process_time()
-    h = tw.settle(scene(), tw.kmh(200), cycles, fidelity=fidelity, stages=stages,
+    h = tw.settle(scene(step), tw.kmh(200), cycles, fidelity=fidelity, stages=stages,
                   increment=increment, feedback=feedback, progress=False)
     return h, time.perf_counter() - t0, time.process_time() - c0
 
@@ -53,11 +60,13 @@ def main() -> None:
                    help="adaptive runs, each stage's largest change of a void this fraction of w0")
     p.add_argument("--cycles", type=float, default=1e6)
     p.add_argument("--open-loop", action="store_true", help="feedback=False")
+    p.add_argument("--step", action="store_true",
+                   help="the tests' 24 m step (ballast 50 -> 200 MN/m at X = 12 m) instead")
     args = p.parse_args()
     results = []
     cases = [(m, 0.1) for m in args.stages] + [(None, inc) for inc in args.increment]
     for m, inc in cases:
-        h, wall, cpu = run(args.fidelity, m, args.cycles, not args.open_loop, inc)
+        h, wall, cpu = run(args.fidelity, m, args.cycles, not args.open_loop, inc, args.step)
         results.append(h)
         s = h.settlement[-1]
         how = f"{m:>3} stages" if m is not None else f"increment {inc:g}, {h.n_stages} stages"
