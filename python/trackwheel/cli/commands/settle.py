@@ -45,8 +45,9 @@ def add(sub) -> None:
     p.add_argument("--stages", type=positive_int, metavar="M",
                    help="the number of stages (default: adaptive, see --increment)")
     p.add_argument("--increment", type=positive_float, default=DEFAULT_INCREMENT, metavar="R",
-                   help="adaptive stages: the largest settlement increment of a stage as a "
-                        f"fraction of the static deflection (default {DEFAULT_INCREMENT:g})")
+                   help="adaptive stages: the largest change of a sleeper's void in a stage "
+                        "as a fraction of the static deflection (default "
+                        f"{DEFAULT_INCREMENT:g})")
     p.add_argument("--law", choices=tuple(LAWS), default="varandas",
                    help="the settlement law (default varandas with ROSE's parameters)")
     p.add_argument("--law-param", nargs="+", default=[], metavar="NAME=VALUE",

@@ -41,10 +41,12 @@ def settle(scene: Scene, traffic, cycles, law: SettlementLaw | None = None, *,
         items in proportion to their axle passes a day, in whole passages.
     law : the settlement law (default ``Varandas()``, ROSE's parameters).
     stages : the number of stages, on the schedule N_k = N^(k/m) (rounded); None (default):
-        adaptive, each stage as long as keeps the largest settlement increment at most
-        ``increment`` x w0, w0 = P beta / (2 k_f) the static deflection of the beam on a
-        Winkler foundation of the settling sleepers' mean support stiffness under the heaviest
-        wheel (``history.static_deflection``).
+        adaptive, each stage as long as keeps the largest change of a settling sleeper's void
+        (its settlement less the datum's: a settlement the whole track shares leaves the forces
+        as they were) at most ``increment`` x w0, w0 = P beta / (2 k_f) the static deflection
+        of the beam on a Winkler foundation of the settling sleepers' mean support stiffness
+        under the heaviest wheel (``history.static_deflection``). The fixed schedule runs away
+        on a transition once a stage opens voids near w0 (docs: Model § The settlement loop).
     increment : that fraction (0, 10] [-], default 0.1.
     feedback : True (default): each stage's passages run on the settled bed, the settlement
         in the track as voids (on a fixed rail or a travelling window). False: every stage

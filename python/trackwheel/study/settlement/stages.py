@@ -32,8 +32,9 @@ from .varandas import Varandas
 DATUMS = ("min", "none")
 #: most stages a run may take [-]
 MAX_STAGES = 10_000
-#: default largest settlement increment of an adaptive stage, a fraction of the static
-#: deflection [-]
+#: default largest change of a void in an adaptive stage, a fraction of the static
+#: deflection [-]: halving it changes the final settlement by a few per cent of the
+#: differential settlement on a stiffness step (docs: Model § The settlement loop)
 DEFAULT_INCREMENT = 0.1
 
 
@@ -153,8 +154,8 @@ def inputs(su: Setup, passage) -> dict:
     return jsonable({
         "scene": dataclasses.asdict(su.scene), "traffic": su.traffic.to_dict(),
         "law": su.law.to_dict(), "cycles": su.cycles, "stages": su.stages,
-        "increment": su.increment, "feedback": su.feedback, "datum": su.datum,
-        "fidelity": su.fidelity, "x_range": [list(r) for r in su.x_range],
+        "increment": su.increment, "stage_limit": "voids", "feedback": su.feedback,
+        "datum": su.datum, "fidelity": su.fidelity, "x_range": [list(r) for r in su.x_range],
         "simulate": su.simulate_kwargs, "version": __version__,
         "passage": f"{getattr(passage, '__module__', '?')}."
                    f"{getattr(passage, '__qualname__', type(passage).__qualname__)}"})
@@ -231,19 +232,26 @@ def cycle_rows(su: Setup, forces, dp: np.ndarray) -> tuple[np.ndarray, np.ndarra
 def next_cycles(su: Setup, state, forces, done: int, passages_done, index: int) -> int:
     """The cycles at the end of the stage that starts at ``done``: with ``stages`` the
     schedule N_k = N^(k/m) (rounded, strictly increasing: equal settlement steps of a law
-    that grows like a power of N); adaptive, the largest total whose largest settlement
-    increment at this stage's forces is at most ``increment`` x w0 (bisection on the
-    whole number; at least one passage)."""
+    that grows like a power of N); adaptive, the largest total whose largest change of a
+    settling sleeper's void at this stage's forces is at most ``increment`` x w0 (bisection on
+    the whole number; at least one passage).
+
+    The void, not the settlement: a settlement the whole track shares sinks the track with
+    the datum and leaves the forces as they were, so only the change of the bed's voids
+    (settlement less the datum's) limits the stage; with ``datum="none"`` the two are the
+    same."""
     if su.stages is not None:
         k = index + 1
         target = su.cycles if k >= su.stages else int(round(su.cycles ** (k / su.stages)))
         return min(su.cycles, max(target, done + 1))
     limit = su.increment * su.static_deflection
+    before = bed(su, state.settlement)[0]
 
     def step(total: int) -> float:
         dp = su.traffic.passages(su.scene, total) - passages_done
         rows, counts = cycle_rows(su, forces, dp)
-        return float(np.max(su.law.advance(state, rows, counts)[1]))
+        after = bed(su, su.law.advance(state, rows, counts)[0].settlement)[0]
+        return float(np.max(np.abs(after - before)))
 
     if step(su.cycles) <= limit:
         return su.cycles
@@ -255,5 +263,5 @@ def next_cycles(su: Setup, state, forces, done: int, passages_done, index: int) 
         else:
             hi = mid
     if np.all(su.traffic.passages(su.scene, lo) == passages_done):
-        return hi  # even the first passage settles more than the limit: one passage
+        return hi  # even the first passage changes the voids by more than the limit
     return lo
