@@ -43,8 +43,8 @@ bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
 void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x, int it) {
   const bool refresh_rail = !have_matrix_ || it >= 3 || out_.factorizations % 64 == 0;
   sys_.contact_terms(s1, true, ev_);
-  sys_.assemble_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail);
-  if (!sys_.factorize_iteration_matrix()) div_.fail(n, "singular Newton matrix");
+  if (!sys_.update_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail))
+    div_.fail(n, "singular Newton matrix");
   have_matrix_ = true;
   ballast_version_ = sys_.sleepers().version();
   for (int w = 0; w < sys_.n_wheels(); ++w)
@@ -175,7 +175,8 @@ void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r
   const Eigen::VectorXd& rs = sys_.sleeper_residual();
   minus_r.resize(r1_.size() + r2_.size() + rs.size());
   minus_r << r1_, r2_, rs;
-  if (!sys_.factorize_iteration_matrix()) throw std::runtime_error("singular Newton matrix");
+  if (!sys_.update_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, false))
+    throw std::runtime_error("singular Newton matrix");
   sys_.solve(r1_, r2_, x1_, x2_, dz_);
   dx.resize(minus_r.size());
   dx << x1_, x2_, dz_;
