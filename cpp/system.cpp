@@ -201,6 +201,10 @@ void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::
 
 void System::solve_split(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
                          Eigen::VectorXd& x2) const {
+  if (!split_solve_) {
+    solve_bordered(r1, r2, x1, x2);
+    return;
+  }
   if (nb_ == 0) {
     split_.solve(r1, r2, x1, x2);
     return;
@@ -276,6 +280,7 @@ bool System::update_iteration_matrix(const SimState& st, const Eval& ev, const A
     a0_valid_ = true;
     a0_version_ = sl_.version();
   }
+  split_solve_ = true;
   Es_.setZero();
   Fs_.setZero();
   Cs_.setZero();
@@ -293,6 +298,11 @@ bool System::update_iteration_matrix(const SimState& st, const Eval& ev, const A
   Dbw_s_ = Db_.bottomLeftCorner(mb, mw);
   Dred_s_ = Db_.topLeftCorner(mw, mw) - Dwb_s_ * body_lu_s_.solve(Dbw_s_);
   return split_.factorize(Es_, Fs_, Cs_, Dred_s_);
+}
+
+bool System::factorize_iteration_matrix() {
+  split_solve_ = false;
+  return factorize_bordered(J_, true);
 }
 
 void System::set_local_map(const Eval& ev) {

@@ -106,10 +106,12 @@ class System {
   // Band factorisations and band solves spent on the iteration matrix so far (diagnostics).
   long band_factorizations() const { return band_factorizations_; }
   long band_solves() const { return split_.band_solves(); }
-  // The same matrix assembled in one piece: the contact terms added into the band and its
-  // border (tests: iteration_matrix_dense).
+  // The same matrix assembled in one piece, the contact terms added into the band and its
+  // border, then factorised as a whole (the band with them): the form for a matrix kept over
+  // many iterations (its results are those of the kernel before the split form, bit for bit).
   void assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
                                  double cv, bool refresh_rail);
+  bool factorize_iteration_matrix();
   // The matrix of assemble_iteration_matrix as a dense (n_free + n_border + n_sleepers)
   // square, the sleepers' block uncondensed (tests).
   Eigen::MatrixXd iteration_matrix_dense() const;
@@ -182,7 +184,8 @@ class System {
   long a0_version_ = -1;  // the sleepers' states condensed into A0_
   long band_factorizations_ = 0;
   bool split_mode_ = false;
-  std::vector<int> local_;  // contact layout -> full system index (-1: a fixed coordinate)
+  bool split_solve_ = false;  // solve() with the split factorisation (else the assembled one)
+  std::vector<int> local_;    // contact layout -> full system index (-1: a fixed coordinate)
   Eigen::MatrixXd Es_, Fs_, Cs_;
   Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_s_;
   Eigen::MatrixXd Dwb_s_, Dbw_s_, Dred_s_;
