@@ -87,7 +87,7 @@ def monte_carlo_rows(n: int, dask: bool) -> list[dict]:
     n_failed = int((pool.error != "").sum())
     print(f"{n} realisations on a 2-process pool: {wall:.1f} s (target < 30 s), "
           f"{n_failed} failed; sum of case walls {pool.wall_time_s.sum():.1f} s")
-    print(tw.summarise_seeds(pool, ["max_contact_force", "dynamic_factor"]).to_string())
+    print(tw.summarise_seeds(pool, ["max_contact_force_N", "dynamic_factor"]).to_string())
     rows = [dict(part="b", case=f"{n} realisations, 2-process pool", steps=int(pool.steps.sum()),
                  median_wall_s=wall, median_kernel_s=float(pool.wall_time_s.sum()),
                  us_per_step=1e6 * wall / int(pool.steps.sum()), ratio_wall=float("nan"),
