@@ -9,7 +9,8 @@ Two measures per case:
   and exact, so two builds compare without noise.
 
 The cases cover both paths on the paper's scene and on a ballasted track with sleepers, with a
-travelling window and with a two-wheel bogie. Compare two builds by running the script with
+travelling window and with a two-wheel bogie, and the full path on irregularity.py's smooth and
+rough scenes and on vehicle.py's single wheel and half car (100 elements). Compare two builds by running the script with
 each on ``PYTHONPATH`` (alternately, for the times) and comparing the JSON lines it prints::
 
     PYTHONPATH=python python benchmarks/step_cost.py [--repeats 5] [--callgrind] [--csv]
