@@ -9,7 +9,8 @@ Two measures per case:
   and exact, so two builds compare without noise.
 
 The cases cover both paths on the paper's scene and on a ballasted track with sleepers, with a
-travelling window and with a two-wheel bogie. Compare two builds by running the script with
+travelling window and with a two-wheel bogie, and the full path on irregularity.py's smooth and
+rough scenes and on vehicle.py's single wheel and half car (100 elements). Compare two builds by running the script with
 each on ``PYTHONPATH`` (alternately, for the times) and comparing the JSON lines it prints::
 
     PYTHONPATH=python python benchmarks/step_cost.py [--repeats 5] [--callgrind] [--csv]
@@ -41,7 +42,21 @@ def cases(short: bool) -> dict:
     bogie = dc.replace(bt, vehicle=tw.Vehicle.bogie(wheelbase=2.5))
     f = 0.2 if short else 1.0
     base = {"progress": False, "output_every": 10}
+    # benchmarks/irregularity.py's scenes (damped supports; FRA class 5) and benchmarks/
+    # vehicle.py's (a half car and its single wheel on a 25 m track, 100 elements)
+    damped = dc.replace(kato, supports=dc.replace(kato.supports, damping=2e4))
+    rough = dc.replace(damped, irregularity=tw.Irregularity.random(
+        tw.spectra.fra(5), seed=0, wavelengths=(1.524, 50.0)))
+    rail25 = dc.replace(tw.Rail(), length=25.0)
+    car = tw.Vehicle.half_car()
+    w = car.wheels[0]
+    single = dc.replace(w, load=car.static_loads(tw.scene.GRAVITY)[0] - w.mass * tw.scene.GRAVITY)
+    vkw = {**base, "dt": 2e-5, "n_elements": 100, "duration": 0.05 * f}
     return {
+        "full/damped_smooth": (damped, V, {**base, "x_end": 0.25 + 4.5 * f}),
+        "full/damped_fra5": (rough, V, {**base, "x_end": 0.25 + 4.5 * f}),
+        "full/wheel_25m_100": (tw.Scene(rail=rail25, wheel=single), V, vkw),
+        "full/half_car_25m_100": (tw.Scene(rail=rail25, vehicle=car), V, vkw),
         "full/kato_20": (kato, V, {**base, "dt": 1e-5, "n_elements": 20, "x_end": 0.25 + f}),
         "full/ballasted_80": (bt, V, {**base, "x_start": 5.0, "x_end": 5.0 + 0.5 * f}),
         "explicit/kato_20": (kato, V, {**base, "integrator": "explicit", "dt": 1e-6,

@@ -115,4 +115,74 @@ void BorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
   x1 -= zx_;
 }
 
+void SplitBorderedSolver::resize(int n, int n_groups, int group_size, int m) {
+  n_ = n;
+  gs_ = group_size;
+  r_ = n_groups * group_size;
+  m_ = m;
+  idx_.assign(r_, -1);
+  fresh_.assign(n_groups, 0);
+  W_.setZero(n_, r_);
+  PW_.setZero(r_, r_);
+}
+
+void SplitBorderedSolver::set_band(const BandMatrix& A) {
+  A_ = &A;
+  std::fill(fresh_.begin(), fresh_.end(), 0);
+}
+
+void SplitBorderedSolver::set_group(int g, const int* idx) {
+  int* mine = idx_.data() + static_cast<std::ptrdiff_t>(g) * gs_;
+  if (fresh_[g] && std::equal(idx, idx + gs_, mine)) return;
+  std::copy(idx, idx + gs_, mine);
+  fresh_[g] = 0;
+}
+
+bool SplitBorderedSolver::factorize(const Eigen::MatrixXd& E, const Eigen::MatrixXd& F,
+                                    const Eigen::MatrixXd& G, const Eigen::MatrixXd& D) {
+  bool moved = false;
+  for (int g = 0; g < static_cast<int>(fresh_.size()); ++g) {
+    if (fresh_[g]) continue;
+    for (int k = g * gs_; k < (g + 1) * gs_; ++k) {
+      W_.col(k).setZero();
+      if (idx_[k] < 0) continue;
+      W_(idx_[k], k) = 1.0;
+      A_->solve_in_place(W_.col(k));
+      ++band_solves_;
+    }
+    fresh_[g] = 1;
+    moved = true;
+  }
+  if (moved)
+    for (int j = 0; j < r_; ++j)
+      for (int i = 0; i < r_; ++i) PW_(i, j) = idx_[i] < 0 ? 0.0 : W_(idx_[i], j);
+  const int k = r_ + m_;
+  S_.resize(k, k);
+  EF_.resize(r_, k);
+  EF_.leftCols(r_) = E;
+  EF_.rightCols(m_) = F;
+  S_.topRows(r_).noalias() = PW_ * EF_;
+  S_.topLeftCorner(r_, r_).diagonal().array() += 1.0;
+  S_.bottomLeftCorner(m_, r_) = G;
+  S_.bottomRightCorner(m_, m_) = D;
+  if (!S_.allFinite()) return false;
+  lu_.compute(S_);
+  const double det = lu_.determinant();
+  return std::isfinite(det) && det != 0.0;
+}
+
+void SplitBorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
+                                Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
+  x1 = r1;
+  A_->solve_in_place(x1);
+  rhs_.resize(r_ + m_);
+  for (int i = 0; i < r_; ++i) rhs_(i) = idx_[i] < 0 ? 0.0 : x1(idx_[i]);
+  rhs_.tail(m_) = r2;
+  sol_ = lu_.solve(rhs_);
+  u_.noalias() = EF_ * sol_;
+  wu_.noalias() = W_ * u_;
+  x1 -= wu_;
+  x2 = sol_.tail(m_);
+}
+
 }  // namespace trackwheel

@@ -63,4 +63,46 @@ class BorderedSolver {
   mutable Eigen::VectorXd cx_, rhs_, zx_;  // buffers of solve
 };
 
+// Solves [A + P E P^T, P F; G P^T, D] [x1; x2] = [r1; r2]: a bordered band system whose border
+// couples with a few band coordinates only (the wheels' contacts with the rail), with the part of
+// those couplings that falls inside the band (E) kept out of the band. A (n x n, banded) is
+// factorised by its owner and kept; P's r columns are unit vectors e_idx (a zero column for
+// idx = -1), given in groups (one per wheel) so that a group's columns are redone alone; E
+// (r x r), F (r x m), G (m x r) and D (m x m) are small, dense and may change at every
+// factorize(). With W = A^-1 P (cached while A and the group's indices stay), x0 = A^-1 r1 and
+// y = P^T x1, the system is exactly
+//   [I + (P^T W) E, (P^T W) F; G, D] [y; x2] = [P^T x0; r2],   x1 = x0 - W (E y + F x2):
+// a new E, F, G, D costs an (r + m)-square LU, not a band factorisation, and a solve one band
+// solve plus O(n r).
+class SplitBorderedSolver {
+ public:
+  // n band unknowns, n_groups groups of group_size columns of P, m border unknowns.
+  void resize(int n, int n_groups, int group_size, int m);
+  // The factorised A (kept by reference: call again after refactorising it).
+  void set_band(const BandMatrix& A_factored);
+  // Group g's band indices (group_size of them, -1: none).
+  void set_group(int g, const int* idx);
+  int rank() const { return r_; }
+  // False if the small system is singular (then so is the whole).
+  bool factorize(const Eigen::MatrixXd& E, const Eigen::MatrixXd& F, const Eigen::MatrixXd& G,
+                 const Eigen::MatrixXd& D);
+  void solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+             Eigen::VectorXd& x2) const;
+  // Band solves spent on W's columns so far (each a new group position or a new A).
+  long band_solves() const { return band_solves_; }
+
+ private:
+  const BandMatrix* A_ = nullptr;
+  int n_ = 0, gs_ = 0, r_ = 0, m_ = 0;
+  std::vector<int> idx_;     // P's indices (r)
+  std::vector<char> fresh_;  // per group: W's columns are those of idx_ and A
+  Eigen::MatrixXd W_;        // A^-1 P (n x r)
+  Eigen::MatrixXd PW_;       // P^T W (r x r)
+  Eigen::MatrixXd EF_;       // [E F] (r x (r + m))
+  Eigen::MatrixXd S_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  long band_solves_ = 0;
+  mutable Eigen::VectorXd rhs_, sol_, u_, wu_;
+};
+
 }  // namespace trackwheel

@@ -16,7 +16,12 @@ GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& a
       alg_(acc),
       prev_(acc),
       key_(sys.n_wheels()),
-      dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {}
+      dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {
+  const Model& m = sys.model();
+  fresh_contact_ = !m.rail.profile().empty();
+  for (const WheelParams& w : m.wheels) fresh_contact_ |= !w.out_of_round.empty();
+  if (sys.settings().fresh_contact >= 0) fresh_contact_ = sys.settings().fresh_contact > 0;
+}
 
 void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Accel& x,
                                SimState& s1) {
@@ -24,7 +29,7 @@ void GeneralizedAlpha::predict(const SimState& s0, const Accel& acc0, const Acce
 }
 
 bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
-  if (!have_matrix_ || it >= 4 || !sys_.settings().reuse_jacobian) return true;
+  if (!have_matrix_ || it >= 4 || !sys_.settings().reuse_jacobian || fresh_contact_) return true;
   if (sys_.sleepers().version() != ballast_version_) return true;
   const double reach = 0.05 * sys_.rail().element_length();
   for (int w = 0; w < sys_.n_wheels(); ++w) {
@@ -39,12 +44,21 @@ bool GeneralizedAlpha::matrix_is_stale(const SimState& s1, int it) const {
 }
 
 // Rebuild policy: the rail part too on the first build, after three slow iterations and on
-// every 64th factorisation (the rail's tangent drifts slowly); the contact part always.
+// every 64th factorisation (the rail's tangent drifts slowly) -- every 512 steps where the
+// contact block is new at every iteration (about the same interval); the contact part always.
 void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x, int it) {
-  const bool refresh_rail = !have_matrix_ || it >= 3 || out_.factorizations % 64 == 0;
+  const bool periodic = fresh_contact_ ? n - rail_step_ >= 512 : out_.factorizations % 64 == 0;
+  const bool refresh_rail = !have_matrix_ || it >= 3 || periodic;
+  if (refresh_rail) rail_step_ = n;
   sys_.contact_terms(s1, true, ev_);
-  sys_.assemble_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail);
-  if (!sys_.factorize_iteration_matrix()) div_.fail(n, "singular Newton matrix");
+  bool ok;
+  if (fresh_contact_) {
+    ok = sys_.update_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail);
+  } else {
+    sys_.assemble_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, refresh_rail);
+    ok = sys_.factorize_iteration_matrix();
+  }
+  if (!ok) div_.fail(n, "singular Newton matrix");
   have_matrix_ = true;
   ballast_version_ = sys_.sleepers().version();
   for (int w = 0; w < sys_.n_wheels(); ++w)
@@ -160,6 +174,8 @@ void GeneralizedAlpha::step(long n) {
     std::swap(alg_, alg1_);
     std::swap(acc_, x_);
     sys_.sleepers().commit(c_.h);
+    out_.band_factorizations = sys_.band_factorizations();
+    out_.band_solves = sys_.band_solves();
     return;
   }
 }
@@ -175,7 +191,9 @@ void GeneralizedAlpha::probe(double t1, const Accel& x, Eigen::VectorXd& minus_r
   const Eigen::VectorXd& rs = sys_.sleeper_residual();
   minus_r.resize(r1_.size() + r2_.size() + rs.size());
   minus_r << r1_, r2_, rs;
-  if (!sys_.factorize_iteration_matrix()) throw std::runtime_error("singular Newton matrix");
+  const bool ok = fresh_contact_ ? sys_.update_iteration_matrix(s1, ev_, x, c_.cq, c_.cv, false)
+                                 : sys_.factorize_iteration_matrix();
+  if (!ok) throw std::runtime_error("singular Newton matrix");
   sys_.solve(r1_, r2_, x1_, x2_, dz_);
   dx.resize(minus_r.size());
   dx << x1_, x2_, dz_;

@@ -4,7 +4,10 @@
 // enforced at velocity level at every step (no drift). A unilateral ballast's sleepers take
 // their states at each iterate (System::residual) like a contact that opens: the matrix is
 // rebuilt when a state changed, and a step converges only when the states at its converged
-// iterate are those it was solved in.
+// iterate are those it was solved in. With a rail profile or an out-of-round wheel the contact
+// force changes within a step, so the contact block is taken new at every iteration through the
+// split iteration matrix (system.hpp: no band factorisation); otherwise the whole matrix is kept
+// (modified Newton) while the contacts stay near where it was built.
 #pragma once
 
 #include <vector>
@@ -52,6 +55,8 @@ class GeneralizedAlpha : public FullStepper {
   std::vector<MatrixKey> key_;
   long ballast_version_ = -1;  // the sleepers' states the matrix was built in (sleepers.hpp)
   bool have_matrix_ = false;
+  bool fresh_contact_ = false;  // a new contact block every iteration (SimSettings::fresh_contact)
+  long rail_step_ = 0;          // the step of the rail band's last refresh
   Eigen::VectorXd r1_, r2_, x1_, x2_, dz_, dedd_;
   SimState s0_, s1_;  // the step's start and its iterate
   Accel acc0_, x_;    // the start accelerations and the Newton iterate

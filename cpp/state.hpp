@@ -46,6 +46,10 @@ struct SimSettings {
   double newton_tol = 1e-11;   // Newton tolerance on displacement corrections [m]
   bool record_energy = false;  // record the total mechanical energy per sample
   bool reuse_jacobian = true;  // modified Newton: keep the factorised matrix while it converges
+  // With reuse_jacobian, the contact block (system.hpp's split iteration matrix): 1 new at every
+  // Newton iteration, 0 kept with the whole matrix, -1 by the run (new with a rail profile, an
+  // out-of-round wheel, generalized_alpha.hpp).
+  int fresh_contact = -1;
   long progress_every = 2000;  // steps between progress callbacks [-]
   WindowParams window;         // the travelling window (inactive by default)
   // record each support's forces and sleeper displacement per kept sample (output.hpp; a fixed

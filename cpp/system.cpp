@@ -27,6 +27,12 @@ System::System(const Model& model, const SimSettings& set)
   Db_.resize(m, m);
   J_.resize(nf_, kHalfBandwidth);
   lam_.resize(nw_);
+  const int mw = kBorderPerWheel * nw_, r = kContactCoordinates * nw_;
+  split_.resize(nf_, nw_, kContactCoordinates, mw);
+  Es_.resize(r, r);
+  Fs_.resize(r, mw);
+  Cs_.resize(mw, r);
+  local_.assign(r + m, -1);
 }
 
 void System::evaluate(double t, const SimState& st, bool jac, Eval& ev) const {
@@ -139,7 +145,7 @@ void System::accelerations(const SimState& st, const Eval& ev, Accel& acc) {
     const double thd = st.wheels[w].thetadot;
     if (we.drolling_dtheta != 0.0) r2(o + kLambda) += thd * thd * we.drolling_dtheta;
   }
-  lock_theta_rows(st, &r2);
+  lock_theta_rows(st, &r2, Cb_);
   if (nb_ > 0) {
     vehicle_.add_block(Db_, true, 0.0, 0.0);
     const int o = kBorderPerWheel * nw_;
@@ -183,14 +189,33 @@ void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::
   // The sleepers touch only the rail band and the bodies only the border, so the two
   // condensations are independent: sleepers out of the right-hand side here, bodies inside.
   if (sl_.empty()) {
-    solve_bordered(r1, r2, x1, x2);
+    solve_split(r1, r2, x1, x2);
     dz.resize(0);
     return;
   }
   r1c_ = r1;
   sl_.condense_rhs(rs_, rail().full_to_free(), r1c_);
-  solve_bordered(r1c_, r2, x1, x2);
+  solve_split(r1c_, r2, x1, x2);
   sl_.back_substitute(rs_, x1, rail().full_to_free(), dz);
+}
+
+void System::solve_split(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                         Eigen::VectorXd& x2) const {
+  if (!split_solve_) {
+    solve_bordered(r1, r2, x1, x2);
+    return;
+  }
+  if (nb_ == 0) {
+    split_.solve(r1, r2, x1, x2);
+    return;
+  }
+  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
+  r2b_ = r2.tail(mb);
+  r2w_ = r2.head(mw) - Dwb_s_ * body_lu_s_.solve(r2b_);
+  split_.solve(r1, r2w_, x1, x2w_);
+  x2.resize(mw + mb);
+  x2.head(mw) = x2w_;
+  x2.tail(mb) = body_lu_s_.solve(r2b_ - Dbw_s_ * x2w_);
 }
 
 void System::add_entry(int i, int j, double v) {
@@ -205,20 +230,20 @@ void System::add_entry(int i, int j, double v) {
     Db_(i - nf_, j - nf_) += v;
 }
 
-void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc,
-                                       double cq, double cv, bool refresh_rail) {
-  if (refresh_rail || Jrail_.size() != nf_) {
-    Jrail_.resize(nf_, kHalfBandwidth);
-    Jrail_.set_linear_combination(1.0, rail().mass(), cv, rail().support_damping());
-    rail().add_tangent(st.e, cq, Jrail_);
-    sl_.set_coefficients(1.0, cv, cq);
-  }
-  J_ = Jrail_;
-  // the sleepers in their present states (a unilateral ballast's change between two rail
-  // refreshes); the same additions onto the same cached sums as when condensed into Jrail_
-  sl_.condense_matrix(rail().full_to_free(), J_);
-  Bb_.setZero();
-  Cb_.setZero();
+// The rail's part M + cv C_s + cq K_t(e), rebuilt on refresh_rail (or on the first call).
+// Returns whether it was rebuilt.
+bool System::refresh_rail_matrix(const SimState& st, double cq, double cv, bool refresh_rail) {
+  if (!refresh_rail && Jrail_.size() == nf_) return false;
+  Jrail_.resize(nf_, kHalfBandwidth);
+  Jrail_.set_linear_combination(1.0, rail().mass(), cv, rail().support_damping());
+  rail().add_tangent(st.e, cq, Jrail_);
+  sl_.set_coefficients(1.0, cv, cq);
+  return true;
+}
+
+void System::add_contact_blocks(const SimState& st, const Eval& ev, const Accel& acc, double cq,
+                                double cv) {
+  set_local_map(ev);
   Db_.setZero();
   for (int w = 0; w < nw_; ++w) {
     const int o = kBorderPerWheel * w;
@@ -226,18 +251,96 @@ void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const
     Db_(o + kTheta, o + kTheta) = model_.wheels[w].inertia;
   }
   for (int w = 0; w < nw_; ++w) add_wheel_block(st, ev, acc, w, cq, cv);
-  lock_theta_rows(st, nullptr);
+  lock_theta_rows(st, nullptr, split_mode_ ? Cs_ : Cb_);
   if (nb_ > 0) vehicle_.add_block(Db_, false, cq, cv);
+}
+
+void System::assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc,
+                                       double cq, double cv, bool refresh_rail) {
+  if (refresh_rail_matrix(st, cq, cv, refresh_rail)) a0_valid_ = false;
+  J_ = Jrail_;
+  // the sleepers in their present states (a unilateral ballast's change between two rail
+  // refreshes); the same additions onto the same cached sums as when condensed into Jrail_
+  sl_.condense_matrix(rail().full_to_free(), J_);
+  Bb_.setZero();
+  Cb_.setZero();
+  split_mode_ = false;
+  add_contact_blocks(st, ev, acc, cq, cv);
+}
+
+bool System::update_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc,
+                                     double cq, double cv, bool refresh_rail) {
+  if (refresh_rail_matrix(st, cq, cv, refresh_rail)) a0_valid_ = false;
+  if (!a0_valid_ || sl_.version() != a0_version_) {
+    A0_ = Jrail_;
+    sl_.condense_matrix(rail().full_to_free(), A0_);  // the sleepers in their present states
+    ++band_factorizations_;
+    if (!A0_.factorize()) return false;
+    split_.set_band(A0_);
+    a0_valid_ = true;
+    a0_version_ = sl_.version();
+  }
+  split_solve_ = true;
+  Es_.setZero();
+  Fs_.setZero();
+  Cs_.setZero();
+  split_mode_ = true;
+  add_contact_blocks(st, ev, acc, cq, cv);
+  split_mode_ = false;
+  for (int w = 0; w < nw_; ++w) split_.set_group(w, &local_[kContactCoordinates * w]);
+  if (nb_ == 0) return split_.factorize(Es_, Fs_, Cs_, Db_);
+  // the bodies condensed out of the border as in factorize_bordered
+  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
+  body_lu_s_.compute(Db_.bottomRightCorner(mb, mb));
+  const double det = body_lu_s_.determinant();
+  if (!std::isfinite(det) || det == 0.0) return false;
+  Dwb_s_ = Db_.topRightCorner(mw, mb);
+  Dbw_s_ = Db_.bottomLeftCorner(mb, mw);
+  Dred_s_ = Db_.topLeftCorner(mw, mw) - Dwb_s_ * body_lu_s_.solve(Dbw_s_);
+  return split_.factorize(Es_, Fs_, Cs_, Dred_s_);
+}
+
+bool System::factorize_iteration_matrix() {
+  split_solve_ = false;
+  return factorize_bordered(J_, true);
+}
+
+void System::set_local_map(const Eval& ev) {
+  const auto& f2f = rail().full_to_free();
+  const int r = kContactCoordinates * nw_;
+  for (int w = 0; w < nw_; ++w) {
+    const int d0 = ev.w[w].pt.mp.dof0();
+    for (int a = 0; a < kContactCoordinates; ++a) local_[kContactCoordinates * w + a] = f2f[d0 + a];
+  }
+  for (int k = 0; k < n_border(); ++k) local_[r + k] = nf_ + k;
+}
+
+void System::add_local(int li, int lj, double v) {
+  if (li < 0 || lj < 0) return;
+  if (!split_mode_) {
+    add_entry(local_[li], local_[lj], v);
+    return;
+  }
+  if (v == 0.0 || local_[li] < 0 || local_[lj] < 0) return;
+  const int r = kContactCoordinates * nw_;
+  if (li < r && lj < r)
+    Es_(li, lj) += v;
+  else if (li < r)
+    Fs_(li, lj - r) += v;  // a wheel's column: the bodies touch no rail coordinate
+  else if (lj < r)
+    Cs_(li - r, lj) += v;
+  else
+    Db_(li - r, lj - r) += v;
 }
 
 // A locked wheel's theta row holds theta' = 0 (the brake's stiction) in place of J theta'' =
 // torques: its rows of Cb_ and Db_ become the identity's, for theta'' = 0 at acceleration level
 // (r2 given: its entry 0) and for generalized-alpha's velocity row (residual()).
-void System::lock_theta_rows(const SimState& st, Eigen::VectorXd* r2) {
+void System::lock_theta_rows(const SimState& st, Eigen::VectorXd* r2, Eigen::MatrixXd& C) {
   for (int w = 0; w < nw_; ++w) {
     if (!st.wheels[w].locked) continue;
     const int i = kBorderPerWheel * w + kTheta;
-    Cb_.row(i).setZero();
+    C.row(i).setZero();
     Db_.row(i).setZero();
     Db_(i, i) = 1.0;
     if (r2) (*r2)(i) = 0.0;
@@ -249,13 +352,12 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
                              double cv) {
   const WheelEval& we = ev.w[w];
   const WheelState& ws = st.wheels[w];
-  const int o = nf_ + kBorderPerWheel * w;
+  const int r = kContactCoordinates * nw_;
+  const int o = r + kBorderPerWheel * w;  // the border's local offset
   const double lambda = acc.x(kBorderPerWheel * w + kLambda);
-  const auto& f2f = rail().full_to_free();
-  const int d0 = we.pt.mp.dof0();
   auto glob = [&](int a) -> int {
     if (a == 1) return o + kY;
-    if (a >= 2 && a <= 9) return f2f[d0 + a - 2];
+    if (a >= 2 && a <= 9) return kContactCoordinates * w + a - 2;
     if (a == 10) return o + kTheta;
     return -1;
   };
@@ -264,9 +366,9 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
     for (int c = 1; c <= 9; ++c) {
       double v = -lambda * we.rk.db_dq(a, c) * cq;
       if (a <= 9) v += cq * we.cf.K(a, c) + cv * we.cf.C(a, c);
-      add_entry(i, glob(c), v);
+      add_local(i, glob(c), v);
     }
-    add_entry(i, o + kLambda, -we.rk.b(a));  // d r / d lambda
+    add_local(i, o + kLambda, -we.rk.b(a));  // d r / d lambda
   }
   int g[11];
   for (int a = 0; a <= 10; ++a) g[a] = glob(a);
@@ -274,17 +376,17 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
   // the torque -rho_r lambda and g's -rho_r theta' through rho_r(theta) (compliance and
   // out-of-roundness)
   const double drt = we.drolling_dtheta;
-  if (drt != 0.0) add_entry(o + kTheta, o + kTheta, lambda * drt * cq);
+  if (drt != 0.0) add_local(o + kTheta, o + kTheta, lambda * drt * cq);
   if (sticking(set_.rolling, ws, we)) {
     // row: (cq dg/dq + cv b) / cv
     for (int c = 1; c <= 10; ++c) {
       const double v = (c <= 9 ? cq * we.rk.dg_dq(c) : 0.0) / cv + we.rk.b(c);
-      add_entry(o + kLambda, glob(c), v);
+      add_local(o + kLambda, glob(c), v);
     }
-    if (drt != 0.0) add_entry(o + kLambda, o + kTheta, -cq * ws.thetadot * drt / cv);
+    if (drt != 0.0) add_local(o + kLambda, o + kTheta, -cq * ws.thetadot * drt / cv);
     return;
   }
-  Db_(o - nf_ + kLambda, o - nf_ + kLambda) = 1.0;
+  Db_(o - r + kLambda, o - r + kLambda) = 1.0;
   if (set_.rolling && ws.state == SlipState::Slip && we.cf.active) {
     // lambda - sigma mu N(q, qdot):  dN/dq = -dNe grad_rho, dN/dqdot = -c grad_rho,
     // dN/dtheta = dNe dDelta rho/dpsi, dN/dthetadot = c dDelta rho/dpsi
@@ -293,11 +395,11 @@ void System::add_wheel_block(const SimState& st, const Eval& ev, const Accel& ac
     if (we.cf.compliant) {  // dN_e/dq = -k_t u (contact.hpp), not along grad_rho
       const double cc = model_.contact.damping * cv;
       for (int c = 1; c <= 9; ++c)
-        add_entry(o + kLambda, glob(c), sm * (cc * we.cf.grad_rho(c) - cq * we.cf.dNe_dq(c)));
+        add_local(o + kLambda, glob(c), sm * (cc * we.cf.grad_rho(c) - cq * we.cf.dNe_dq(c)));
     } else {
-      for (int c = 1; c <= 9; ++c) add_entry(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
+      for (int c = 1; c <= 9; ++c) add_local(o + kLambda, glob(c), sm * we.cf.grad_rho(c) * dn);
     }
-    add_entry(o + kLambda, o + kTheta, -sm * we.drho.rx * dn);
+    add_local(o + kLambda, o + kTheta, -sm * we.drho.rx * dn);
   }
 }
 
@@ -315,13 +417,11 @@ void System::add_out_of_round_block(const WheelEval& we, const int* g, int o, do
     // d1 dN/dq'' (the element compliance's N_e depends on q along u, contact.hpp)
     const double v = we.cf.compliant ? d1 * (cq * we.cf.dNe_dq(a) - c * cv * we.cf.grad_rho(a))
                                      : -we.cf.grad_rho(a) * d1 * dn;
-    add_entry(g[a], o + kTheta, v);
-    add_entry(o + kTheta, g[a], v);
+    add_local(g[a], o + kTheta, v);
+    add_local(o + kTheta, g[a], v);
   }
-  add_entry(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
+  add_local(o + kTheta, o + kTheta, (dNe * d1 * d1 + we.cf.N * d2) * cq + c * d1 * d1 * cv);
 }
-
-bool System::factorize_iteration_matrix() { return factorize_bordered(J_, true); }
 
 bool System::factorize_bordered(BandMatrix& A, bool factor_band) {
   if (nb_ == 0)

@@ -29,6 +29,7 @@ namespace trackwheel {
 
 constexpr int kBorderPerWheel = 3;
 constexpr int kY = 0, kTheta = 1, kLambda = 2;
+constexpr int kContactCoordinates = 8;  // the rail coordinates of a contact element
 
 // One wheel's contact evaluated at a state.
 struct WheelEval {
@@ -92,15 +93,27 @@ class System {
   void residual(const SimState& st, const Eval& ev, const Accel& acc, double cv,
                 Eigen::VectorXd& r1, Eigen::VectorXd& r2);
 
-  // Newton iteration matrix dr/d(e'', x) with cq = beta' h^2, cv = gamma' h: assembled, then
-  // factorised; false if singular. The rail part M + cv C_s + cq K_t(e) is cached and rebuilt
-  // only with refresh_rail (the rail is nearly linear; the contact and constraint parts are
-  // rebuilt every time).
+  // Newton iteration matrix dr/d(e'', x) with cq = beta' h^2, cv = gamma' h, built and
+  // factorised for solve(); false if singular. Split form (banded.hpp's SplitBorderedSolver):
+  // the rail band M + cv C_s + cq K_t(e) (with the sleepers condensed) is factorised on its
+  // own, and every wheel's contact, rolling and slip terms -- the 8 rail coordinates of its
+  // contact element, its border rows and columns -- enter through a small dense system, so a
+  // new contact block costs no band factorisation. The band is refactorised only with
+  // refresh_rail (the rail is nearly linear) or when the sleepers' states changed; a wheel
+  // whose contact moved to another element costs 8 band solves.
+  bool update_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
+                               double cv, bool refresh_rail);
+  // Band factorisations and band solves spent on the iteration matrix so far (diagnostics).
+  long band_factorizations() const { return band_factorizations_; }
+  long band_solves() const { return split_.band_solves(); }
+  // The same matrix assembled in one piece, the contact terms added into the band and its
+  // border, then factorised as a whole (the band with them): the form for a matrix kept over
+  // many iterations (its results are those of the kernel before the split form, bit for bit).
   void assemble_iteration_matrix(const SimState& st, const Eval& ev, const Accel& acc, double cq,
                                  double cv, bool refresh_rail);
   bool factorize_iteration_matrix();
-  // The assembled (unfactorised) matrix as a dense (n_free + n_border + n_sleepers) square,
-  // the sleepers' block uncondensed (tests).
+  // The matrix of assemble_iteration_matrix as a dense (n_free + n_border + n_sleepers)
+  // square, the sleepers' block uncondensed (tests).
   Eigen::MatrixXd iteration_matrix_dense() const;
   // The sleepers' negated residual of the last residual() call (tests).
   const Eigen::VectorXd& sleeper_residual() const { return rs_; }
@@ -130,12 +143,25 @@ class System {
   // Solve with the factorisation of factorize_bordered (bodies back-substituted).
   void solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
                       Eigen::VectorXd& x2) const;
+  // Wheel w's contact, rolling and slip terms, through add_local: indices in the contact
+  // layout, rail coordinate a of wheel w's contact element at 8 w + a, border entry k at
+  // 8 n_w + k (local_ maps them to the full system's indices, -1 for a fixed coordinate).
   void add_wheel_block(const SimState& st, const Eval& ev, const Accel& acc, int w, double cq,
                        double cv);
+  bool refresh_rail_matrix(const SimState& st, double cq, double cv, bool refresh_rail);
+  void solve_split(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                   Eigen::VectorXd& x2) const;
   void add_entry(int i, int j, double v);
-  void lock_theta_rows(const SimState& st, Eigen::VectorXd* r2);
-  // g: the global row/column of wheel-local index 1..10 (-1: none)
+  // Into the split blocks (split_mode_) or through local_ into the assembled matrix.
+  void add_local(int li, int lj, double v);
+  void set_local_map(const Eval& ev);
+  // C: the border-rail block whose rows a locked wheel clears (Cb_ or Cs_).
+  void lock_theta_rows(const SimState& st, Eigen::VectorXd* r2, Eigen::MatrixXd& C);
+  // g: the local row/column of wheel-local index 1..10 (-1: none)
   void add_out_of_round_block(const WheelEval& we, const int* g, int o, double cq, double cv);
+  // The contact and border blocks (D in Db_) for the rebuilt Jrail_ and sleepers' states.
+  void add_contact_blocks(const SimState& st, const Eval& ev, const Accel& acc, double cq,
+                          double cv);
 
   const Model& model_;
   const SimSettings& set_;
@@ -150,6 +176,19 @@ class System {
   Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
   Eigen::MatrixXd Dwb_, Dbw_;
   mutable Eigen::VectorXd r2w_, x2w_, r2b_;
+  // The split iteration matrix: the factorised rail band A0_, the contact blocks E (Es_), F
+  // (Fs_), G (Cs_) over the wheels' contact elements, the border D in Db_, bodies condensed.
+  SplitBorderedSolver split_;
+  BandMatrix A0_;
+  bool a0_valid_ = false;
+  long a0_version_ = -1;  // the sleepers' states condensed into A0_
+  long band_factorizations_ = 0;
+  bool split_mode_ = false;
+  bool split_solve_ = false;  // solve() with the split factorisation (else the assembled one)
+  std::vector<int> local_;    // contact layout -> full system index (-1: a fixed coordinate)
+  Eigen::MatrixXd Es_, Fs_, Cs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_s_;
+  Eigen::MatrixXd Dwb_s_, Dbw_s_, Dred_s_;
   Sleepers sl_;
   std::vector<int> identity_;  // full index -> itself
   Eigen::VectorXd rs_, r1c_;

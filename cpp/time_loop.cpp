@@ -22,6 +22,8 @@ void check_settings(const SimSettings& set) {
   if (set.output_every < 1) throw std::invalid_argument("output_every must be >= 1");
   if (!(set.rho_inf >= 0.0 && set.rho_inf <= 1.0))
     throw std::invalid_argument("rho_inf must be in [0, 1]");
+  if (set.fresh_contact < -1 || set.fresh_contact > 1)
+    throw std::invalid_argument("fresh_contact must be -1 (by the run), 0 or 1");
   if (set.record_supports && set.window.active())
     throw std::invalid_argument(
         "record_supports needs a fixed rail: a travelling window keeps each support's envelope "

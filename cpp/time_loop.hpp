@@ -37,7 +37,11 @@ struct SimOutput {
   long steps = 0;            // time steps taken
   long newton_iterations = 0;
   long factorizations = 0;  // Newton matrix factorisations (generalized-alpha)
-  long state_changes = 0;   // slip/contact state switches, summed over wheels
+  // of which the full path's rail band factorisations, and its band solves for the contact
+  // coupling (system.hpp: the split iteration matrix)
+  long band_factorizations = 0;
+  long band_solves = 0;
+  long state_changes = 0;  // slip/contact state switches, summed over wheels
   // A unilateral ballast (sleepers.hpp): its sleepers' state changes from step to step, the
   // sleepers frozen in a step after flipping back and forth, each sleeper's time on its ballast
   // [s] (empty without sleepers).

@@ -95,3 +95,56 @@ def test_singular_and_inconsistent_inputs_raise():
                              np.ones(3), np.ones(1))
     with pytest.raises(ValueError, match="square"):
         _core.testing.band_solve(np.ones((2, 3)), 1, np.ones(2))
+
+
+def _split_case(rng, n, idx, m):
+    """(idx, E, F, G, D, r1, r2) of a split bordered system: contact-like blocks E, F, G over
+    the band indices idx (n_groups x group_size, -1 none), a dominant D."""
+    r = idx.size
+    E = rng.standard_normal((r, r))
+    F = rng.standard_normal((r, m))
+    G = rng.standard_normal((m, r))
+    D = rng.standard_normal((m, m)) + np.diag(np.full(m, 10.0 + n))
+    return idx, E, F, G, D, rng.standard_normal(n), rng.standard_normal(m)
+
+
+def _split_dense(A, case):
+    """The same system assembled densely: [A + P E P^T, P F; G P^T, D] (P's column k the unit
+    vector of idx_k, zero for -1; entries of E, F, G at a -1 index drop out)."""
+    idx, E, F, G, D = case[:5]
+    n, flat = len(A), idx.ravel()
+    P = np.zeros((n, flat.size))
+    for k, i in enumerate(flat):
+        if i >= 0:
+            P[i, k] = 1.0
+    return np.block([[A + P @ E @ P.T, P @ F], [G @ P.T, D]])
+
+
+def test_split_bordered_solver_equals_a_dense_solve():
+    """The split form (the band factorised alone, the wheels' contact blocks through a small
+    dense system, W = A^-1 P cached per group) is exact: it must equal a dense solve of the
+    assembled matrix to round-off. Cases in turn on one solver: two wheels (8 coordinates each,
+    3 border unknowns each) on separate elements; the same positions with new blocks (W reused:
+    no band solve); one wheel moved, overlapping the other's element (a shared node: P has equal
+    columns) and touching a fixed coordinate (-1); then a single group on a new solver."""
+    rng = np.random.default_rng(11)
+    n, b = 83, 7
+    A = _band(rng, n, b)
+    g0, g1 = np.arange(8, 16), np.arange(40, 48)
+    moved = np.concatenate([[-1], np.arange(44, 51)])  # overlaps g1 on 44..47
+    cases = [_split_case(rng, n, np.stack([g0, g1]), 6),
+             _split_case(rng, n, np.stack([g0, g1]), 6),
+             _split_case(rng, n, np.stack([moved, g1]), 6)]
+    out = _core.testing.split_bordered_solve(A, b, cases)
+    for case, (x1, x2, _) in zip(cases, out):
+        full = _split_dense(A, case)
+        assert np.linalg.cond(full) < 1e4
+        ref = np.linalg.solve(full, np.concatenate(case[5:]))
+        assert np.linalg.norm(np.concatenate([x1, x2]) - ref) <= RTOL * np.linalg.norm(ref)
+    # band solves: 16 for the first case, none for new blocks at the same positions, 7 for the
+    # moved group (its -1 column costs none)
+    assert [o[2] for o in out] == [16, 16, 23]
+    single = [_split_case(rng, n, g0[None, :], 3)]
+    (x1, x2, _), = _core.testing.split_bordered_solve(A, b, single)
+    ref = np.linalg.solve(_split_dense(A, single[0]), np.concatenate(single[0][5:]))
+    assert np.linalg.norm(np.concatenate([x1, x2]) - ref) <= RTOL * np.linalg.norm(ref)

@@ -95,9 +95,13 @@ def test_a_locked_wheel_does_not_bring_its_flat_round_again():
     beyond adhesion the wheel locks at theta = 0.68 rad after 0.14 m, away from the flat, and
     slides locked for 0.86 m > 2 pi rho0 = 0.63 m: theta stays put (assert_theta_held: 1e-9
     rad of settling, then round-off; the flat is 0.23 rad wide) and the contact stays on the round
-    part of the wheel, so the force is the braked round wheel's (same run without the flat, to
-    1e-9 of P; measured equal) and stays within 1 % of P (measured 0.2 %, the start's ring),
-    while the rolling wheel strikes in the same stretch."""
+    part of the wheel, so the force is the braked round wheel's (same run without the flat) and
+    stays within 1 % of P (measured 0.2 %, the start's ring), while the rolling wheel strikes in
+    the same stretch. The two runs agree to Newton's tolerance, not bit for bit: the out-of-round
+    wheel takes its contact block new at every Newton iteration, the round one keeps the whole
+    matrix, so their iterates stop at different points within newton_tol = 1e-11 m of
+    displacement, i.e. ~1e-11 m x ~1e9 N/m of contact stiffness = 1e-2 N = 2e-7 P; bound 1e-6 P
+    (measured 1.3e-9 P)."""
     scene = damped()
     flat = dc.replace(scene, wheel=dc.replace(
         scene.wheel, defects=(tw.WheelFlat(0.045, at_angle=math.pi),)))
@@ -117,7 +121,7 @@ def test_a_locked_wheel_does_not_bring_its_flat_round_again():
     assert not locked.lost_contact
     assert np.max(np.abs(locked.normal_force[after] / P - 1.0)) < 0.01
     np.testing.assert_allclose(locked.normal_force, round_wheel.normal_force, rtol=0,
-                               atol=1e-9 * P)
+                               atol=1e-6 * P)
 
 
 @pytest.mark.parametrize("integrator, dt", [("generalized_alpha", 5e-6), ("explicit", 2e-6)])

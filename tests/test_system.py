@@ -154,6 +154,26 @@ def test_newton_on_the_probe_matrix_reaches_the_round_off_floor(law, slide, n_wh
     assert np.linalg.norm(r) < 1e-4
 
 
+@pytest.mark.parametrize("n_wheels, polygon, layered", [(1, True, False), (2, False, True),
+                                                       (2, True, True)])
+def test_split_matrix_solve_equals_the_dense_solve(n_wheels, polygon, layered):
+    """Where the contact block is new at every Newton iteration (a rail profile or an
+    out-of-round wheel; forced here by SimSettings.fresh_contact = 1) the kernel solves in split
+    form: the rail band factorised alone, each wheel's contact block through a small dense
+    system (exact, banded.hpp's SplitBorderedSolver). Its Newton correction must equal the dense
+    solve of the assembled matrix J dx = -r to round-off, as the whole-matrix factorisation's
+    does (fresh_contact = 0): 1e-10 of max |dx|, the bound of the condensed sleepers' test
+    below (cond(J) ~ 7e4)."""
+    model, wheels, contact, s, st = _probe_case("hertz", True, n_wheels, polygon, layered)
+    for fresh in (1, 0):
+        s.fresh_contact = fresh
+        p = _core.testing.ga_probe(model, wheels, contact, s, st, DT)
+        dense = np.linalg.solve(p["matrix"], p["residual"])
+        assert np.max(np.abs(dense)) > 0.0
+        np.testing.assert_allclose(p["solution"], dense, rtol=0,
+                                   atol=1e-10 * np.max(np.abs(dense)))
+
+
 @pytest.mark.parametrize("law, slide, n_wheels", [("linear", False, 1), ("hertz", True, 2)])
 def test_condensed_sleepers_solve_equals_the_dense_solve(law, slide, n_wheels):
     """The kernel condenses the sleepers' diagonal block into the rail band (a Schur

@@ -69,6 +69,8 @@ py::dict output_to_dict(SimOutput&& o) {
   d["steps"] = o.steps;
   d["newton_iterations"] = o.newton_iterations;
   d["factorizations"] = o.factorizations;
+  d["band_factorizations"] = o.band_factorizations;
+  d["band_solves"] = o.band_solves;
   d["state_changes"] = o.state_changes;
   d["ballast_events"] = o.ballast_events;
   d["ballast_frozen"] = o.ballast_frozen;

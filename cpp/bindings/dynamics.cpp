@@ -77,6 +77,7 @@ void bind_state(py::module_& m) {
       .def_readwrite("max_newton", &SimSettings::max_newton)
       .def_readwrite("newton_tol", &SimSettings::newton_tol)
       .def_readwrite("reuse_jacobian", &SimSettings::reuse_jacobian)
+      .def_readwrite("fresh_contact", &SimSettings::fresh_contact)
       .def_readwrite("record_energy", &SimSettings::record_energy)
       .def_readwrite("record_supports", &SimSettings::record_supports,
                      "record each support's forces and sleeper displacement per kept sample "
@@ -135,7 +136,8 @@ void bind_dynamics(py::module_& m) {
         "every SUPPORT_FIELDS row ((n_samples, n_supports) if settings.record_supports, else "
         "None), support_envelope ({ENVELOPE_FIELDS name: (n_supports_seen,)}), "
         "the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, "
-        "newton_iterations, factorizations, state_changes, stability_limit, final_state");
+        "newton_iterations, factorizations (band_factorizations, band_solves), state_changes, "
+        "stability_limit, final_state");
   m.def("highest_frequency", &highest_frequency_of,
         "omega_max [rad/s] of the linearised rail + wheel-on-contact-spring system");
   m.def("explicit_stability_limit", &explicit_stability_limit,

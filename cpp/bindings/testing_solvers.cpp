@@ -123,6 +123,48 @@ void bind_solver_probes(py::module_& t) {
       py::arg("r1"), py::arg("r2"),
       "Test hook: solve [A B; C D] [x1; x2] = [r1; r2] with the bordered band solver");
   t.def(
+      "split_bordered_solve",
+      [](const Eigen::MatrixXd& A, int half_bandwidth, const py::list& cases) {
+        BandMatrix M = band_of(A, half_bandwidth);
+        const int n = M.size();
+        if (!M.factorize()) throw std::runtime_error("band matrix is singular");
+        SplitBorderedSolver solver;
+        py::list out;
+        bool first = true;
+        for (const py::handle& h : cases) {
+          const auto c = h.cast<py::tuple>();
+          if (c.size() != 7) throw std::invalid_argument("a case is (idx, E, F, G, D, r1, r2)");
+          const auto idx =
+              c[0].cast<Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>();
+          const auto E = c[1].cast<Eigen::MatrixXd>(), F = c[2].cast<Eigen::MatrixXd>(),
+                     G = c[3].cast<Eigen::MatrixXd>(), D = c[4].cast<Eigen::MatrixXd>();
+          const auto r1 = c[5].cast<Eigen::VectorXd>(), r2 = c[6].cast<Eigen::VectorXd>();
+          const int ng = static_cast<int>(idx.rows()), gs = static_cast<int>(idx.cols());
+          const int r = ng * gs, m = static_cast<int>(D.rows());
+          if (E.rows() != r || E.cols() != r || F.rows() != r || F.cols() != m || G.rows() != m ||
+              G.cols() != r || D.cols() != m || r1.size() != n || r2.size() != m ||
+              (idx.array() >= n).any() || (idx.array() < -1).any())
+            throw std::invalid_argument("split_bordered_solve: inconsistent shapes");
+          if (first) {
+            solver.resize(n, ng, gs, m);
+            solver.set_band(M);
+            first = false;
+          }
+          for (int g = 0; g < ng; ++g) solver.set_group(g, idx.row(g).data());
+          if (!solver.factorize(E, F, G, D))
+            throw std::runtime_error("bordered matrix is singular");
+          Eigen::VectorXd x1, x2;
+          solver.solve(r1, r2, x1, x2);
+          out.append(py::make_tuple(x1, x2, solver.band_solves()));
+        }
+        return out;
+      },
+      py::arg("A"), py::arg("half_bandwidth"), py::arg("cases"),
+      "Test hook: solve [A + P E P^T, P F; G P^T, D] [x1; x2] = [r1; r2] with the split "
+      "bordered solver, A's band factorised once, for each case (idx, E, F, G, D, r1, r2) in "
+      "turn with one solver (idx: n_groups x group_size band indices, -1 none; the first case "
+      "fixes the shapes). Returns [(x1, x2, band solves so far)]");
+  t.def(
       "rolling_eval",
       [](const RailModel& rail, const Eigen::VectorXd& e, double xa, double ya, double s_guess,
          const Vec10& qdot, double thetadot) {

@@ -660,6 +660,7 @@ class SlipState:
         ...
 class SimSettings:
     integrator: Integrator
+    fresh_contact: int
     record_energy: bool
     reuse_jacobian: bool
     rolling: bool
@@ -1070,7 +1071,7 @@ def receptance(rail: RailModel, beam: BeamParams, x: collections.abc.Sequence[ty
     """
 def simulate(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, initial: SimState, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
-    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)), every SUPPORT_FIELDS row ((n_samples, n_supports) if settings.record_supports, else None), support_envelope ({ENVELOPE_FIELDS name: (n_supports_seen,)}), the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, newton_iterations, factorizations, state_changes, stability_limit, final_state
+    Run the whole time loop in C++ (GIL released; progress(step, n_steps) called every settings.progress_every steps with the GIL held, which also checks for Ctrl-C). Returns {field: array} for every OUTPUT_FIELDS row (per-wheel fields (n_samples, n_wheels)), every SUPPORT_FIELDS row ((n_samples, n_supports) if settings.record_supports, else None), support_envelope ({ENVELOPE_FIELDS name: (n_supports_seen,)}), the vehicle's body_z, body_phi (n_samples, n_bodies), the counters steps, newton_iterations, factorizations (band_factorizations, band_solves), state_changes, stability_limit, final_state
     """
 def simulate_linear(rail: RailModel, wheels: collections.abc.Sequence[WheelParams], contact: ContactParams, settings: SimSettings, options: LinearOptions, progress: typing.Any = None, vehicle: VehicleParams = ...) -> dict:
     """
