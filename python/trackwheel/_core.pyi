@@ -660,7 +660,6 @@ class SlipState:
         ...
 class SimSettings:
     integrator: Integrator
-    fresh_contact: int
     record_energy: bool
     reuse_jacobian: bool
     rolling: bool
@@ -677,6 +676,12 @@ class SimSettings:
         ...
     @dt.setter
     def dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def fresh_contact(self) -> int:
+        ...
+    @fresh_contact.setter
+    def fresh_contact(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def max_newton(self) -> int:
