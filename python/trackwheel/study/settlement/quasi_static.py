@@ -225,7 +225,7 @@ def advance_stage(su, last, static_bed: StaticBed):
                     hi = mid
             if np.all(su.traffic.passages(su.scene, lo) == passages):
                 lo = hi  # even the first passage changes the voids by more than the limit
-            stage_bound = lo == hi or change(hi)[1] > stage_limit
+            stage_bound = change(hi)[1] > stage_limit
         dp = su.traffic.passages(su.scene, lo) - passages
         counts = np.concatenate([np.full(f.peaks.shape[0], c, dtype=np.int64)
                                  for f, c in zip(last.forces, dp)])
