@@ -74,6 +74,17 @@ def settle(scene: Scene, traffic, cycles, law: SettlementLaw | None = None, *,
         ``passage(task: PassageTask) -> PassageForces`` (default
         :func:`~trackwheel.study.settlement.passage.run_passage`); picklable (module level) for
         an executor. Tests inject a model of their own here.
+    stage_rule : how a stage advances the law. "explicit" (default): at the peaks of the
+        passage at the stage's start. "quasi-static": each sleeper's and axle's dynamic ratio
+        r = F_dyn / F_st(g_start) is kept from that passage, and the law advances in sub-steps
+        at F = r F_st(g), F_st(g) the peak static ballast force over the passage's wheel
+        positions on the current bed (an Euler-Bernoulli rail on the unilateral ballast,
+        solved by an active set; each sub-step changes a void by at most 0.01 w0), so the fast
+        redistribution of the load through the rail is resolved inside the stage and only the
+        dynamic ratio is frozen; the stage ends where its voids have changed by ``increment``
+        x w0 (adaptive) or at the schedule's next total. It takes far fewer stages for the
+        same accuracy on a transition (a larger ``increment``, e.g. 0.8-1.6); a fixed rail
+        only (docs: Model § The settlement loop, "The quasi-static stage").
     **simulate_kwargs : passed to every :func:`trackwheel.simulate` call (dt, n_elements, ...).
 
     Returns
