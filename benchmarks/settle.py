@@ -42,12 +42,13 @@ def scene(step: bool = False) -> tw.Scene:
 
 def run(fidelity: str, stages: int | None, cycles: float, feedback: bool,
         increment: float = 0.1,
-        step: bool = False) -> tuple[tw.settlement.SettlementHistory, float, float]:
+        step: bool = False, stage_rule: str = "explicit") -> tuple[tw.settlement.SettlementHistory, float, float]:
     """The history, its wall time and this process's CPU time [s] (the passages run here, one
     thread: on a shared machine the CPU time is the cost, the wall time includes waiting)."""
     t0, c0 = time.perf_counter(), time.process_time()
     h = tw.settle(scene(step), tw.kmh(200), cycles, fidelity=fidelity, stages=stages,
-                  increment=increment, feedback=feedback, progress=False)
+                  increment=increment, feedback=feedback, progress=False,
+                  stage_rule=stage_rule)
     return h, time.perf_counter() - t0, time.process_time() - c0
 
 
@@ -62,11 +63,15 @@ def main() -> None:
     p.add_argument("--open-loop", action="store_true", help="feedback=False")
     p.add_argument("--step", action="store_true",
                    help="the tests' 24 m step (ballast 50 -> 200 MN/m at X = 12 m) instead")
+    p.add_argument("--stage-rule", default="explicit", choices=("explicit", "quasi-static"))
+    p.add_argument("--save", default=None,
+                   help="write each run's final settlement to this .npz (keyed by stages)")
     args = p.parse_args()
     results = []
     cases = [(m, 0.1) for m in args.stages] + [(None, inc) for inc in args.increment]
     for m, inc in cases:
-        h, wall, cpu = run(args.fidelity, m, args.cycles, not args.open_loop, inc, args.step)
+        h, wall, cpu = run(args.fidelity, m, args.cycles, not args.open_loop, inc, args.step,
+                            args.stage_rule)
         results.append(h)
         s = h.settlement[-1]
         how = f"{m:>3} stages" if m is not None else f"increment {inc:g}, {h.n_stages} stages"
@@ -81,6 +86,9 @@ def main() -> None:
         print("  per stage: cycles " + " ".join(f"{c:.3g}" for c in h.cycles))
         print("  dynamic factor " + " ".join(f"{d:.3f}" for d in h.dynamic_factor))
         print("  largest void [mm] " + " ".join(f"{1e3 * g:.3f}" for g in h.voids.max(axis=1)))
+    if args.save:
+        np.savez(args.save, sleepers=results[0].sleepers, **{
+            f"{args.stage_rule}_{h.n_stages}": h.settlement[-1] for h in results})
     for a, b in zip(results, results[1:]):
         change = np.max(np.abs(a.settlement[-1] - b.settlement[-1]))
         print(f"{a.n_stages} -> {b.n_stages} stages: final settlement changes by at most "

@@ -48,6 +48,9 @@ def add(sub) -> None:
                    help="adaptive stages: the largest change of a sleeper's void in a stage "
                         "as a fraction of the static deflection (default "
                         f"{DEFAULT_INCREMENT:g})")
+    p.add_argument("--stage-rule", choices=("explicit", "quasi-static"), default="explicit",
+                   help="explicit stages (default) or quasi-static: sub-steps at the "
+                        "passage's dynamic ratio times the settling bed's statics")
     p.add_argument("--law", choices=tuple(LAWS), default="varandas",
                    help="the settlement law (default varandas with ROSE's parameters)")
     p.add_argument("--law-param", nargs="+", default=[], metavar="NAME=VALUE",
@@ -124,7 +127,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
                          increment=args.increment, feedback=not args.open_loop,
                          datum=args.datum, fidelity=args.fidelity, x_start=args.x_start,
                          x_end=args.x_end, max_workers=args.workers, store=args.store,
-                         progress=not args.no_progress)
+                         progress=not args.no_progress, stage_rule=args.stage_rule)
     except (TypeError, ValueError) as exc:
         parser.error(option_error(exc))
     along = describe_track(scene)
