@@ -205,17 +205,12 @@ void System::solve_split(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, E
     solve_bordered(r1, r2, x1, x2);
     return;
   }
-  if (nb_ == 0) {
-    split_.solve(r1, r2, x1, x2);
-    return;
-  }
-  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
-  r2b_ = r2.tail(mb);
-  r2w_ = r2.head(mw) - Dwb_s_ * body_lu_s_.solve(r2b_);
-  split_.solve(r1, r2w_, x1, x2w_);
-  x2.resize(mw + mb);
-  x2.head(mw) = x2w_;
-  x2.tail(mb) = body_lu_s_.solve(r2b_ - Dbw_s_ * x2w_);
+  auto wheels = [this](const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y1,
+                       Eigen::VectorXd& y2) { split_.solve(a, b, y1, y2); };
+  if (nb_ == 0)
+    wheels(r1, r2, x1, x2);
+  else
+    bodies_split_.solve(wheels, r1, r2, x1, x2);
 }
 
 void System::add_entry(int i, int j, double v) {
@@ -289,15 +284,8 @@ bool System::update_iteration_matrix(const SimState& st, const Eval& ev, const A
   split_mode_ = false;
   for (int w = 0; w < nw_; ++w) split_.set_group(w, &local_[kContactCoordinates * w]);
   if (nb_ == 0) return split_.factorize(Es_, Fs_, Cs_, Db_);
-  // the bodies condensed out of the border as in factorize_bordered
-  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
-  body_lu_s_.compute(Db_.bottomRightCorner(mb, mb));
-  const double det = body_lu_s_.determinant();
-  if (!std::isfinite(det) || det == 0.0) return false;
-  Dwb_s_ = Db_.topRightCorner(mw, mb);
-  Dbw_s_ = Db_.bottomLeftCorner(mb, mw);
-  Dred_s_ = Db_.topLeftCorner(mw, mw) - Dwb_s_ * body_lu_s_.solve(Dbw_s_);
-  return split_.factorize(Es_, Fs_, Cs_, Dred_s_);
+  return bodies_split_.compute(Db_, kBorderPerWheel * nw_, 2 * nb_) &&
+         split_.factorize(Es_, Fs_, Cs_, bodies_split_.reduced());
 }
 
 bool System::factorize_iteration_matrix() {
@@ -428,29 +416,19 @@ bool System::factorize_bordered(BandMatrix& A, bool factor_band) {
     return factor_band ? solver_.factorize(A, Bb_, Cb_, Db_)
                        : solver_.factorize_border(A, Bb_, Cb_, Db_);
   if (factor_band && !A.factorize()) return false;
-  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
-  body_lu_.compute(Db_.bottomRightCorner(mb, mb));
-  const double det = body_lu_.determinant();
-  if (!std::isfinite(det) || det == 0.0) return false;
-  Dwb_ = Db_.topRightCorner(mw, mb);
-  Dbw_ = Db_.bottomLeftCorner(mb, mw);
-  const Eigen::MatrixXd Dred = Db_.topLeftCorner(mw, mw) - Dwb_ * body_lu_.solve(Dbw_);
-  return solver_.factorize_border(A, Bb_.leftCols(mw), Cb_.topRows(mw), Dred);
+  const int mw = kBorderPerWheel * nw_;
+  return bodies_.compute(Db_, mw, 2 * nb_) &&
+         solver_.factorize_border(A, Bb_.leftCols(mw), Cb_.topRows(mw), bodies_.reduced());
 }
 
 void System::solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
                             Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
-  if (nb_ == 0) {
-    solver_.solve(r1, r2, x1, x2);
-    return;
-  }
-  const int mw = kBorderPerWheel * nw_, mb = 2 * nb_;
-  r2b_ = r2.tail(mb);
-  r2w_ = r2.head(mw) - Dwb_ * body_lu_.solve(r2b_);
-  solver_.solve(r1, r2w_, x1, x2w_);
-  x2.resize(mw + mb);
-  x2.head(mw) = x2w_;
-  x2.tail(mb) = body_lu_.solve(r2b_ - Dbw_ * x2w_);
+  auto wheels = [this](const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y1,
+                       Eigen::VectorXd& y2) { solver_.solve(a, b, y1, y2); };
+  if (nb_ == 0)
+    wheels(r1, r2, x1, x2);
+  else
+    bodies_.solve(wheels, r1, r2, x1, x2);
 }
 
 Eigen::MatrixXd System::iteration_matrix_dense() const {
@@ -473,56 +451,6 @@ Eigen::MatrixXd System::iteration_matrix_dense() const {
   A.block(nf_ + m, 0, ns, nf_) = Bs.transpose();
   A.bottomRightCorner(ns, ns) = Ds.asDiagonal();
   return A;
-}
-
-double vehicle_energy_of(const Model& model, const SimState& st) {
-  Eigen::VectorXd u, udot;
-  vehicle_coordinates(st, u, udot);
-  return vehicle_energy(vehicle_matrices(model.vehicle, model.n_wheels()), u, udot);
-}
-
-double total_energy(const Model& model, const SimState& st, const Eval& ev) {
-  const RailModel& rail = model.rail;
-  const Eigen::VectorXd v = rail.to_free(st.edot);
-  Eigen::VectorXd Mv, Q;
-  rail.mass().multiply(v, Mv);
-  double U = 0.0;
-  rail.internal_force(st.e, nullptr, Q, &U);
-  // summed in this order so that one wheel gives the same rounding as the one-wheel kernel
-  double E = 0.5 * v.dot(Mv);
-  for (int w = 0; w < model.n_wheels(); ++w) {
-    const WheelParams& p = model.wheels[w];
-    const WheelState& s = st.wheels[w];
-    E += 0.5 * p.mass * s.ydot * s.ydot;
-    E += 0.5 * p.inertia * s.thetadot * s.thetadot;
-  }
-  E += U;
-  const Sleepers sl(rail);
-  if (!sl.empty()) {
-    std::vector<int> identity(rail.n_dof());
-    for (int i = 0; i < rail.n_dof(); ++i) identity[i] = i;
-    E += sl.energy(st.e, identity, st.z, st.zdot);
-  }
-  for (int w = 0; w < model.n_wheels(); ++w)
-    E += ev.w[w].cf.compliant ? ev.w[w].cf.energy
-                              : contact_potential(model.contact.law, model.contact.stiffness,
-                                                  std::max(ev.w[w].cf.delta, 0.0));
-  E -= rail.gravity_force().dot(st.e - rail.reference());
-  for (int w = 0; w < model.n_wheels(); ++w) {
-    E += model.wheels[w].total_load() * st.wheels[w].y;
-    E -= model.wheels[w].torque * st.wheels[w].theta;
-  }
-  if (model.n_bodies() > 0) E += vehicle_energy_of(model, st);
-  return E;
-}
-
-double vibration_energy(const Model& model, const SimState& st) {
-  const Eigen::VectorXd v = model.rail.to_free(st.edot);
-  Eigen::VectorXd Mv;
-  model.rail.mass().multiply(v, Mv);
-  double E = 0.5 * v.dot(Mv) + vertical_kinetic_energy(model, st);
-  if (st.zdot.size() > 0) E += Sleepers(model.rail).kinetic_energy(st.zdot);
-  return E;
 }
 
 }  // namespace trackwheel

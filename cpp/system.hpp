@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "banded.hpp"
+#include "body_condensation.hpp"
 #include "contact.hpp"
 #include "model.hpp"
 #include "rolling.hpp"
@@ -173,9 +174,7 @@ class System {
   Eigen::MatrixXd Bb_, Cb_, Db_;
   Eigen::VectorXd fr_, fb_, lam_, lam_p_, Medd_, r1_, r2_, x1_, free_;
   BorderedSolver solver_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_;  // D_bb of the condensed bodies
-  Eigen::MatrixXd Dwb_, Dbw_;
-  mutable Eigen::VectorXd r2w_, x2w_, r2b_;
+  BodyCondensation bodies_;  // the bodies condensed out of the assembled border
   // The split iteration matrix: the factorised rail band A0_, the contact blocks E (Es_), F
   // (Fs_), G (Cs_) over the wheels' contact elements, the border D in Db_, bodies condensed.
   SplitBorderedSolver split_;
@@ -187,8 +186,7 @@ class System {
   bool split_solve_ = false;  // solve() with the split factorisation (else the assembled one)
   std::vector<int> local_;    // contact layout -> full system index (-1: a fixed coordinate)
   Eigen::MatrixXd Es_, Fs_, Cs_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> body_lu_s_;
-  Eigen::MatrixXd Dwb_s_, Dbw_s_, Dred_s_;
+  BodyCondensation bodies_split_;  // the same for the split factorisation
   Sleepers sl_;
   std::vector<int> identity_;  // full index -> itself
   Eigen::VectorXd rs_, r1c_;
