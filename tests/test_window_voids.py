@@ -29,6 +29,8 @@ import trackwheel as tw
 from trackwheel.run import kernel
 from trackwheel.run import simulate as sim
 
+from test_window_stream import _short  # the short window run both files compare against
+
 V = tw.kmh(300)
 P = 70e3  #: the ballasted preset's static wheel load [N]
 D = 0.6  #: its sleeper bay [m]
@@ -149,12 +151,6 @@ def test_fresh_sleepers_join_on_or_off_their_bed_as_at_rest():
     assert ew.ballast_force_min[closed] > 0.0
     assert ew.ct[hanging] == ef.ct[hanging] == 0.0
     assert ew.ballast_force_max[hanging] == ef.ballast_force_max[hanging] == 0.0
-
-
-def _short(fidelity):
-    scene = tw.Scene.ballasted_track(window=tw.Window(10, 10))
-    return sim.plan_run(scene, V, x_start=6.1, x_end=10.1, n_elements=scene.rail.n_elements,
-                        fidelity=fidelity)
 
 
 @pytest.mark.parametrize("fidelity", ["linear/hertz", "full"])
