@@ -213,10 +213,17 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     veh = scene.active_vehicle
     rear, front = veh.span
     x_ref = v.positions("x_ref", x_ref, -rear, scene.rail.length - front)
-    loads = veh.static_loads(scene.gravity)
-    model = static_rail(scene, n_elements)
-    beam = kernel.beam_params(scene)
     X = x_ref[:, None] + np.asarray(veh.positions)[None, :]
+    return linear_vehicle_line_on(scene, static_rail(scene, n_elements), X)
+
+
+def linear_vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
+    """:func:`linear_vehicle_line` on the kernel rail ``model`` (:func:`static_rail`) with the
+    wheels at its rail coordinates ``X`` (n, n_wheels) [m]: (n, n_wheels) [m]."""
+    veh = scene.active_vehicle
+    loads = veh.static_loads(scene.gravity)
+    beam = kernel.beam_params(scene)
+    X = np.asarray(X, dtype=float)
     y = np.empty_like(X)
     for i in range(veh.n_wheels):
         y[:, i] = linear_line_of(scene, model, loads[i], X[:, i])
@@ -242,6 +249,26 @@ def linear_vehicle_line(scene: Scene, x_ref, *, n_elements: int | None = None) -
     return y
 
 
+def vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
+    """The ANCF statics of the scene's vehicle (:func:`vehicle_static`) on the kernel rail
+    ``model`` with its wheels at the rail coordinates of each row of ``X`` (n, n_wheels) [m]:
+    each wheel's contact-point displacement y_B [m], (n, n_wheels). Each row's Newton starts
+    from the straight rail (the kernel's vehicle statics take no warm start), so a row's value
+    does not depend on the others."""
+    contacts = []
+    for w in scene.active_vehicle.wheels:
+        c = kernel.contact_params(scene)
+        c.radius = w.radius
+        contacts.append(c)
+    wheels = kernel.static_wheels_params(scene)
+    X = np.asarray(X, dtype=float)
+    y = np.empty_like(X)
+    for k, row in enumerate(X):
+        sols = _core.static_solve_wheels(model, wheels, contacts, row.tolist())
+        y[k] = [d["y_contact"] for d in sols]
+    return y
+
+
 def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -> np.ndarray:
     """The quasi-static line [m] on the scene's own rail (a travelling window's) with the
     supports of the track at X = ``origin`` + x [m], the wheel at the rail coordinates ``x``
@@ -258,11 +285,10 @@ def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -
                                          kernel.contact_params(scene), x.tolist())["y_contact"])
 
 
-def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.ndarray:
-    """The ANCF quasi-static line [m] of a fixed rail solved on the piece of it from bay
-    ``first`` over ``width`` bays [-] (rigid ends, as the rail's), at the piece's rail
-    coordinates ``x`` [m] (X - first d): its supports, profile and mesh those of the rail
-    there. The wheel's static solves warm-start one from the next."""
+def _piece(scene: Scene, n_elements: int, first: int, width: int):
+    """(the scene of the piece of the fixed rail from bay ``first`` over ``width`` bays [-],
+    its kernel rail): its supports, profile and mesh those of the rail there, its ends rigid
+    as the rail's."""
     d = scene.supports.spacing
     epb = n_elements // round(scene.rail.length / d)
     origin = first * d
@@ -270,6 +296,41 @@ def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.n
         scene.rail, length=width * d, n_elements=width * epb, absorbing_ends=None))
     model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
                             rail_profile.profile_part(scene, origin, width * d))
+    return piece, model
+
+
+def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.ndarray:
+    """The ANCF quasi-static line [m] of a fixed rail solved on the piece of it from bay
+    ``first`` over ``width`` bays [-] (rigid ends, as the rail's), at the piece's rail
+    coordinates ``x`` [m] (X - first d): its supports, profile and mesh those of the rail
+    there. The wheel's static solves warm-start one from the next."""
+    piece, model = _piece(scene, n_elements, first, width)
     return np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
                                          kernel.contact_params(piece),
                                          np.asarray(x, dtype=float).tolist())["y_contact"])
+
+
+def vehicle_piece_line(scene: Scene, n_elements: int, first: int, width: int,
+                       X: np.ndarray) -> np.ndarray:
+    """The ANCF statics of the scene's vehicle (:func:`vehicle_line_on`) on the piece of the
+    fixed rail from bay ``first`` over ``width`` bays [-] (as :func:`piece_line`), its wheels
+    at the piece's rail coordinates of each row of ``X`` (n, n_wheels) [m] (X - first d):
+    each wheel's y_B [m], (n, n_wheels)."""
+    piece, model = _piece(scene, n_elements, first, width)
+    return vehicle_line_on(piece, model, X)
+
+
+def vehicle_window_line(scene: Scene, n_elements: int, origin: float, X: np.ndarray,
+                        linear: bool) -> np.ndarray:
+    """The vehicle's static line (n, n_wheels) [m] on the scene's own rail (a travelling
+    window's) with the supports of the track at X = ``origin`` + x [m], its wheels at the rail
+    coordinates of each row of ``X`` (n, n_wheels) [m]: of the linear track in all its
+    coordinates (``linear``, :func:`linear_vehicle_line_on`) or of the ANCF model
+    (:func:`vehicle_line_on`, the rail's profile read as on the window's start rail, as
+    :func:`window_line`)."""
+    if linear:
+        return linear_vehicle_line_on(scene, static_rail(scene, n_elements, origin), X)
+    model = _core.RailModel(kernel.rail_params(scene, n_elements),
+                            kernel.support_params(scene, origin),
+                            rail_profile.rail_profile(scene))
+    return vehicle_line_on(scene, model, X)

@@ -8,6 +8,12 @@ of K^-1 within its band, :func:`trackwheel.run.statics.linear_line_of`), so a pa
 rail of length L costs O(L). On a travelling window over supports that vary along X the line at
 X is solved on the window's rail as the run has it with the wheel at X: its origin where the
 run's window stands then, its supports those of the track there (:func:`window_bay_series`).
+
+A vehicle's line is solved in groups, one per bay of its rear wheel (:func:`vehicle_group_series`):
+on a long fixed rail the full level's on a piece of the rail that holds the whole vehicle and
+:func:`piece_bays` bays either side of it, O(1) per bay; on a travelling window over supports
+that vary along X on the window's rail where the run's window stands while its rear wheel is
+in that bay.
 """
 
 from __future__ import annotations
@@ -19,14 +25,17 @@ import numpy as np
 from numpy.polynomial import chebyshev
 
 from ..run.stretch import END_DECAY, end_clearance
+from ..run import kernel
 from ..run.statics import (linear_quasi_static, linear_vehicle_line, piece_line, quasi_static,
-                           vehicle_static, window_line)
+                           vehicle_line_on, vehicle_piece_line, vehicle_static,
+                           vehicle_window_line, window_line)
 from ..scene import Scene
 from ..scene.support_fields import PER_SUPPORT
 
 __all__ = ["QS_DEGREE", "in_window", "qs_series", "quasi_static_line", "vehicle_breakpoints",
            "vehicle_qs_series", "vehicle_quasi_static_line", "window_bay_series",
-           "window_reference", "PIECE_DECAY", "piece_bays", "piece_bay_series"]
+           "window_reference", "PIECE_DECAY", "piece_bays", "piece_bay_series",
+           "vehicle_piece_bays", "vehicle_group_series"]
 
 #: Degree of the polynomial that represents the quasi-static line inside each rail element.
 #: With the wheel at X, the static contact-point displacement is, to within the geometric
@@ -274,19 +283,134 @@ def vehicle_qs_series(scene: Scene, n_elements: int, s0: int, s1: int, linear: b
         y = linear_vehicle_line(scene, x, n_elements=n_elements)
     else:
         y = np.array([vehicle_static(scene, xi, n_elements=n_elements).y_contact for xi in x])
-    idx = np.arange(s1 - s0)[:, None] * n + np.arange(n + 1)[None, :]  # (n_seg, n + 1)
+    return _vehicle_series(y, s1 - s0, veh.n_wheels)
+
+
+def _vehicle_series(y: np.ndarray, n_seg: int, n_wheels: int):
+    """Each segment's and wheel's Chebyshev coefficients (QS_DEGREE + 1, n_seg, n_wheels) [m]
+    from the values ``y`` (QS_DEGREE n_seg + 1, n_wheels) at :func:`_lobatto_points`, and the
+    error estimate |c_7| + |c_8| [m]."""
+    n = QS_DEGREE
+    t = -np.cos(np.pi * np.arange(n + 1) / n)
+    idx = np.arange(n_seg)[:, None] * n + np.arange(n + 1)[None, :]  # (n_seg, n + 1)
     values = y[idx]  # (n_seg, n + 1, n_wheels)
     inv = np.linalg.inv(chebyshev.chebvander(t, n))
     coef = np.einsum("kj,sjw->ksw", inv, values)
     coef.setflags(write=False)
-    err = float(np.max(np.abs(coef[-2]) + np.abs(coef[-1]))) if veh.n_wheels else 0.0
+    err = float(np.max(np.abs(coef[-2]) + np.abs(coef[-1]))) if n_wheels else 0.0
     return coef, err
+
+
+def _ahead(scene: Scene) -> int:
+    """Bays from the rear wheel's bay to the last one the leading wheel can reach while the
+    rear wheel stays in its bay [-] (as the travelling window counts them)."""
+    rear, front = scene.active_vehicle.span
+    return math.ceil((front - rear) / scene.supports.spacing - 1e-9)
+
+
+def vehicle_piece_bays(scene: Scene, n_elements: int) -> int:
+    """B: the vehicle's ANCF line of a fixed rail is solved for each bay of its rear wheel on
+    the piece of the rail from B bays behind that bay to B bays beyond the last bay its leading
+    wheel reaches (:func:`piece_bays`' B), or 0 to solve it on the whole rail: where
+    :func:`piece_bays` says so, or where such a piece is not shorter than the rail."""
+    bays = piece_bays(scene, n_elements)
+    n_bays = round(scene.rail.length / scene.supports.spacing)
+    return bays if bays and 2 * bays + 1 + _ahead(scene) < n_bays else 0
+
+
+def _group_breakpoints(scene: Scene, n_elements: int, group: int) -> np.ndarray:
+    """The reference positions [m] with the rear wheel in track bay ``group`` [-] (on a fixed
+    rail within the range the vehicle can take) where some wheel crosses a node of the mesh,
+    the group's ends included: between two of them each wheel's static displacement is
+    smooth (:func:`vehicle_breakpoints`, one bay of the rear wheel)."""
+    veh = scene.active_vehicle
+    rear, front = veh.span
+    d, le = scene.supports.spacing, scene.rail.length / n_elements
+    lo, hi = group * d - rear, (group + 1) * d - rear
+    if scene.window is None:
+        lo, hi = max(lo, -rear), min(hi, scene.rail.length - front)
+    tol = 1e-9 * le
+    inner = [k * le - p for p in veh.positions
+             for k in range(math.floor((lo + p) / le), math.ceil((hi + p) / le) + 1)]
+    inner = np.sort(np.asarray(inner, dtype=float))
+    inner = inner[(inner > lo + tol) & (inner < hi - tol)]
+    if inner.size:
+        inner = inner[np.concatenate(([True], np.diff(inner) > tol))]
+    return np.concatenate(([lo], inner, [hi]))
+
+
+@lru_cache(maxsize=1024)
+def vehicle_group_series(scene: Scene, n_elements: int, group: int, bays: int, linear: bool):
+    """Chebyshev series of every wheel's quasi-static line (as :func:`vehicle_qs_series`) with
+    the rear wheel in track bay ``group`` [-], on the segments between its
+    :func:`_group_breakpoints`:
+
+    - on a travelling window over supports that vary along X (linear or ANCF): the window's
+      rail with its origin X_w = (group - bays_behind) d, where the run's window stands while
+      its rear wheel is in that bay, its supports the track's at X_w + x, each wheel at its
+      rail coordinate X - X_w;
+    - on a long fixed rail (the ANCF line, ``bays`` = :func:`vehicle_piece_bays`): the piece
+      of the rail from ``bays`` bays behind the group's bay over 2 ``bays`` + 1 + the vehicle's
+      bays (at the near end from the rail's end; its supports, profile and mesh those of the
+      rail there, its ends rigid as the rail's); where that piece would reach the rail's far
+      end (a roller; see :func:`piece_bay_series`) on the whole rail, O(L) for those groups
+      together.
+
+    O(1) per group in the rail's length or the distance run. Returns (breakpoints [m],
+    coefficients (QS_DEGREE + 1, segments, n_wheels) [m], error estimate [m]); cached per
+    (scene, mesh, group) and computed the same way whatever asked for it.
+    """
+    veh = scene.active_vehicle
+    d = scene.supports.spacing
+    b = _group_breakpoints(scene, n_elements, group)
+    x = _lobatto_points(b[:-1], np.diff(b))
+    X = x[:, None] + np.asarray(veh.positions)[None, :]  # each wheel's track coordinate
+    if _streams(scene):
+        origin = (group - scene.window.bays_behind) * d
+        y = vehicle_window_line(scene, n_elements, origin, X - origin, linear)
+    elif group + _ahead(scene) + bays >= round(scene.rail.length / d):
+        y = vehicle_line_on(scene, kernel.rail_model(scene, n_elements), X)
+    else:
+        first = max(group - bays, 0)
+        y = vehicle_piece_line(scene, n_elements, first, 2 * bays + 1 + _ahead(scene),
+                               X - first * d)
+    coef, err = _vehicle_series(y, b.size - 1, veh.n_wheels)
+    b.setflags(write=False)
+    return b, coef, err
+
+
+def _vehicle_group_line(scene: Scene, n_elements: int, x: np.ndarray, wheel: int, bays: int,
+                        linear: bool):
+    """Wheel ``wheel``'s line [m] at the reference positions ``x`` [m] group by group
+    (:func:`vehicle_group_series`), and the largest error estimate [m]."""
+    rear, front = scene.active_vehicle.span
+    d = scene.supports.spacing
+    group = _bay(scene, x + rear)
+    if scene.window is None:  # the last group with room for the vehicle holds X = L - front
+        last = math.ceil((scene.rail.length - (front - rear)) / d - 1e-9) - 1
+        group = np.clip(group, 0, max(last, 0))
+    y = np.empty_like(x)
+    err = 0.0
+    for g in np.unique(group):
+        at = group == g
+        b, coef, e = vehicle_group_series(scene, n_elements, int(g), bays, linear)
+        k = np.clip(np.searchsorted(b, x[at], side="right") - 1, 0, b.size - 2)
+        t = np.clip(2.0 * (x[at] - b[k]) / (b[k + 1] - b[k]) - 1.0, -1.0, 1.0)
+        y[at] = chebyshev.chebval(t, coef[:, k, wheel], tensor=False)
+        err = max(err, e)
+    return y, err
 
 
 def vehicle_quasi_static_line(scene: Scene, n_elements: int, x_ref: np.ndarray, wheel: int,
                                linear: bool = False):
     """Wheel ``wheel``'s quasi-static line with the whole vehicle resting at the reference
     positions ``x_ref`` [m], and the estimate of its error [m]."""
+    x_ref = np.asarray(x_ref, dtype=float)
+    if _streams(scene):
+        return _vehicle_group_line(scene, n_elements, x_ref, wheel, 0, linear)
+    bays = 0 if linear else vehicle_piece_bays(scene, n_elements)
+    if bays:
+        return _vehicle_group_line(scene, n_elements, x_ref, wheel, bays, linear)
     x = window_reference(scene, x_ref)
     b = vehicle_breakpoints(scene, n_elements)
     last = b.size - 2
