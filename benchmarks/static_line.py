@@ -18,14 +18,23 @@ rail (every element: 8 n_el + 1 positions):
 (c) what a windowed ANCF solve would cost in accuracy: the ANCF line at 17 points of the middle
     bay of a 60 m rail solved on a piece of the rail B bays either side of that bay (its ends
     rigid, as the rail's), against the whole rail, for B = 5 .. 40.
+(d) a vehicle's ANCF line (the full level; a half car and a bogie): before, the vehicle's static
+    solve on the whole rail at each point (O(n) each: O(L^2) per passage); now, per bay of the
+    rear wheel on a piece of the rail holding the vehicle and B bays either side
+    (``static_line.vehicle_group_series``; the groups whose piece would reach the far end on the
+    whole rail): O(L). The cost per point (the whole rail, 8 points mid-rail) and per group (one
+    piece) as medians of --repeats; a passage over the rail (the reference point over its whole
+    range) from them, and timed whole up to --whole-passage-up-to; the cost per metre of rail.
+    Written to static_line_vehicle.csv.
 
-    python benchmarks/static_line.py [--repeats 5] [--lengths 25 50 100 200 400]
+    python benchmarks/static_line.py [--repeats 5] [--lengths 25 50 100 200 400] [--parts abcd]
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses as dc
+import math
 import os
 import platform
 import statistics
@@ -37,7 +46,7 @@ from _common import write_csv
 import trackwheel as tw
 from trackwheel import _core
 from trackwheel.run import kernel
-from trackwheel.run.statics import linear_line_of, static_rail
+from trackwheel.run.statics import linear_line_of, static_rail, vehicle_static
 from trackwheel.study import static_line
 
 LENGTHS = (25.2, 50.4, 100.2, 199.8, 399.6)  # whole 0.6 m bays near 25 .. 400 m
@@ -183,6 +192,72 @@ def window_rows(bays_list) -> list[dict]:
     return rows
 
 
+VEHICLES = {"half car": tw.Vehicle.half_car, "bogie": tw.Vehicle.bogie}
+
+
+def vehicle_rows(lengths, repeats: int, whole_passage_up_to: float) -> list[dict]:
+    """The full level's vehicle line: before, ``vehicle_static`` on the whole rail at each of
+    the 8 n_seg + 1 points of a passage (n_seg the segments between the points where a wheel
+    crosses a node); now ``vehicle_group_series`` per bay of the rear wheel (a piece, or the
+    whole rail near the far end). Costs from the medians per point and per group; whole
+    passages timed up to ``whole_passage_up_to`` m (once each, both routes)."""
+    rows = []
+    for name, make in VEHICLES.items():
+        for L in lengths:
+            scene = dc.replace(tw.Scene.ballasted_track(length=L), vehicle=make())
+            ne = scene.rail.n_elements
+            d = scene.supports.spacing
+            n_bays = round(L / d)
+            bays = static_line.vehicle_piece_bays(scene, ne)
+            ahead = static_line._ahead(scene)
+            rear, front = scene.vehicle.span
+            n_seg = static_line.vehicle_breakpoints(scene, ne).size - 1
+            n_pos = 8 * n_seg + 1
+            groups = math.ceil((L - (front - rear)) / d - 1e-9)
+            whole_groups = sum(g + ahead + bays >= n_bays for g in range(groups)) if bays \
+                else groups
+            x = 0.5 * (L - front - rear) + np.linspace(0.0, 0.3, 8)
+            vehicle_static(scene, x[0])  # the model built and cached
+            per_pos = timed(lambda: [vehicle_static(scene, xi) for xi in x], repeats)[0] / x.size
+            mid = groups // 2
+
+            def one_group(g=mid):
+                static_line.vehicle_group_series.cache_clear()
+                return static_line.vehicle_group_series(scene, ne, g, bays, False)
+
+            per_group = timed(one_group, repeats)[0] if bays else np.nan
+            pos_per_group = n_pos / groups
+            before = per_pos * n_pos
+            after = (per_group * (groups - whole_groups) + per_pos * pos_per_group * whole_groups
+                     if bays else before)
+            measured = L <= whole_passage_up_to
+            if measured:
+                b = static_line.vehicle_breakpoints(scene, ne)
+                xs = b[:-1] + 0.5 * np.diff(b)
+                static_line.vehicle_qs_series.cache_clear()
+                t0 = time.process_time()
+                static_line.vehicle_qs_series(scene, ne, 0, n_seg, False)
+                before = time.process_time() - t0
+                static_line.vehicle_qs_series.cache_clear()
+                static_line.vehicle_group_series.cache_clear()
+                t0 = time.process_time()
+                static_line.vehicle_quasi_static_line(scene, ne, xs, 0)
+                after = time.process_time() - t0
+            rows.append(dict(vehicle=name, length_m=L, n_elements=ne, segments=n_seg,
+                             positions=n_pos, groups=groups, whole_rail_groups=whole_groups,
+                             bays=bays, per_position_ms=per_pos * 1e3,
+                             per_group_ms=per_group * 1e3, before_s=before, after_s=after,
+                             before_per_m_s=before / L, after_per_m_s=after / L,
+                             measured=measured))
+            print(f"{name}, L = {L:6.1f} m, B = {bays}: {per_pos * 1e3:.2f} ms per point on "
+                  f"the whole rail, {per_group * 1e3:.0f} ms per group of "
+                  f"{pos_per_group:.0f} points on a piece; a passage ({n_pos} points, {groups} "
+                  f"groups, {whole_groups} on the whole rail) {before:.1f} s -> {after:.1f} s, "
+                  f"{before / L * 1e3:.0f} -> {after / L * 1e3:.0f} ms per metre "
+                  f"({'measured' if measured else 'from the costs per point and per group'})")
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
@@ -191,14 +266,22 @@ def main(argv=None):
     ap.add_argument("--bays", type=int, nargs="*", default=(5, 10, 20, 30, 40))
     ap.add_argument("--whole-passage-up-to", type=float, default=60.0,
                     help="time the full level's whole passage on rails up to this long [m]")
+    ap.add_argument("--vehicle-lengths", type=float, nargs="*", default=LENGTHS[1:])
+    ap.add_argument("--parts", default="abcd", help="the parts to run, e.g. 'd'")
     args = ap.parse_args(argv)
     print(f"trackwheel {tw.__version__}, {platform.processor() or platform.machine()}, "
           f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")
-    rows = (linear_rows(args.lengths, args.repeats) + ancf_rows(args.ancf_lengths, args.repeats,
-                                                                  args.whole_passage_up_to)
-            + window_rows(args.bays))
+    rows = ((linear_rows(args.lengths, args.repeats) if "a" in args.parts else [])
+            + (ancf_rows(args.ancf_lengths, args.repeats, args.whole_passage_up_to)
+               if "b" in args.parts else [])
+            + (window_rows(args.bays) if "c" in args.parts else []))
+    vehicle = (vehicle_rows(args.vehicle_lengths, args.repeats, args.whole_passage_up_to)
+               if "d" in args.parts else [])
     print(f"load average at the end {os.getloadavg()[0]:.1f}")
-    write_csv("static_line.csv", rows)
+    if rows:
+        write_csv("static_line.csv", rows)
+    if vehicle:
+        write_csv("static_line_vehicle.csv", vehicle)
 
 
 if __name__ == "__main__":

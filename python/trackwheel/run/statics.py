@@ -249,12 +249,14 @@ def linear_vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
     return y
 
 
-def vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
+def vehicle_line_on(scene: Scene, model, X: np.ndarray, reaction: bool = False):
     """The ANCF statics of the scene's vehicle (:func:`vehicle_static`) on the kernel rail
     ``model`` with its wheels at the rail coordinates of each row of ``X`` (n, n_wheels) [m]:
-    each wheel's contact-point displacement y_B [m], (n, n_wheels). Each row's Newton starts
-    from the straight rail (the kernel's vehicle statics take no warm start), so a row's value
-    does not depend on the others."""
+    each wheel's contact-point displacement y_B [m], (n, n_wheels); with ``reaction`` also
+    H (n,) [N], the sum of the horizontal forces holding the wheels at their X (what the rail's
+    axial hold carries). Each row's Newton starts from the straight rail (the kernel's vehicle
+    statics take no warm start; they converge in 3 iterations from it), so a row's value does
+    not depend on the others."""
     contacts = []
     for w in scene.active_vehicle.wheels:
         c = kernel.contact_params(scene)
@@ -263,10 +265,12 @@ def vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
     wheels = kernel.static_wheels_params(scene)
     X = np.asarray(X, dtype=float)
     y = np.empty_like(X)
+    H = np.empty(X.shape[0])
     for k, row in enumerate(X):
         sols = _core.static_solve_wheels(model, wheels, contacts, row.tolist())
         y[k] = [d["y_contact"] for d in sols]
-    return y
+        H[k] = sum(d["horizontal_reaction"] for d in sols)
+    return (y, H) if reaction else y
 
 
 def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -> np.ndarray:
@@ -311,13 +315,14 @@ def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.n
 
 
 def vehicle_piece_line(scene: Scene, n_elements: int, first: int, width: int,
-                       X: np.ndarray) -> np.ndarray:
+                       X: np.ndarray):
     """The ANCF statics of the scene's vehicle (:func:`vehicle_line_on`) on the piece of the
     fixed rail from bay ``first`` over ``width`` bays [-] (as :func:`piece_line`), its wheels
     at the piece's rail coordinates of each row of ``X`` (n, n_wheels) [m] (X - first d):
-    each wheel's y_B [m], (n, n_wheels)."""
+    each wheel's y_B [m], (n, n_wheels), and the horizontal force H (n,) [N] holding the
+    wheels."""
     piece, model = _piece(scene, n_elements, first, width)
-    return vehicle_line_on(piece, model, X)
+    return vehicle_line_on(piece, model, X, reaction=True)
 
 
 def vehicle_window_line(scene: Scene, n_elements: int, origin: float, X: np.ndarray,

@@ -372,11 +372,32 @@ def vehicle_group_series(scene: Scene, n_elements: int, group: int, bays: int, l
         y = vehicle_line_on(scene, kernel.rail_model(scene, n_elements), X)
     else:
         first = max(group - bays, 0)
-        y = vehicle_piece_line(scene, n_elements, first, 2 * bays + 1 + _ahead(scene),
-                               X - first * d)
+        y, H = vehicle_piece_line(scene, n_elements, first, 2 * bays + 1 + _ahead(scene),
+                                  X - first * d)
+        y = _axial_correction(y, H * (first * d) / scene.rail.axial_stiffness, b)
     coef, err = _vehicle_series(y, b.size - 1, veh.n_wheels)
     b.setflags(write=False)
     return b, coef, err
+
+
+def _axial_correction(y: np.ndarray, du: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The line ``y`` (points, n_wheels) [m] of a piece of the rail corrected for the rail
+    between the rail's axially held near end and the piece's, X_0 long: its supports act
+    vertically, so it carries the horizontal force H holding the wheels and stretches by
+    ``du`` = H X_0 / EA [m] (points,) more than the piece, whose near end is held; the rail
+    beyond, supports and all, stands that much further along against the held wheels, so to
+    first order the whole rail's line is the piece's at x - du: y - y' du, y' from each
+    segment's series (the line is C^1 across the breakpoints: cubic Hermite shape functions).
+    The neglected part is of order y'' du^2 (du ~ 1e-7 m)."""
+    n = QS_DEGREE
+    n_seg = b.size - 1
+    coef, _ = _vehicle_series(y, n_seg, y.shape[1])
+    t = -np.cos(np.pi * np.arange(n + 1) / n)
+    slope = np.einsum("jk,ksw->sjw", chebyshev.chebvander(t, n - 1),
+                      chebyshev.chebder(coef, axis=0))  # d/dt, (n_seg, n + 1, n_wheels)
+    slope *= (2.0 / np.diff(b))[:, None, None]
+    dy = np.concatenate([slope[:, :-1].reshape(-1, y.shape[1]), slope[-1:, -1]])
+    return y - dy * du[:, None]
 
 
 def _vehicle_group_line(scene: Scene, n_elements: int, x: np.ndarray, wheel: int, bays: int,
