@@ -38,18 +38,20 @@ py::dict quasi_static(const RailModel& rail, const WheelParams& w, const Contact
     rs = solve_quasi_static(rail, w, c, x);
   }
   const size_t n = rs.size();
-  Eigen::VectorXd yc(n), yw(n), sc(n), N(n);
+  Eigen::VectorXd yc(n), yw(n), sc(n), N(n), H(n);
   for (size_t i = 0; i < n; ++i) {
     yc(i) = rs[i].y_contact;
     yw(i) = rs[i].y_wheel;
     sc(i) = rs[i].contact_s;
     N(i) = rs[i].normal_force;
+    H(i) = rs[i].horizontal_reaction;
   }
   py::dict d;
   d["y_contact"] = yc;
   d["y_wheel"] = yw;
   d["contact_s"] = sc;
   d["normal_force"] = N;
+  d["horizontal_reaction"] = H;
   return d;
 }
 
@@ -76,7 +78,8 @@ void bind_statics(py::module_& m) {
   m.def("quasi_static", &quasi_static, py::arg("rail"), py::arg("wheel"), py::arg("contact"),
         py::arg("x"),
         "The quasi-static line: a static solve at each X_A in x [m], each from the rail of the "
-        "one before; {'y_contact', 'y_wheel', 'contact_s' [m], 'normal_force' [N]} (n,) each");
+        "one before; {'y_contact', 'y_wheel', 'contact_s' [m], 'normal_force', "
+        "'horizontal_reaction' [N]} (n,) each");
 }
 
 }  // namespace trackwheel::bindings

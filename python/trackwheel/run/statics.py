@@ -249,14 +249,38 @@ def linear_vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
     return y
 
 
-def vehicle_line_on(scene: Scene, model, X: np.ndarray, reaction: bool = False):
+def rail_axial_load(scene: Scene, horizontal_reaction, normal_force, contact_x):
+    """The horizontal load the wheels put on the rail [N], which its axial hold carries: the
+    forces holding them at their X (``horizontal_reaction`` [N]) less the part the rail
+    profile takes, -N R'(X) at each contact point X = ``contact_x`` [m] (the contact reads
+    the profile at the place, so a profile's slope tilts the contact force on the wheel
+    without loading the rail axially: its force on the rail, -T^T N n with
+    T = S + e_y R' S_x, has the x part -N (n_x + R' n_y); n_y = 1 to O(slope^2)). Arrays
+    over the wheels, summed over the last axis."""
+    H = np.asarray(horizontal_reaction, dtype=float)
+    table = rail_profile.rail_table(scene)
+    if table is None:
+        return H.sum(axis=-1)
+    x0, h, c = table
+    x = np.asarray(contact_x, dtype=float)
+    i = np.clip(np.floor((x - x0) / h).astype(np.int64), 0, c.shape[1] - 1)
+    u = np.clip(x - (x0 + i * h), 0.0, h)
+    slope = (3.0 * c[0, i] * u + 2.0 * c[1, i]) * u + c[2, i]
+    return (H - np.asarray(normal_force) * slope).sum(axis=-1)
+
+
+def vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
     """The ANCF statics of the scene's vehicle (:func:`vehicle_static`) on the kernel rail
     ``model`` with its wheels at the rail coordinates of each row of ``X`` (n, n_wheels) [m]:
-    each wheel's contact-point displacement y_B [m], (n, n_wheels); with ``reaction`` also
-    H (n,) [N], the sum of the horizontal forces holding the wheels at their X (what the rail's
-    axial hold carries). Each row's Newton starts from the straight rail (the kernel's vehicle
-    statics take no warm start; they converge in 3 iterations from it), so a row's value does
-    not depend on the others."""
+    each wheel's contact-point displacement y_B [m], (n, n_wheels)."""
+    return _vehicle_statics_on(scene, model, X)[0]
+
+
+def _vehicle_statics_on(scene: Scene, model, X: np.ndarray):
+    """:func:`vehicle_line_on`'s y_B [m] and each wheel's horizontal reaction [N], normal
+    force [N] and contact point s* [m] on the rail, (n, n_wheels) each. Each row's Newton
+    starts from the straight rail (the kernel's vehicle statics take no warm start; they
+    converge in 3 iterations from it), so a row's value does not depend on the others."""
     contacts = []
     for w in scene.active_vehicle.wheels:
         c = kernel.contact_params(scene)
@@ -264,13 +288,13 @@ def vehicle_line_on(scene: Scene, model, X: np.ndarray, reaction: bool = False):
         contacts.append(c)
     wheels = kernel.static_wheels_params(scene)
     X = np.asarray(X, dtype=float)
-    y = np.empty_like(X)
-    H = np.empty(X.shape[0])
+    y, H, N, s = (np.empty_like(X) for _ in range(4))
     for k, row in enumerate(X):
         sols = _core.static_solve_wheels(model, wheels, contacts, row.tolist())
-        y[k] = [d["y_contact"] for d in sols]
-        H[k] = sum(d["horizontal_reaction"] for d in sols)
-    return (y, H) if reaction else y
+        for i, d in enumerate(sols):
+            y[k, i], H[k, i] = d["y_contact"], d["horizontal_reaction"]
+            N[k, i], s[k, i] = d["normal_force"], d["contact_s"]
+    return y, H, N, s
 
 
 def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -> np.ndarray:
@@ -289,29 +313,41 @@ def window_line(scene: Scene, n_elements: int, origin: float, x, linear: bool) -
                                          kernel.contact_params(scene), x.tolist())["y_contact"])
 
 
+def piece_scene(scene: Scene, n_elements: int, width: int) -> Scene:
+    """The scene of a piece of ``width`` bays [-] of the fixed rail of ``scene`` on
+    ``n_elements``: its mesh that of the rail, its ends rigid as the rail's (its supports and
+    profile those of the rail where the piece stands: :func:`kernel.support_params` and
+    :func:`trackwheel.run.profile.profile_part` at its origin)."""
+    d = scene.supports.spacing
+    epb = n_elements // round(scene.rail.length / d)
+    return dataclasses.replace(scene, rail=dataclasses.replace(
+        scene.rail, length=width * d, n_elements=width * epb, absorbing_ends=None))
+
+
 def _piece(scene: Scene, n_elements: int, first: int, width: int):
     """(the scene of the piece of the fixed rail from bay ``first`` over ``width`` bays [-],
     its kernel rail): its supports, profile and mesh those of the rail there, its ends rigid
     as the rail's."""
-    d = scene.supports.spacing
-    epb = n_elements // round(scene.rail.length / d)
-    origin = first * d
-    piece = dataclasses.replace(scene, rail=dataclasses.replace(
-        scene.rail, length=width * d, n_elements=width * epb, absorbing_ends=None))
+    origin = first * scene.supports.spacing
+    piece = piece_scene(scene, n_elements, width)
     model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
-                            rail_profile.profile_part(scene, origin, width * d))
+                            rail_profile.profile_part(scene, origin, width * piece.supports.spacing))
     return piece, model
 
 
-def piece_line(scene: Scene, n_elements: int, first: int, width: int, x) -> np.ndarray:
+def piece_line(scene: Scene, n_elements: int, first: int, width: int, x):
     """The ANCF quasi-static line [m] of a fixed rail solved on the piece of it from bay
     ``first`` over ``width`` bays [-] (rigid ends, as the rail's), at the piece's rail
     coordinates ``x`` [m] (X - first d): its supports, profile and mesh those of the rail
-    there. The wheel's static solves warm-start one from the next."""
+    there, and the rail's axial load [N] (:func:`rail_axial_load`), each (n,). The wheel's
+    static solves warm-start one from the next."""
     piece, model = _piece(scene, n_elements, first, width)
-    return np.asarray(_core.quasi_static(model, kernel.wheel_params(piece),
-                                         kernel.contact_params(piece),
-                                         np.asarray(x, dtype=float).tolist())["y_contact"])
+    d = _core.quasi_static(model, kernel.wheel_params(piece), kernel.contact_params(piece),
+                           np.asarray(x, dtype=float).tolist())
+    H = rail_axial_load(scene, np.asarray(d["horizontal_reaction"])[:, None],
+                        np.asarray(d["normal_force"])[:, None],
+                        first * scene.supports.spacing + np.asarray(d["contact_s"])[:, None])
+    return np.asarray(d["y_contact"]), H
 
 
 def vehicle_piece_line(scene: Scene, n_elements: int, first: int, width: int,
@@ -319,10 +355,11 @@ def vehicle_piece_line(scene: Scene, n_elements: int, first: int, width: int,
     """The ANCF statics of the scene's vehicle (:func:`vehicle_line_on`) on the piece of the
     fixed rail from bay ``first`` over ``width`` bays [-] (as :func:`piece_line`), its wheels
     at the piece's rail coordinates of each row of ``X`` (n, n_wheels) [m] (X - first d):
-    each wheel's y_B [m], (n, n_wheels), and the horizontal force H (n,) [N] holding the
-    wheels."""
+    each wheel's y_B [m], (n, n_wheels), and the rail's axial load (n,) [N]
+    (:func:`rail_axial_load`)."""
     piece, model = _piece(scene, n_elements, first, width)
-    return vehicle_line_on(piece, model, X, reaction=True)
+    y, H, N, s = _vehicle_statics_on(piece, model, X)
+    return y, rail_axial_load(scene, H, N, first * scene.supports.spacing + s)
 
 
 def vehicle_window_line(scene: Scene, n_elements: int, origin: float, X: np.ndarray,

@@ -26,8 +26,9 @@ from numpy.polynomial import chebyshev
 
 from ..run.stretch import END_DECAY, end_clearance
 from ..run import kernel
-from ..run.statics import (linear_quasi_static, linear_vehicle_line, piece_line, quasi_static,
-                           vehicle_line_on, vehicle_piece_line, vehicle_static,
+from ..run.statics import (linear_line_of, linear_quasi_static, linear_vehicle_line,
+                           linear_vehicle_line_on, piece_line, piece_scene, quasi_static,
+                           static_rail, vehicle_line_on, vehicle_piece_line, vehicle_static,
                            vehicle_window_line, window_line)
 from ..scene import Scene
 from ..scene.support_fields import PER_SUPPORT
@@ -57,7 +58,8 @@ QS_DEGREE = 8
 #: [-]: a load's bowl on the track decays as exp(-beta x), beta = (k_f / 4 EI)^(1/4), so the
 #: piece reaches ln(1 / PIECE_DECAY) / beta beyond the bay. Measured against the whole rail
 #: (benchmarks/static_line.py): 1.7e-9 of the deflection at beta x = 17 on the ballasted preset,
-#: 4e-10 at 35 (the static solver's tolerance); the line's budget is 1e-8.
+#: 4e-10 at 35 (the static solver's tolerance); the line's budget is 1e-8. The rail between the
+#: rail's axially held near end and the piece's is accounted for by :func:`_axial_correction`.
 PIECE_DECAY = 1e-9
 
 def _lobatto_points(a: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -128,8 +130,10 @@ def piece_bay_series(scene: Scene, n_elements: int, bay: int, bays: int):
     the piece of the rail ``bays`` bays either side of it (at the rail's near end the piece's
     end is the rail's): its supports, profile and mesh those of the rail there, its ends rigid
     as the rail's. O(1) per bay in the rail's length; the last ``bays`` bays on the whole rail.
-    Cached per (scene, mesh, bay) and computed the same way whatever asked for it. Returns
-    (coefficients (QS_DEGREE + 1, elements per bay) [m], error estimate [m])."""
+    The piece's line is corrected for the rail's axial stretch between the rail's held near
+    end and the piece's (:func:`_axial_correction`). Cached per (scene, mesh, bay) and
+    computed the same way whatever asked for it. Returns (coefficients (QS_DEGREE + 1,
+    elements per bay) [m], error estimate [m])."""
     d = scene.supports.spacing
     n_bays = round(scene.rail.length / d)
     epb = n_elements // n_bays
@@ -147,7 +151,11 @@ def piece_bay_series(scene: Scene, n_elements: int, bay: int, bays: int):
         return coef[:, j:j + epb], err
     first = max(bay - bays, 0)
     x = _lobatto_points(((bay - first) * epb + np.arange(epb)) * le, np.full(epb, le))
-    y = piece_line(scene, n_elements, first, width, x)
+    y, H = piece_line(scene, n_elements, first, width, x)
+    piece = piece_scene(scene, n_elements, width)
+    y_lin = linear_line_of(piece, static_rail(piece, None, first * d), piece.static_load, x)
+    y = _axial_correction(y[:, None], H * (first * d) / scene.rail.axial_stiffness,
+                          np.arange(epb + 1) * le, y_lin[:, None])[:, 0]
     return _series(y, epb)
 
 
@@ -372,26 +380,34 @@ def vehicle_group_series(scene: Scene, n_elements: int, group: int, bays: int, l
         y = vehicle_line_on(scene, kernel.rail_model(scene, n_elements), X)
     else:
         first = max(group - bays, 0)
-        y, H = vehicle_piece_line(scene, n_elements, first, 2 * bays + 1 + _ahead(scene),
-                                  X - first * d)
-        y = _axial_correction(y, H * (first * d) / scene.rail.axial_stiffness, b)
+        width = 2 * bays + 1 + _ahead(scene)
+        y, H = vehicle_piece_line(scene, n_elements, first, width, X - first * d)
+        piece = piece_scene(scene, n_elements, width)
+        y_lin = linear_vehicle_line_on(piece, static_rail(piece, None, first * d),
+                                       X - first * d)
+        y = _axial_correction(y, H * (first * d) / scene.rail.axial_stiffness, b, y_lin)
     coef, err = _vehicle_series(y, b.size - 1, veh.n_wheels)
     b.setflags(write=False)
     return b, coef, err
 
 
-def _axial_correction(y: np.ndarray, du: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The line ``y`` (points, n_wheels) [m] of a piece of the rail corrected for the rail
-    between the rail's axially held near end and the piece's, X_0 long: its supports act
-    vertically, so it carries the horizontal force H holding the wheels and stretches by
-    ``du`` = H X_0 / EA [m] (points,) more than the piece, whose near end is held; the rail
-    beyond, supports and all, stands that much further along against the held wheels, so to
-    first order the whole rail's line is the piece's at x - du: y - y' du, y' from each
-    segment's series (the line is C^1 across the breakpoints: cubic Hermite shape functions).
-    The neglected part is of order y'' du^2 (du ~ 1e-7 m)."""
+def _axial_correction(y: np.ndarray, du: np.ndarray, b: np.ndarray,
+                      y_lin: np.ndarray) -> np.ndarray:
+    """The line ``y`` (points, n_wheels) [m] of a piece of the rail at the Lobatto points of
+    the segments between ``b`` [m], corrected for the rail between the rail's axially held
+    near end and the piece's, X_0 long: its supports act vertically, so it carries the
+    horizontal force H holding the wheels and stretches by ``du`` = H X_0 / EA [m] (points,)
+    more than the piece, whose near end is held. The rail beyond, with its supports, stands
+    that much further along against the wheels (and against the rail profile, which the
+    contact reads at the place X, not on the material), so to first order the whole rail's
+    line is y - y_s du, y_s the line's slope with the load moving over the supports alone:
+    that of ``y_lin``, the linear track's line on the piece (no profile; the ANCF line's own
+    slope would carry the profile's), from each segment's series (the line is C^1 across the
+    breakpoints: cubic Hermite shape functions). The neglected parts are of order
+    y'' du^2 (du ~ 1e-7 m) and rho0 theta^2 du y_s (the linear line's own error)."""
     n = QS_DEGREE
     n_seg = b.size - 1
-    coef, _ = _vehicle_series(y, n_seg, y.shape[1])
+    coef, _ = _vehicle_series(y_lin, n_seg, y_lin.shape[1])
     t = -np.cos(np.pi * np.arange(n + 1) / n)
     slope = np.einsum("jk,ksw->sjw", chebyshev.chebvander(t, n - 1),
                       chebyshev.chebder(coef, axis=0))  # d/dt, (n_seg, n + 1, n_wheels)
