@@ -360,9 +360,10 @@ def vehicle_group_series(scene: Scene, n_elements: int, group: int, bays: int, l
     - on a long fixed rail (the ANCF line, ``bays`` = :func:`vehicle_piece_bays`): the piece
       of the rail from ``bays`` bays behind the group's bay over 2 ``bays`` + 1 + the vehicle's
       bays (at the near end from the rail's end; its supports, profile and mesh those of the
-      rail there, its ends rigid as the rail's); where that piece would reach the rail's far
-      end (a roller; see :func:`piece_bay_series`) on the whole rail, O(L) for those groups
-      together.
+      rail there, its ends rigid as the rail's), corrected for the rail's axial stretch
+      between the rail's held near end and the piece's (:func:`_axial_correction`); where
+      that piece would reach the rail's far end (a roller; see :func:`piece_bay_series`) on
+      the whole rail, O(L) for those groups together.
 
     O(1) per group in the rail's length or the distance run. Returns (breakpoints [m],
     coefficients (QS_DEGREE + 1, segments, n_wheels) [m], error estimate [m]); cached per
