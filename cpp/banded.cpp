@@ -90,7 +90,16 @@ bool BorderedSolver::factorize_border(const BandMatrix& A, const Eigen::MatrixXd
   Z_ = B;
   for (int k = 0; k < m_; ++k)
     if (!Z_.col(k).isZero(0.0)) A.solve_in_place(Z_.col(k));  // a zero column stays zero
-  C_ = C;
+  c_row_.clear();
+  c_col_.clear();
+  c_val_.clear();
+  for (int j = 0; j < C.cols(); ++j)
+    for (int i = 0; i < m_; ++i)
+      if (C(i, j) != 0.0) {
+        c_row_.push_back(i);
+        c_col_.push_back(j);
+        c_val_.push_back(C(i, j));
+      }
   const Eigen::MatrixXd S = D - C * Z_;
   if (!S.allFinite()) return false;
   schur_.compute(S);
@@ -106,10 +115,9 @@ void BorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
     x2.resize(0);
     return;
   }
-  // the products into buffers, evaluated as the expressions r2 - C x1 and x1 -= Z x2 would
-  // (into a temporary each): the same operations without an allocation per solve
-  cx_.noalias() = C_ * x1;
-  rhs_ = r2 - cx_;
+  // the products into buffers (no allocation per solve)
+  rhs_ = r2;
+  for (std::size_t k = 0; k < c_val_.size(); ++k) rhs_(c_row_[k]) -= c_val_[k] * x1(c_col_[k]);
   x2 = schur_.solve(rhs_);
   zx_.noalias() = Z_ * x2;
   x1 -= zx_;

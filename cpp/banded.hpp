@@ -57,10 +57,13 @@ class BorderedSolver {
  private:
   const BandMatrix* A_ = nullptr;
   Eigen::MatrixXd Z_;  // A^-1 B
-  Eigen::MatrixXd C_;
+  // C's non-zeros (a wheel's rows touch the 8 coordinates of its contact element): C x1 in
+  // O(non-zeros) rather than O(m n)
+  std::vector<int> c_row_, c_col_;
+  std::vector<double> c_val_;
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
   int m_ = 0;
-  mutable Eigen::VectorXd cx_, rhs_, zx_;  // buffers of solve
+  mutable Eigen::VectorXd rhs_, zx_;  // buffers of solve
 };
 
 // Solves [A + P E P^T, P F; G P^T, D] [x1; x2] = [r1; r2]: a bordered band system whose border

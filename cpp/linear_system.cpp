@@ -39,9 +39,47 @@ void LinearRest::solve(Eigen::VectorXd& q, Eigen::VectorXd& z) {
   }
 }
 
+void WheelCoupling::set(const LinearTrack& tr, const BeamPoint& bp, double X) {
+  sparse = !tr.modal;
+  if (!sparse) {
+    tr.coupling(X, s, ss, sss);
+    return;
+  }
+  for (int a = 0; a < 4; ++a) {
+    idx[a] = tr.y_of_full[4 * bp.element + 2 * a + 1];
+    n[a] = bp.n[a];
+    ns[a] = bp.ns[a];
+  }
+}
+
+double WheelCoupling::dot(const Eigen::VectorXd& x) const {
+  if (!sparse) return s.dot(x);
+  double a = 0.0;
+  for (int k = 0; k < 4; ++k)
+    if (idx[k] >= 0) a += n[k] * x(idx[k]);
+  return a;
+}
+
+double WheelCoupling::dot_s(const Eigen::VectorXd& x) const {
+  if (!sparse) return ss.dot(x);
+  double a = 0.0;
+  for (int k = 0; k < 4; ++k)
+    if (idx[k] >= 0) a += ns[k] * x(idx[k]);
+  return a;
+}
+
+void WheelCoupling::add_to(double a, Eigen::VectorXd& r) const {
+  if (!sparse) {
+    r += a * s;
+    return;
+  }
+  for (int k = 0; k < 4; ++k)
+    if (idx[k] >= 0) r(idx[k]) += a * n[k];
+}
+
 double WheelCoupling::u_dot(const Eigen::VectorXd& x) const {
-  const double a = cs * s.dot(x);
-  return css == 0.0 ? a : a + css * ss.dot(x);
+  const double a = cs * dot(x);
+  return css == 0.0 ? a : a + css * dot_s(x);
 }
 
 LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const LinearOptions& opt)
@@ -170,7 +208,7 @@ double LinearSystem::contact_force(int w, double t, const SimState& st, double& 
   const WheelState& ws = st.wheels[w];
   double rate;
   const double e = excitation(w, t, rate);
-  const double delta = model_.wheels[w].radius + e - ws.y + wc.s.dot(st.e);
+  const double delta = model_.wheels[w].radius + e - ws.y + wc.dot(st.e);
   double Ne;
   if (model_.contact.element_compliance) {
     const SeriesForce sf = series_normal_force(law(), model_.contact.stiffness, wc.g.G, delta);
@@ -181,7 +219,7 @@ double LinearSystem::contact_force(int w, double t, const SimState& st, double& 
   }
   const double c = model_.contact.damping;
   if (c == 0.0) return Ne;
-  const double delta_dot = rate - ws.ydot + wc.s.dot(st.edot) + set_.speed * wc.ss.dot(st.e);
+  const double delta_dot = rate - ws.ydot + wc.dot(st.edot) + set_.speed * wc.dot_s(st.e);
   const double N = Ne + c * delta_dot;
   if (law() == ContactLaw::Hertz && (delta <= 0.0 || N <= 0.0)) {  // open, or a pulling damper
     dN = 0.0;
@@ -194,9 +232,9 @@ void LinearSystem::couple(double t) {
   for (int w = 0; w < nw_; ++w) {
     WheelCoupling& wc = wc_[w];
     const double X = s_at(w, t);
-    tr_.coupling(X, wc.s, wc.ss, wc.sss);
-    wc.g = compliance_at(X);
     const BeamPoint bp = tr_.point(X);
+    wc.set(tr_, bp, X);
+    wc.g = compliance_at(X);
     if (bp.element != wc.cache_el) {
       for (int k = 0; k < 4; ++k) {
         wc.W.col(k) = tr_.basis(4 * bp.element + 2 * k + 1);
@@ -233,7 +271,7 @@ void LinearSystem::residual(int it, const SimState& s1, const Accel& x, Eigen::V
     tr_.K.multiply(x.edd, Kq_);
     tmp_ = c_.cq * Kq_ + g_;
   }
-  for (int w = 0; w < nw_; ++w) tmp_ += x.x(b.y(w) + b.multiplier) * wc_[w].s;
+  for (int w = 0; w < nw_; ++w) wc_[w].add_to(x.x(b.y(w) + b.multiplier), tmp_);
   if (it == 0) {
     r1 = -tmp_;
   } else {
@@ -322,7 +360,7 @@ void LinearSystem::border(int w, double t, const SimState& s1, const Accel& x, E
       // Y_A = y(X_A) + rho0 + e - G N: the rail under the load, the element's own deflection
       // included (G = 0 without element compliance)
       r2(0) = -(p.mass * Ydd - N + P);
-      r2(1) = -(s1.wheels[w].y - wc.s.dot(s1.e) - p.radius - e + wc.g.G * N) / cq;
+      r2(1) = -(s1.wheels[w].y - wc.dot(s1.e) - p.radius - e + wc.g.G * N) / cq;
       D(0, 0) = p.mass;
       D(0, 1) = -1.0;
       D(1, 0) = 1.0;
@@ -355,9 +393,10 @@ void LinearSystem::start(SimState& st, Accel& acc) {
   LinearRest rest(tr_, sl_);
   st.e = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
-    tr_.coupling(s_at(w, 0.0), wc_[w].s, wc_[w].ss, wc_[w].sss);
-    wc_[w].g = compliance_at(s_at(w, 0.0));
-    if (!opt_.sudden) st.e -= static_load(w) * wc_[w].s;
+    const double X = s_at(w, 0.0);
+    wc_[w].set(tr_, tr_.point(X), X);
+    wc_[w].g = compliance_at(X);
+    if (!opt_.sudden) wc_[w].add_to(-static_load(w), st.e);
   }
   rest.solve(st.e, st.z);
   st.zdot = Eigen::VectorXd::Zero(sl_.size());
@@ -384,7 +423,7 @@ void LinearSystem::start(SimState& st, Accel& acc) {
                         : static_compression(law(), k, P);
     double rate;
     const double e = opt_.wheel_model == WheelModel::MovingForce ? 0.0 : excitation(w, 0.0, rate);
-    st.wheels[w].y = wc.s.dot(st.e) + p.radius + e + opt_.drop_height - compression;
+    st.wheels[w].y = wc.dot(st.e) + p.radius + e + opt_.drop_height - compression;
     st.wheels[w].ydot = 0.0;
     double N, dN;
     if (opt_.wheel_model == WheelModel::MovingForce)
@@ -394,7 +433,7 @@ void LinearSystem::start(SimState& st, Accel& acc) {
     else
       N = contact_force(w, 0.0, st, dN);
     acc.x(2 * w + 1) = N;
-    rhs -= N * wc.s;
+    wc.add_to(-N, rhs);
   }
   tr_.K.multiply(st.e, Kq);
   sl_.add_rail_force(st.z, &st.zdot, map, Kq);
@@ -405,8 +444,8 @@ void LinearSystem::start(SimState& st, Accel& acc) {
   Mf.solve_in_place(rhs);
   acc.edd = rhs;
   for (int w = 0; w < nw_; ++w)
-    acc.x(2 * w) = rigid() ? wc_[w].s.dot(acc.edd)
-                           : (acc.x(2 * w + 1) - static_load(w)) / model_.wheels[w].mass;
+    acc.x(2 * w) =
+        rigid() ? wc_[w].dot(acc.edd) : (acc.x(2 * w + 1) - static_load(w)) / model_.wheels[w].mass;
   st.body = st.bodydot = Eigen::VectorXd::Zero(2 * nb_);
   if (nb_ > 0) {  // the bodies where their springs carry the static loads, at rest
     Eigen::VectorXd Y(nw_);

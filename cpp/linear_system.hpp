@@ -54,9 +54,19 @@ class LinearRest {
   BandMatrix K_;
 };
 
-// One wheel's coupling to the linear track at its rail coordinate.
+// One wheel's coupling to the linear track at its rail coordinate. Over the y coordinates s(X)
+// has the four non-zeros of the element under X (its shape functions), kept as such so that
+// its products cost O(1) per wheel, not O(n); with modes it is dense (Phi^T s).
 struct WheelCoupling {
-  Eigen::VectorXd s, ss, sss;  // s(X), s_s(X), s_ss(X) over q
+  Eigen::VectorXd s, ss, sss;     // s(X), s_s(X), s_ss(X) over q: with modes only
+  bool sparse = false;            // the four non-zeros below hold s and s_s (no modes)
+  int idx[4] = {-1, -1, -1, -1};  // their y coordinates (-1: fixed)
+  double n[4] = {}, ns[4] = {};   // s and s_s there [-, 1/m]
+  // sets s(X), s_s(X) (and with modes s_ss) at the point bp of X on the track
+  void set(const LinearTrack& tr, const BeamPoint& bp, double X);
+  double dot(const Eigen::VectorXd& x) const;       // s . x
+  double dot_s(const Eigen::VectorXd& x) const;     // s_s . x
+  void add_to(double a, Eigen::VectorXd& r) const;  // r += a s
   // the contact row's dependence on q'' through y(X_A) = s.q (and, for the damper, s.q' and
   // the convected s_s.q v): u = cs s + css s_s
   double cs = 0.0, css = 0.0;
