@@ -17,6 +17,7 @@ GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& a
       prev_(acc),
       key_(sys.n_wheels()),
       dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {
+  theta_max_ = 0.1 * (1.0 - sys.settings().rho_inf);
   const Model& m = sys.model();
   fresh_contact_ = !m.rail.profile().empty();
   for (const WheelParams& w : m.wheels) fresh_contact_ |= !w.out_of_round.empty();
@@ -70,12 +71,14 @@ void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x
 // Newton on (e''_{n+1}, Y''_{n+1}, theta''_{n+1}, lambda) from the predictor x. The size of a
 // correction, e = max(|displacement correction| / newton_tol, |tangential force correction| /
 // (1e-6 wheel load)), is 1 at the tolerance. Converged when e <= 1, or when the error left in
-// the iterate after it, estimated from the contraction theta = e_k / e_{k-1} of the (modified)
-// Newton iteration as theta / (1 - theta) e_k, is (Hairer & Wanner, Solving ODEs II, IV.8): a
-// stale matrix contracts linearly, and a correction a few times the tolerance after one a
-// thousand times it leaves an error a hundredth of it. On return s1 is the state at the
-// converged iterate (ev_ is one correction older). A pass that contracts slower than 4x drops
-// the matrix for a rebuild.
+// the iterate, estimated from the contraction theta = e_k / e_{k-1} of the (modified) Newton
+// iteration as theta / (1 - theta) e_k, is (Hairer & Wanner, Solving ODEs II, IV.8): a stale
+// matrix contracts linearly, and a correction a few times the tolerance after one a thousand
+// times it leaves an error a hundredth of it. Only while theta <= theta_max_ = (1 - rho_inf) /
+// 10: a stopped iteration perturbs the step's amplification by about theta, which the
+// scheme's damping of its highest modes absorbs (at rho_inf = 1 nothing does). On return s1 is
+// the state at the converged iterate (ev_ is one correction older). A pass that contracts
+// slower than 4x drops the matrix for a rebuild.
 bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel& acc0, Accel& x,
                               SimState& s1) {
   const SimSettings& set = sys_.settings();
@@ -112,7 +115,7 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
     dq *= c_.cq;
     const double e = std::max(dq / set.newton_tol, dlambda);
     const double theta = e / prev_e;
-    if (e <= 1.0 || (std::isfinite(prev_e) && theta < 1.0 && theta * e <= 1.0 - theta)) {
+    if (e <= 1.0 || (std::isfinite(prev_e) && theta <= theta_max_ && theta * e <= 1.0 - theta)) {
       predict(s0, acc0, x, s1);
       if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
       // a sleeper crossed its threshold in the last correction: iterate on in its new state

@@ -49,23 +49,25 @@ void WheelCoupling::set(const LinearTrack& tr, const BeamPoint& bp, double X) {
     idx[a] = tr.y_of_full[4 * bp.element + 2 * a + 1];
     n[a] = bp.n[a];
     ns[a] = bp.ns[a];
+    nss[a] = bp.nss[a];
   }
 }
 
-double WheelCoupling::dot(const Eigen::VectorXd& x) const {
-  if (!sparse) return s.dot(x);
+static double sparse_dot(const int* idx, const double* v, const WheelCoupling::Vec& x) {
   double a = 0.0;
   for (int k = 0; k < 4; ++k)
-    if (idx[k] >= 0) a += n[k] * x(idx[k]);
+    if (idx[k] >= 0) a += v[k] * x(idx[k]);
   return a;
 }
 
-double WheelCoupling::dot_s(const Eigen::VectorXd& x) const {
-  if (!sparse) return ss.dot(x);
-  double a = 0.0;
-  for (int k = 0; k < 4; ++k)
-    if (idx[k] >= 0) a += ns[k] * x(idx[k]);
-  return a;
+double WheelCoupling::dot(const Vec& x) const { return sparse ? sparse_dot(idx, n, x) : s.dot(x); }
+
+double WheelCoupling::dot_s(const Vec& x) const {
+  return sparse ? sparse_dot(idx, ns, x) : ss.dot(x);
+}
+
+double WheelCoupling::dot_ss(const Vec& x) const {
+  return sparse ? sparse_dot(idx, nss, x) : sss.dot(x);
 }
 
 void WheelCoupling::add_to(double a, Eigen::VectorXd& r) const {
@@ -77,9 +79,37 @@ void WheelCoupling::add_to(double a, Eigen::VectorXd& r) const {
     if (idx[k] >= 0) r(idx[k]) += a * n[k];
 }
 
-double WheelCoupling::u_dot(const Eigen::VectorXd& x) const {
+double WheelCoupling::u_dot(const Vec& x) const {
   const double a = cs * dot(x);
   return css == 0.0 ? a : a + css * dot_s(x);
+}
+
+double WheelCoupling::u_dot_z(const WheelCoupling& v) const {
+  double a = 0.0;
+  for (int k = 0; k < 4; ++k) a += v.zn[k] * u_dot(v.W.col(k));
+  return a;
+}
+
+void WheelCoupling::sub_z(double a, Eigen::VectorXd& x) const {
+  const Eigen::Vector4d c(a * zn[0], a * zn[1], a * zn[2], a * zn[3]);
+  x.segment(lo, hi - lo).noalias() -= W.middleRows(lo, hi - lo) * c;
+}
+
+void WheelCoupling::set_support() {
+  const int n = static_cast<int>(W.rows());
+  lo = n;
+  hi = 0;
+  for (int k = 0; k < 4; ++k) {
+    const double top = W.col(k).cwiseAbs().maxCoeff();
+    if (top == 0.0) continue;  // a fixed coordinate's column
+    const double cut = kNegligible * top;
+    int i0 = 0, i1 = n;
+    while (std::abs(W(i0, k)) <= cut) ++i0;
+    while (std::abs(W(i1 - 1, k)) <= cut) --i1;
+    lo = std::min(lo, i0);
+    hi = std::max(hi, i1);
+  }
+  if (lo >= hi) lo = hi = 0;
 }
 
 LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const LinearOptions& opt)
@@ -241,9 +271,9 @@ void LinearSystem::couple(double t) {
         if (!wc.W.col(k).isZero(0.0)) A_.solve_in_place(wc.W.col(k));
       }
       wc.cache_el = bp.element;
+      wc.set_support();
     }
-    wc.Z = bp.n[0] * wc.W.col(0) + bp.n[1] * wc.W.col(1) + bp.n[2] * wc.W.col(2) +
-           bp.n[3] * wc.W.col(3);
+    std::copy(bp.n, bp.n + 4, wc.zn);
   }
 }
 
@@ -295,7 +325,7 @@ bool LinearSystem::solve(double t, const SimState& s1, const Accel& x, const Eig
   x1 = r1;
   A_.solve_in_place(x1);
   if (!solve_border(t, s1, x, x1, xb)) return false;
-  for (int v = 0; v < nw_; ++v) x1 -= xb(2 * v + 1) * wc_[v].Z;
+  for (int v = 0; v < nw_; ++v) wc_[v].sub_z(xb(2 * v + 1), x1);
   if (!sl_.empty()) sl_.back_substitute(rs_, x1, tr_.y_of_full, dz);
   return true;
 }
@@ -309,7 +339,7 @@ bool LinearSystem::solve_border(double t, const SimState& s1, const Accel& x,
   Eigen::Vector2d r2;
   if (nw_ == 1 && nb_ == 0) {
     border(0, t, s1, x, D, r2);
-    D(1, 1) -= wc_[0].u_dot(wc_[0].Z);
+    D(1, 1) -= wc_[0].u_dot_z(wc_[0]);
     const Eigen::Vector2d rhs(r2(0), r2(1) - wc_[0].u_dot(x1));
     const double det = D.determinant();
     if (!std::isfinite(det) || det == 0.0) return false;
@@ -322,7 +352,7 @@ bool LinearSystem::solve_border(double t, const SimState& s1, const Accel& x,
   for (int w = 0; w < nw_; ++w) {
     border(w, t, s1, x, D, r2);
     S_.block<2, 2>(2 * w, 2 * w) = D;
-    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= wc_[w].u_dot(wc_[v].Z);
+    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= wc_[w].u_dot_z(wc_[v]);
     rhs_(2 * w) = r2(0);
     rhs_(2 * w + 1) = r2(1) - wc_[w].u_dot(x1);
   }

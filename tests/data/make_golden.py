@@ -11,13 +11,19 @@ short and decimated (``output_every``) to keep the file small.
 
 Re-recorded since, group by group (``--groups``), each for a deliberate change of results:
 
-- ``ga_full``, ``hertz_damped``, ``slip_torque``, ``sudden_drop`` (generalized-alpha on the full
-  path): Newton's stopping rule now also accepts a correction whose estimated remaining error
-  theta / (1 - theta) e_k is within the tolerance (docs: Model § Time integration). Against the
-  earlier record: Newton iterations 2831 -> 2400, 2839 -> 2400, 1255 -> 1200, 4159 -> 3377;
-  largest changes relative to each array's maximum 6e-7 (accelerations), the tangential force
-  0.085 N of its 42 N maximum in free rolling (1.8e-6 of the wheel load, about its Newton
-  tolerance 1e-6 P), the sudden drop's reaction and tangential force 2.3e-4 of their maxima.
+- ``ga_full``, ``hertz_damped``, ``slip_torque``, ``sudden_drop``, ``standing_sudden``
+  (generalized-alpha on the full path): Newton also stops when the error its last correction
+  leaves, theta / (1 - theta) e_k, is within the tolerance, while theta <= (1 - rho_inf) / 10
+  (docs: Model § Equations of motion). Against the earlier record: Newton iterations 2831 ->
+  2400, 2839 -> 2401, 1255 -> 1200, 4159 -> 4027 (the standing wheel's unchanged); largest
+  changes relative to each array's maximum 6e-7 (accelerations), the free-rolling tangential
+  force 0.085 N of its 42 N maximum (1.8e-6 of the wheel load, about its Newton tolerance
+  1e-6 P; the slip, 7.6e-8 m/s at most, is round-off of the rolling constraint), the sudden
+  drop's reaction and tangential force 1.5e-4 of their maxima.
+- ``linear_moving_mass``, ``linear_sprung``: a wheel's coupling vector is kept as its four
+  non-zeros and A^-1 s as its element's four cached columns (docs: Model § The vehicle),
+  which sums the same products in another order: 3.2e-9 (the rigid moving mass,
+  whose contact row divides by c_q = beta' h^2) and 1.1e-10 of the largest acceleration.
 """
 
 from __future__ import annotations
