@@ -14,9 +14,12 @@ Re-recorded since, group by group (``--groups``), each for a deliberate change o
 - ``ga_full``, ``hertz_damped``, ``slip_torque``, ``sudden_drop``, ``standing_sudden``
   (generalized-alpha on the full path): Newton also stops when the error its last correction
   leaves, theta / (1 - theta) e_k, is within the tolerance, while theta <= (1 - rho_inf) / 10
-  (docs: Model § Equations of motion). Against the earlier record: Newton iterations 2831 ->
-  2400, 2839 -> 2401, 1255 -> 1200, 4159 -> 4027 (the standing wheel's unchanged); largest
-  changes relative to each array's maximum 6e-7 (accelerations), the free-rolling tangential
+  (docs: Model § Equations of motion); and the bordered solve takes C's non-zeros only and
+  A^-1 B by band solves that stop where the columns have decayed below 1e-17 of their largest
+  entry (reordered sums, below round-off). Against the earlier record: Newton iterations 2831
+  -> 2400, 2839 -> 2401, 1255 -> 1200, 4159 -> 4027 (the standing wheel's unchanged); largest
+  changes relative to each array's maximum 6e-7 (accelerations; the standing wheel's sudden
+  start 4.7e-7), the free-rolling tangential
   force 0.085 N of its 42 N maximum (1.8e-6 of the wheel load, about its Newton tolerance
   1e-6 P; the slip, 7.6e-8 m/s at most, is round-off of the rolling constraint), the sudden
   drop's reaction and tangential force 1.5e-4 of their maxima.
