@@ -10,7 +10,7 @@ Two measures per case:
 
 The cases cover both paths on the paper's scene and on a ballasted track with sleepers, with a
 travelling window and with a two-wheel bogie, and the full path on irregularity.py's smooth and
-rough scenes and on vehicle.py's single wheel and half car (100 elements). Compare two builds by running the script with
+rough scenes and on vehicle.py's single wheel and half car (25 m, 100 elements; 50 m, 200). Compare two builds by running the script with
 each on ``PYTHONPATH`` (alternately, for the times) and comparing the JSON lines it prints::
 
     PYTHONPATH=python python benchmarks/step_cost.py [--repeats 5] [--callgrind] [--csv]
@@ -52,11 +52,20 @@ def cases(short: bool) -> dict:
     w = car.wheels[0]
     single = dc.replace(w, load=car.static_loads(tw.scene.GRAVITY)[0] - w.mass * tw.scene.GRAVITY)
     vkw = {**base, "dt": 2e-5, "n_elements": 100, "duration": 0.05 * f}
+    rail50 = dc.replace(tw.Rail(), length=50.0)
+    vkw50 = {**vkw, "n_elements": 200}
     return {
         "full/damped_smooth": (damped, V, {**base, "x_end": 0.25 + 4.5 * f}),
         "full/damped_fra5": (rough, V, {**base, "x_end": 0.25 + 4.5 * f}),
         "full/wheel_25m_100": (tw.Scene(rail=rail25, wheel=single), V, vkw),
         "full/half_car_25m_100": (tw.Scene(rail=rail25, vehicle=car), V, vkw),
+        # the same on a 50 m rail: the car clear of the rail's ends
+        "full/wheel_50m_200": (tw.Scene(rail=rail50, wheel=single), V, vkw50),
+        "full/half_car_50m_200": (tw.Scene(rail=rail50, vehicle=car), V, vkw50),
+        "linear_sprung/wheel_50m_200": (tw.Scene(rail=rail50, wheel=single), V,
+                                        {**vkw50, "fidelity": "linear/sprung"}),
+        "linear_sprung/half_car_50m_200": (tw.Scene(rail=rail50, vehicle=car), V,
+                                           {**vkw50, "fidelity": "linear/sprung"}),
         "full/kato_20": (kato, V, {**base, "dt": 1e-5, "n_elements": 20, "x_end": 0.25 + f}),
         "full/ballasted_80": (bt, V, {**base, "x_start": 5.0, "x_end": 5.0 + 0.5 * f}),
         "explicit/kato_20": (kato, V, {**base, "integrator": "explicit", "dt": 1e-6,

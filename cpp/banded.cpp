@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace trackwheel {
 
@@ -69,6 +70,47 @@ void BandMatrix::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
   }
 }
 
+std::pair<int, int> BandMatrix::solve_local(Eigen::Ref<Eigen::VectorXd> x, int first, int last,
+                                            double negligible) const {
+  const int w = 2 * b_ + 1;
+  const double* d = data_.data();
+  double* xv = x.data();
+  double top = 0.0;
+  int run = 0, hi = n_;
+  for (int j = first; j < n_; ++j) {  // L y = x (unit lower), from the first non-zero
+    const double xj = xv[j];
+    top = std::max(top, std::abs(xj));
+    run = (j > last && std::abs(xj) <= negligible * top) ? run + 1 : 0;
+    if (run > b_) {  // the rest is fed by negligible entries only
+      hi = j + 1;
+      for (int i = j + 1; i <= std::min(n_ - 1, j + b_); ++i) xv[i] = 0.0;
+      break;
+    }
+    if (xj == 0.0) continue;
+    const double* col = d + static_cast<std::ptrdiff_t>(j) * w + b_ - j;
+    const int i1 = std::min(n_ - 1, j + b_);
+    for (int i = j + 1; i <= i1; ++i) xv[i] -= col[i] * xj;
+  }
+  top = 0.0;
+  run = 0;
+  int lo = 0;
+  for (int j = hi - 1; j >= 0; --j) {  // U x = y
+    const double* col = d + static_cast<std::ptrdiff_t>(j) * w + b_ - j;
+    const double xj = xv[j] / col[j];
+    xv[j] = xj;
+    top = std::max(top, std::abs(xj));
+    run = (j < first && std::abs(xj) <= negligible * top) ? run + 1 : 0;
+    if (run > b_) {
+      lo = j;
+      for (int i = std::max(0, j - b_); i < j; ++i) xv[i] = 0.0;
+      break;
+    }
+    const int i0 = std::max(0, j - b_);
+    for (int i = i0; i < j; ++i) xv[i] -= col[i] * xj;
+  }
+  return {lo, hi};
+}
+
 void BandMatrix::set_linear_combination(double a, const BandMatrix& A, double b,
                                         const BandMatrix& B) {
   data_ = a * A.data_ + b * B.data_;
@@ -88,10 +130,27 @@ bool BorderedSolver::factorize_border(const BandMatrix& A, const Eigen::MatrixXd
   m_ = static_cast<int>(D.rows());
   if (m_ == 0) return true;
   Z_ = B;
-  for (int k = 0; k < m_; ++k)
-    if (!Z_.col(k).isZero(0.0)) A.solve_in_place(Z_.col(k));  // a zero column stays zero
-  C_ = C;
-  const Eigen::MatrixXd S = D - C * Z_;
+  z_lo_.assign(m_, 0);
+  z_hi_.assign(m_, 0);
+  for (int k = 0; k < m_; ++k) {
+    int first = 0, last = static_cast<int>(B.rows()) - 1;
+    while (first <= last && B(first, k) == 0.0) ++first;
+    while (last >= first && B(last, k) == 0.0) --last;
+    if (first > last) continue;  // a zero column stays zero
+    std::tie(z_lo_[k], z_hi_[k]) = A.solve_local(Z_.col(k), first, last, kNegligible);
+  }
+  c_row_.clear();
+  c_col_.clear();
+  c_val_.clear();
+  for (int j = 0; j < C.cols(); ++j)
+    for (int i = 0; i < m_; ++i)
+      if (C(i, j) != 0.0) {
+        c_row_.push_back(i);
+        c_col_.push_back(j);
+        c_val_.push_back(C(i, j));
+      }
+  Eigen::MatrixXd S = D;  // D - C Z over C's non-zeros
+  for (std::size_t k = 0; k < c_val_.size(); ++k) S.row(c_row_[k]) -= c_val_[k] * Z_.row(c_col_[k]);
   if (!S.allFinite()) return false;
   schur_.compute(S);
   const double det = schur_.determinant();
@@ -106,13 +165,13 @@ void BorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
     x2.resize(0);
     return;
   }
-  // the products into buffers, evaluated as the expressions r2 - C x1 and x1 -= Z x2 would
-  // (into a temporary each): the same operations without an allocation per solve
-  cx_.noalias() = C_ * x1;
-  rhs_ = r2 - cx_;
+  // the products into buffers (no allocation per solve)
+  rhs_ = r2;
+  for (std::size_t k = 0; k < c_val_.size(); ++k) rhs_(c_row_[k]) -= c_val_[k] * x1(c_col_[k]);
   x2 = schur_.solve(rhs_);
-  zx_.noalias() = Z_ * x2;
-  x1 -= zx_;
+  for (int k = 0; k < m_; ++k)
+    x1.segment(z_lo_[k], z_hi_[k] - z_lo_[k]) -=
+        x2(k) * Z_.col(k).segment(z_lo_[k], z_hi_[k] - z_lo_[k]);
 }
 
 void SplitBorderedSolver::resize(int n, int n_groups, int group_size, int m) {

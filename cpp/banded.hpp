@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <utility>
 #include <vector>
 
 namespace trackwheel {
@@ -33,6 +34,12 @@ class BandMatrix {
   // In-place LU (no pivoting). Returns false on a zero or non-finite pivot.
   bool factorize();
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;  // after factorize()
+  // The same for an x whose non-zeros lie in [first, last], where A^-1 decays away from them
+  // (a mass-dominated iteration matrix): each sweep stops once more than a bandwidth of
+  // consecutive entries past them is below `negligible` of the largest entry so far, the rest
+  // left zero. Returns [lo, hi), outside which x is zero.
+  std::pair<int, int> solve_local(Eigen::Ref<Eigen::VectorXd> x, int first, int last,
+                                  double negligible) const;
   // Combine: this = a*A + b*B (same shape).
   void set_linear_combination(double a, const BandMatrix& A, double b, const BandMatrix& B);
   void add_scaled(double a, const BandMatrix& A);
@@ -56,11 +63,18 @@ class BorderedSolver {
 
  private:
   const BandMatrix* A_ = nullptr;
-  Eigen::MatrixXd Z_;  // A^-1 B
-  Eigen::MatrixXd C_;
+  // A^-1 B, each column zero outside [z_lo_, z_hi_) (BandMatrix::solve_local: entries below
+  // kNegligible of the column's largest left out, a change below round-off)
+  static constexpr double kNegligible = 1e-17;
+  Eigen::MatrixXd Z_;
+  std::vector<int> z_lo_, z_hi_;
+  // C's non-zeros (a wheel's rows touch the 8 coordinates of its contact element): C x1 in
+  // O(non-zeros) rather than O(m n)
+  std::vector<int> c_row_, c_col_;
+  std::vector<double> c_val_;
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
   int m_ = 0;
-  mutable Eigen::VectorXd cx_, rhs_, zx_;  // buffers of solve
+  mutable Eigen::VectorXd rhs_;  // a buffer of solve
 };
 
 // Solves [A + P E P^T, P F; G P^T, D] [x1; x2] = [r1; r2]: a bordered band system whose border

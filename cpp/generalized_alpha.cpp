@@ -17,6 +17,7 @@ GeneralizedAlpha::GeneralizedAlpha(System& sys, SimState& st, Eval& ev, Accel& a
       prev_(acc),
       key_(sys.n_wheels()),
       dedd_(Eigen::VectorXd::Zero(sys.rail().n_dof())) {
+  theta_max_ = 0.1 * (1.0 - sys.settings().rho_inf);
   const Model& m = sys.model();
   fresh_contact_ = !m.rail.profile().empty();
   for (const WheelParams& w : m.wheels) fresh_contact_ |= !w.out_of_round.empty();
@@ -67,14 +68,21 @@ void GeneralizedAlpha::rebuild_matrix(long n, const SimState& s1, const Accel& x
   ++out_.factorizations;
 }
 
-// Newton on (e''_{n+1}, Y''_{n+1}, theta''_{n+1}, lambda) from the predictor x. Converged when
-// the displacement corrections are below newton_tol and the tangential force corrections below
-// 1e-6 of the wheel load; on return s1 is the state at the converged iterate (ev_ is one
-// correction older). A pass that contracts slower than 4x drops the matrix for a rebuild.
+// Newton on (e''_{n+1}, Y''_{n+1}, theta''_{n+1}, lambda) from the predictor x. The size of a
+// correction, e = max(|displacement correction| / newton_tol, |tangential force correction| /
+// (1e-6 wheel load)), is 1 at the tolerance. Converged when e <= 1, or when the error left in
+// the iterate, estimated from the contraction theta = e_k / e_{k-1} of the (modified) Newton
+// iteration as theta / (1 - theta) e_k, is (Hairer & Wanner, Solving ODEs II, IV.8): a stale
+// matrix contracts linearly, and a correction a few times the tolerance after one a thousand
+// times it leaves an error a hundredth of it. Only while theta <= theta_max_ = (1 - rho_inf) /
+// 10: a stopped iteration perturbs the step's amplification by about theta, which the
+// scheme's damping of its highest modes absorbs (at rho_inf = 1 nothing does). On return s1 is
+// the state at the converged iterate (ev_ is one correction older). A pass that contracts
+// slower than 4x drops the matrix for a rebuild.
 bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel& acc0, Accel& x,
                               SimState& s1) {
   const SimSettings& set = sys_.settings();
-  double prev_dq = INFINITY;
+  double prev_dq = INFINITY, prev_e = INFINITY;
   for (int it = 0; it < set.max_newton; ++it) {
     predict(s0, acc0, x, s1);
     if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
@@ -93,27 +101,31 @@ bool GeneralizedAlpha::newton(long n, double t1, const SimState& s0, const Accel
       x.zdd += dz_;
       dq = std::max(dq, dz_.lpNorm<Eigen::Infinity>());
     }
-    bool small_lambda = true;
+    double dlambda = 0.0;  // the largest tangential force correction, in its tolerance
     for (int w = 0; w < sys_.n_wheels(); ++w) {
       const int o = kBorderPerWheel * w;
       const WheelParams& p = sys_.model().wheels[w];
       dq = std::max({dq, std::abs(x2_(o + kY)), p.radius * std::abs(x2_(o + kTheta))});
-      small_lambda &= std::abs(x2_(o + kLambda)) <= 1e-6 * std::max(1.0, sys_.static_load(w));
+      dlambda = std::max(dlambda,
+                         std::abs(x2_(o + kLambda)) / (1e-6 * std::max(1.0, sys_.static_load(w))));
     }
     const int ob = kBorderPerWheel * sys_.n_wheels();
     for (int k = 0; k < 2 * sys_.n_bodies(); k += 2)  // body pitch: as the 1 m-arm displacement
       dq = std::max({dq, std::abs(x2_(ob + k)), std::abs(x2_(ob + k + 1))});
     dq *= c_.cq;
-    if (dq <= set.newton_tol && small_lambda) {
+    const double e = std::max(dq / set.newton_tol, dlambda);
+    const double theta = e / prev_e;
+    if (e <= 1.0 || (std::isfinite(prev_e) && theta <= theta_max_ && theta * e <= 1.0 - theta)) {
       predict(s0, acc0, x, s1);
       if (!finite_state(s1)) div_.fail(n, "non-finite state in Newton");
       // a sleeper crossed its threshold in the last correction: iterate on in its new state
       if (sys_.sleepers().update_states(s1.z, &s1.zdot) == 0) return true;
-      prev_dq = INFINITY;
+      prev_dq = prev_e = INFINITY;
       continue;
     }
     if (it >= 1 && dq > 0.25 * prev_dq) have_matrix_ = false;
     prev_dq = dq;
+    prev_e = e;
   }
   return false;
 }

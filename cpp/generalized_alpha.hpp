@@ -44,6 +44,8 @@ class GeneralizedAlpha : public FullStepper {
   Accel alg_, alg1_;  // algorithmic accelerations and their candidates at the current iterate
   Accel prev_;        // accelerations of the step before (predictor)
   bool have_prev_ = false;
+  // the largest contraction at which Newton may stop on its error estimate (newton())
+  double theta_max_ = 0.0;
   // The factorised matrix is reused (modified Newton) while every wheel's contact stays in
   // the element, slip state and 5 % of an element it was built at.
   struct MatrixKey {

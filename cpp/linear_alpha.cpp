@@ -36,7 +36,7 @@ void LinearAlpha::step(long n) {
   ga_corrected_alg(c_, layout_, alg_pred_, x_, alg_);
   if (sys_.options().wheel_model == WheelModel::MovingForce)
     for (int w = 0; w < layout_.n_wheels; ++w) {  // the wheel follows the rail, for the record
-      s1_.wheels[w].y = sys_.coupling(w).s.dot(s1_.e) + sys_.model().wheels[w].radius;
+      s1_.wheels[w].y = sys_.coupling(w).dot(s1_.e) + sys_.model().wheels[w].radius;
       s1_.wheels[w].ydot = 0.0;
     }
   std::swap(st_, s1_);

@@ -82,10 +82,10 @@ void LinearStepper::record_wheel(int w, double t, double& delta) {
   const Model& model = sys_.model();
   const double v = sys_.settings().speed, r0 = model.wheels[w].radius, Xw = sys_.x_at(w, t);
   const double Y = st_.wheels[w].y, N = acc_.x(sys_.layout().y(w) + 1);
-  Eigen::VectorXd &s = s_, &ss = ss_, &sss = sss_;
-  tr.coupling(Xw - sys_.origin(), s, ss, sss);
+  const WheelCoupling& s = at_;
+  at_.set(tr, tr.point(Xw - sys_.origin()), Xw - sys_.origin());
   const ElementCompliance g = sys_.compliance_at(Xw - sys_.origin());
-  const double ys = ss.dot(st_.e), yss = sss.dot(st_.e), yst = ss.dot(st_.edot);
+  const double ys = s.dot_s(st_.e), yss = s.dot_ss(st_.e), yst = s.dot_s(st_.edot);
   double rate;
   // approach, and the law's compression and force in series with the element's compliance
   delta = sys_.rigid() ? 0.0 : r0 + sys_.excitation(w, t, rate) - Y + s.dot(st_.e);
@@ -112,7 +112,7 @@ void LinearStepper::record_wheel(int w, double t, double& delta) {
   const double phi_s = yss / gg, phi_t = yst / gg;
   rec.push(Field::phi, phi);
   record_acc_terms(rec, (r0 - delta) * std::cos(phi), v / r0, v, phi_s, phi_t);
-  rec.push(Field::acc_contact, s.dot(acc_.edd) + 2.0 * v * ss.dot(st_.edot) + v * v * yss);
+  rec.push(Field::acc_contact, s.dot(acc_.edd) + 2.0 * v * s.dot_s(st_.edot) + v * v * yss);
   rec.push(Field::reaction, 0.0);
   rec.push(Field::penetration, compression);
   rec.push(Field::slip_state, N > 0.0 ? 1 : 0);

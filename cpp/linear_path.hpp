@@ -47,7 +47,7 @@ class LinearStepper : public Stepper {
   // approach delta.
   double total_energy(double t, const std::vector<double>& delta) const;
   std::vector<double> delta_;
-  Eigen::VectorXd s_, ss_, sss_;  // a wheel's coupling at the sample (buffers)
+  WheelCoupling at_;  // a wheel's coupling at the sample (a buffer)
 };
 
 }  // namespace trackwheel

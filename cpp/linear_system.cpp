@@ -39,9 +39,77 @@ void LinearRest::solve(Eigen::VectorXd& q, Eigen::VectorXd& z) {
   }
 }
 
-double WheelCoupling::u_dot(const Eigen::VectorXd& x) const {
-  const double a = cs * s.dot(x);
-  return css == 0.0 ? a : a + css * ss.dot(x);
+void WheelCoupling::set(const LinearTrack& tr, const BeamPoint& bp, double X) {
+  sparse = !tr.modal;
+  if (!sparse) {
+    tr.coupling(X, s, ss, sss);
+    return;
+  }
+  for (int a = 0; a < 4; ++a) {
+    idx[a] = tr.y_of_full[4 * bp.element + 2 * a + 1];
+    n[a] = bp.n[a];
+    ns[a] = bp.ns[a];
+    nss[a] = bp.nss[a];
+  }
+}
+
+static double sparse_dot(const int* idx, const double* v, const WheelCoupling::Vec& x) {
+  double a = 0.0;
+  for (int k = 0; k < 4; ++k)
+    if (idx[k] >= 0) a += v[k] * x(idx[k]);
+  return a;
+}
+
+double WheelCoupling::dot(const Vec& x) const { return sparse ? sparse_dot(idx, n, x) : s.dot(x); }
+
+double WheelCoupling::dot_s(const Vec& x) const {
+  return sparse ? sparse_dot(idx, ns, x) : ss.dot(x);
+}
+
+double WheelCoupling::dot_ss(const Vec& x) const {
+  return sparse ? sparse_dot(idx, nss, x) : sss.dot(x);
+}
+
+void WheelCoupling::add_to(double a, Eigen::VectorXd& r) const {
+  if (!sparse) {
+    r += a * s;
+    return;
+  }
+  for (int k = 0; k < 4; ++k)
+    if (idx[k] >= 0) r(idx[k]) += a * n[k];
+}
+
+double WheelCoupling::u_dot(const Vec& x) const {
+  const double a = cs * dot(x);
+  return css == 0.0 ? a : a + css * dot_s(x);
+}
+
+double WheelCoupling::u_dot_z(const WheelCoupling& v) const {
+  double a = 0.0;
+  for (int k = 0; k < 4; ++k) a += v.zn[k] * u_dot(v.W.col(k));
+  return a;
+}
+
+void WheelCoupling::sub_z(double a, Eigen::VectorXd& x) const {
+  const Eigen::Vector4d c(a * zn[0], a * zn[1], a * zn[2], a * zn[3]);
+  x.segment(lo, hi - lo).noalias() -= W.middleRows(lo, hi - lo) * c;
+}
+
+void WheelCoupling::set_support() {
+  const int n = static_cast<int>(W.rows());
+  lo = n;
+  hi = 0;
+  for (int k = 0; k < 4; ++k) {
+    const double top = W.col(k).cwiseAbs().maxCoeff();
+    if (top == 0.0) continue;  // a fixed coordinate's column
+    const double cut = kNegligible * top;
+    int i0 = 0, i1 = n;
+    while (std::abs(W(i0, k)) <= cut) ++i0;
+    while (std::abs(W(i1 - 1, k)) <= cut) --i1;
+    lo = std::min(lo, i0);
+    hi = std::max(hi, i1);
+  }
+  if (lo >= hi) lo = hi = 0;
 }
 
 LinearSystem::LinearSystem(const Model& model, const SimSettings& set, const LinearOptions& opt)
@@ -170,7 +238,7 @@ double LinearSystem::contact_force(int w, double t, const SimState& st, double& 
   const WheelState& ws = st.wheels[w];
   double rate;
   const double e = excitation(w, t, rate);
-  const double delta = model_.wheels[w].radius + e - ws.y + wc.s.dot(st.e);
+  const double delta = model_.wheels[w].radius + e - ws.y + wc.dot(st.e);
   double Ne;
   if (model_.contact.element_compliance) {
     const SeriesForce sf = series_normal_force(law(), model_.contact.stiffness, wc.g.G, delta);
@@ -181,7 +249,7 @@ double LinearSystem::contact_force(int w, double t, const SimState& st, double& 
   }
   const double c = model_.contact.damping;
   if (c == 0.0) return Ne;
-  const double delta_dot = rate - ws.ydot + wc.s.dot(st.edot) + set_.speed * wc.ss.dot(st.e);
+  const double delta_dot = rate - ws.ydot + wc.dot(st.edot) + set_.speed * wc.dot_s(st.e);
   const double N = Ne + c * delta_dot;
   if (law() == ContactLaw::Hertz && (delta <= 0.0 || N <= 0.0)) {  // open, or a pulling damper
     dN = 0.0;
@@ -194,18 +262,18 @@ void LinearSystem::couple(double t) {
   for (int w = 0; w < nw_; ++w) {
     WheelCoupling& wc = wc_[w];
     const double X = s_at(w, t);
-    tr_.coupling(X, wc.s, wc.ss, wc.sss);
-    wc.g = compliance_at(X);
     const BeamPoint bp = tr_.point(X);
+    wc.set(tr_, bp, X);
+    wc.g = compliance_at(X);
     if (bp.element != wc.cache_el) {
       for (int k = 0; k < 4; ++k) {
         wc.W.col(k) = tr_.basis(4 * bp.element + 2 * k + 1);
         if (!wc.W.col(k).isZero(0.0)) A_.solve_in_place(wc.W.col(k));
       }
       wc.cache_el = bp.element;
+      wc.set_support();
     }
-    wc.Z = bp.n[0] * wc.W.col(0) + bp.n[1] * wc.W.col(1) + bp.n[2] * wc.W.col(2) +
-           bp.n[3] * wc.W.col(3);
+    std::copy(bp.n, bp.n + 4, wc.zn);
   }
 }
 
@@ -233,7 +301,7 @@ void LinearSystem::residual(int it, const SimState& s1, const Accel& x, Eigen::V
     tr_.K.multiply(x.edd, Kq_);
     tmp_ = c_.cq * Kq_ + g_;
   }
-  for (int w = 0; w < nw_; ++w) tmp_ += x.x(b.y(w) + b.multiplier) * wc_[w].s;
+  for (int w = 0; w < nw_; ++w) wc_[w].add_to(x.x(b.y(w) + b.multiplier), tmp_);
   if (it == 0) {
     r1 = -tmp_;
   } else {
@@ -257,7 +325,7 @@ bool LinearSystem::solve(double t, const SimState& s1, const Accel& x, const Eig
   x1 = r1;
   A_.solve_in_place(x1);
   if (!solve_border(t, s1, x, x1, xb)) return false;
-  for (int v = 0; v < nw_; ++v) x1 -= xb(2 * v + 1) * wc_[v].Z;
+  for (int v = 0; v < nw_; ++v) wc_[v].sub_z(xb(2 * v + 1), x1);
   if (!sl_.empty()) sl_.back_substitute(rs_, x1, tr_.y_of_full, dz);
   return true;
 }
@@ -271,7 +339,7 @@ bool LinearSystem::solve_border(double t, const SimState& s1, const Accel& x,
   Eigen::Vector2d r2;
   if (nw_ == 1 && nb_ == 0) {
     border(0, t, s1, x, D, r2);
-    D(1, 1) -= wc_[0].u_dot(wc_[0].Z);
+    D(1, 1) -= wc_[0].u_dot_z(wc_[0]);
     const Eigen::Vector2d rhs(r2(0), r2(1) - wc_[0].u_dot(x1));
     const double det = D.determinant();
     if (!std::isfinite(det) || det == 0.0) return false;
@@ -284,7 +352,7 @@ bool LinearSystem::solve_border(double t, const SimState& s1, const Accel& x,
   for (int w = 0; w < nw_; ++w) {
     border(w, t, s1, x, D, r2);
     S_.block<2, 2>(2 * w, 2 * w) = D;
-    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= wc_[w].u_dot(wc_[v].Z);
+    for (int v = 0; v < nw_; ++v) S_(2 * w + 1, 2 * v + 1) -= wc_[w].u_dot_z(wc_[v]);
     rhs_(2 * w) = r2(0);
     rhs_(2 * w + 1) = r2(1) - wc_[w].u_dot(x1);
   }
@@ -322,7 +390,7 @@ void LinearSystem::border(int w, double t, const SimState& s1, const Accel& x, E
       // Y_A = y(X_A) + rho0 + e - G N: the rail under the load, the element's own deflection
       // included (G = 0 without element compliance)
       r2(0) = -(p.mass * Ydd - N + P);
-      r2(1) = -(s1.wheels[w].y - wc.s.dot(s1.e) - p.radius - e + wc.g.G * N) / cq;
+      r2(1) = -(s1.wheels[w].y - wc.dot(s1.e) - p.radius - e + wc.g.G * N) / cq;
       D(0, 0) = p.mass;
       D(0, 1) = -1.0;
       D(1, 0) = 1.0;
@@ -355,9 +423,10 @@ void LinearSystem::start(SimState& st, Accel& acc) {
   LinearRest rest(tr_, sl_);
   st.e = tr_.Qg;
   for (int w = 0; w < nw_; ++w) {
-    tr_.coupling(s_at(w, 0.0), wc_[w].s, wc_[w].ss, wc_[w].sss);
-    wc_[w].g = compliance_at(s_at(w, 0.0));
-    if (!opt_.sudden) st.e -= static_load(w) * wc_[w].s;
+    const double X = s_at(w, 0.0);
+    wc_[w].set(tr_, tr_.point(X), X);
+    wc_[w].g = compliance_at(X);
+    if (!opt_.sudden) wc_[w].add_to(-static_load(w), st.e);
   }
   rest.solve(st.e, st.z);
   st.zdot = Eigen::VectorXd::Zero(sl_.size());
@@ -384,7 +453,7 @@ void LinearSystem::start(SimState& st, Accel& acc) {
                         : static_compression(law(), k, P);
     double rate;
     const double e = opt_.wheel_model == WheelModel::MovingForce ? 0.0 : excitation(w, 0.0, rate);
-    st.wheels[w].y = wc.s.dot(st.e) + p.radius + e + opt_.drop_height - compression;
+    st.wheels[w].y = wc.dot(st.e) + p.radius + e + opt_.drop_height - compression;
     st.wheels[w].ydot = 0.0;
     double N, dN;
     if (opt_.wheel_model == WheelModel::MovingForce)
@@ -394,7 +463,7 @@ void LinearSystem::start(SimState& st, Accel& acc) {
     else
       N = contact_force(w, 0.0, st, dN);
     acc.x(2 * w + 1) = N;
-    rhs -= N * wc.s;
+    wc.add_to(-N, rhs);
   }
   tr_.K.multiply(st.e, Kq);
   sl_.add_rail_force(st.z, &st.zdot, map, Kq);
@@ -405,8 +474,8 @@ void LinearSystem::start(SimState& st, Accel& acc) {
   Mf.solve_in_place(rhs);
   acc.edd = rhs;
   for (int w = 0; w < nw_; ++w)
-    acc.x(2 * w) = rigid() ? wc_[w].s.dot(acc.edd)
-                           : (acc.x(2 * w + 1) - static_load(w)) / model_.wheels[w].mass;
+    acc.x(2 * w) =
+        rigid() ? wc_[w].dot(acc.edd) : (acc.x(2 * w + 1) - static_load(w)) / model_.wheels[w].mass;
   st.body = st.bodydot = Eigen::VectorXd::Zero(2 * nb_);
   if (nb_ > 0) {  // the bodies where their springs carry the static loads, at rest
     Eigen::VectorXd Y(nw_);

@@ -54,19 +54,40 @@ class LinearRest {
   BandMatrix K_;
 };
 
-// One wheel's coupling to the linear track at its rail coordinate.
+// One wheel's coupling to the linear track at its rail coordinate. Over the y coordinates s(X)
+// has the four non-zeros of the element under X (its shape functions), kept as such so that
+// its products cost O(1) per wheel, not O(n); with modes it is dense (Phi^T s).
 struct WheelCoupling {
-  Eigen::VectorXd s, ss, sss;  // s(X), s_s(X), s_ss(X) over q
+  Eigen::VectorXd s, ss, sss;                 // s(X), s_s(X), s_ss(X) over q: with modes only
+  bool sparse = false;                        // the four non-zeros below hold them (no modes)
+  int idx[4] = {-1, -1, -1, -1};              // their y coordinates (-1: fixed)
+  double n[4] = {}, ns[4] = {}, nss[4] = {};  // s, s_s and s_ss there [-, 1/m, 1/m^2]
+  // sets s(X), s_s(X), s_ss(X) at the point bp of X on the track
+  void set(const LinearTrack& tr, const BeamPoint& bp, double X);
+  using Vec = Eigen::Ref<const Eigen::VectorXd>;
+  double dot(const Vec& x) const;                   // s . x
+  double dot_s(const Vec& x) const;                 // s_s . x
+  double dot_ss(const Vec& x) const;                // s_ss . x
+  void add_to(double a, Eigen::VectorXd& r) const;  // r += a s
   // the contact row's dependence on q'' through y(X_A) = s.q (and, for the damper, s.q' and
   // the convected s_s.q v): u = cs s + css s_s
   double cs = 0.0, css = 0.0;
   Eigen::MatrixXd W;  // A^-1 of the four y basis vectors of the element (cached)
-  Eigen::VectorXd Z;  // A^-1 s(X)
+  // Z = A^-1 s(X) = W zn, never formed: its products go through W's four columns. A^-1 decays
+  // away from the element (A is mass-dominated at a time step's scale), so W's rows beyond
+  // [lo, hi), where every column is below kNegligible of its largest entry, are left out of
+  // x -= a Z: a change below round-off, and O(1) per wheel instead of O(n).
+  static constexpr double kNegligible = 1e-17;
+  double zn[4] = {};
+  int lo = 0, hi = 0;
   int cache_el = -1;
   // the element's fixed-end compliance under the load at X_A (zero unless
   // ContactParams::element_compliance; contact.hpp)
   ElementCompliance g;
-  double u_dot(const Eigen::VectorXd& x) const;  // u . x
+  double u_dot(const Vec& x) const;                // u . x
+  double u_dot_z(const WheelCoupling& v) const;    // u . Z_v
+  void sub_z(double a, Eigen::VectorXd& x) const;  // x -= a Z
+  void set_support();                              // lo, hi of a new W
 };
 
 class LinearSystem {
@@ -111,7 +132,8 @@ class LinearSystem {
   // where their springs carry the static loads, and the accelerations with the initial contact
   // forces (acc.x holds N per wheel).
   void start(SimState& st, Accel& acc);
-  // The wheels' couplings at t and their Z = A^-1 s(X_A), the columns cached per element.
+  // The wheels' couplings at t and their Z = A^-1 s(X_A) (as W zn), the columns W cached per
+  // element.
   void couple(double t);
   const WheelCoupling& coupling(int w) const { return wc_[w]; }
   // After the window moved: the element caches are stale.

@@ -1,7 +1,8 @@
 """Golden outputs: the kernel redesign of issue 11 must not change any result.
 
 ``tests/data/golden.npz`` holds the outputs of a fixed set of runs recorded on the code before
-the redesign (commit 618a45c) by ``tests/data/make_golden.py``: both integrators on the full
+the redesign (commit 618a45c) by ``tests/data/make_golden.py`` (some groups re-recorded since,
+for deliberate changes listed there): both integrators on the full
 path, the linear levels (incl. a modal run and a sudden start with damped supports), a Hertz law
 with contact damping, a sudden drop with damped supports, a run that slides under a torque, a
 standing wheel, eigenfrequencies, static solves and the quasi-static line. Every setting is
