@@ -1064,7 +1064,7 @@ def periodic_receptance_matrix(track: PeriodicTrackParams, speed: typing.Support
     """
 def quasi_static(rail: RailModel, wheel: WheelParams, contact: ContactParams, x: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> dict:
     """
-    The quasi-static line: a static solve at each X_A in x [m], each from the rail of the one before; {'y_contact', 'y_wheel', 'contact_s' [m], 'normal_force' [N]} (n,) each
+    The quasi-static line: a static solve at each X_A in x [m], each from the rail of the one before; {'y_contact', 'y_wheel', 'contact_s' [m], 'normal_force', 'horizontal_reaction' [N]} (n,) each
     """
 def rail_static(rail: RailModel) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
