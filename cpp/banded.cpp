@@ -182,6 +182,8 @@ void SplitBorderedSolver::resize(int n, int n_groups, int group_size, int m) {
   idx_.assign(r_, -1);
   fresh_.assign(n_groups, 0);
   W_.setZero(n_, r_);
+  w_lo_.assign(r_, 0);
+  w_hi_.assign(r_, 0);
   PW_.setZero(r_, r_);
 }
 
@@ -204,9 +206,10 @@ bool SplitBorderedSolver::factorize(const Eigen::MatrixXd& E, const Eigen::Matri
     if (fresh_[g]) continue;
     for (int k = g * gs_; k < (g + 1) * gs_; ++k) {
       W_.col(k).setZero();
+      w_lo_[k] = w_hi_[k] = 0;
       if (idx_[k] < 0) continue;
       W_(idx_[k], k) = 1.0;
-      A_->solve_in_place(W_.col(k));
+      std::tie(w_lo_[k], w_hi_[k]) = A_->solve_local(W_.col(k), idx_[k], idx_[k], kNegligible);
       ++band_solves_;
     }
     fresh_[g] = 1;
@@ -214,7 +217,8 @@ bool SplitBorderedSolver::factorize(const Eigen::MatrixXd& E, const Eigen::Matri
   }
   if (moved)
     for (int j = 0; j < r_; ++j)
-      for (int i = 0; i < r_; ++i) PW_(i, j) = idx_[i] < 0 ? 0.0 : W_(idx_[i], j);
+      for (int i = 0; i < r_; ++i)
+        PW_(i, j) = idx_[i] >= w_lo_[j] && idx_[i] < w_hi_[j] ? W_(idx_[i], j) : 0.0;
   const int k = r_ + m_;
   S_.resize(k, k);
   EF_.resize(r_, k);
@@ -239,8 +243,9 @@ void SplitBorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd
   rhs_.tail(m_) = r2;
   sol_ = lu_.solve(rhs_);
   u_.noalias() = EF_ * sol_;
-  wu_.noalias() = W_ * u_;
-  x1 -= wu_;
+  for (int j = 0; j < r_; ++j)
+    x1.segment(w_lo_[j], w_hi_[j] - w_lo_[j]) -=
+        u_(j) * W_.col(j).segment(w_lo_[j], w_hi_[j] - w_lo_[j]);
   x2 = sol_.tail(m_);
 }
 

@@ -110,13 +110,17 @@ class SplitBorderedSolver {
   int n_ = 0, gs_ = 0, r_ = 0, m_ = 0;
   std::vector<int> idx_;     // P's indices (r)
   std::vector<char> fresh_;  // per group: W's columns are those of idx_ and A
-  Eigen::MatrixXd W_;        // A^-1 P (n x r)
-  Eigen::MatrixXd PW_;       // P^T W (r x r)
-  Eigen::MatrixXd EF_;       // [E F] (r x (r + m))
+  // A^-1 P (n x r), each column zero outside [w_lo_, w_hi_) (BandMatrix::solve_local, entries
+  // below kNegligible of the column's largest left out: a change below round-off)
+  static constexpr double kNegligible = 1e-17;
+  Eigen::MatrixXd W_;
+  std::vector<int> w_lo_, w_hi_;
+  Eigen::MatrixXd PW_;  // P^T W (r x r)
+  Eigen::MatrixXd EF_;  // [E F] (r x (r + m))
   Eigen::MatrixXd S_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   long band_solves_ = 0;
-  mutable Eigen::VectorXd rhs_, sol_, u_, wu_;
+  mutable Eigen::VectorXd rhs_, sol_, u_;
 };
 
 }  // namespace trackwheel
