@@ -118,6 +118,26 @@ void BandMatrix::set_linear_combination(double a, const BandMatrix& A, double b,
 
 void BandMatrix::add_scaled(double a, const BandMatrix& A) { data_ += a * A.data_; }
 
+void LocalColumns::resize(int n, int m) {
+  M_.setZero(n, m);
+  lo_.assign(m, 0);
+  hi_.assign(m, 0);
+}
+
+void LocalColumns::solve(const BandMatrix& A, int k, int first, int last) {
+  std::tie(lo_[k], hi_[k]) = A.solve_local(M_.col(k), first, last, kNegligible);
+}
+
+void LocalColumns::clear(int k) {
+  M_.col(k).setZero();
+  lo_[k] = hi_[k] = 0;
+}
+
+void LocalColumns::subtract(const Eigen::VectorXd& c, Eigen::VectorXd& x) const {
+  for (int k = 0; k < static_cast<int>(M_.cols()); ++k)
+    x.segment(lo_[k], hi_[k] - lo_[k]) -= c(k) * M_.col(k).segment(lo_[k], hi_[k] - lo_[k]);
+}
+
 bool BorderedSolver::factorize(BandMatrix& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                                const Eigen::MatrixXd& D) {
   if (!A.factorize()) return false;
@@ -129,15 +149,14 @@ bool BorderedSolver::factorize_border(const BandMatrix& A, const Eigen::MatrixXd
   A_ = &A;
   m_ = static_cast<int>(D.rows());
   if (m_ == 0) return true;
-  Z_ = B;
-  z_lo_.assign(m_, 0);
-  z_hi_.assign(m_, 0);
+  Z_.resize(static_cast<int>(B.rows()), m_);
   for (int k = 0; k < m_; ++k) {
     int first = 0, last = static_cast<int>(B.rows()) - 1;
     while (first <= last && B(first, k) == 0.0) ++first;
     while (last >= first && B(last, k) == 0.0) --last;
     if (first > last) continue;  // a zero column stays zero
-    std::tie(z_lo_[k], z_hi_[k]) = A.solve_local(Z_.col(k), first, last, kNegligible);
+    Z_.col(k) = B.col(k);
+    Z_.solve(A, k, first, last);
   }
   c_row_.clear();
   c_col_.clear();
@@ -150,7 +169,8 @@ bool BorderedSolver::factorize_border(const BandMatrix& A, const Eigen::MatrixXd
         c_val_.push_back(C(i, j));
       }
   Eigen::MatrixXd S = D;  // D - C Z over C's non-zeros
-  for (std::size_t k = 0; k < c_val_.size(); ++k) S.row(c_row_[k]) -= c_val_[k] * Z_.row(c_col_[k]);
+  for (std::size_t k = 0; k < c_val_.size(); ++k)
+    S.row(c_row_[k]) -= c_val_[k] * Z_.matrix().row(c_col_[k]);
   if (!S.allFinite()) return false;
   schur_.compute(S);
   const double det = schur_.determinant();
@@ -169,9 +189,7 @@ void BorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
   rhs_ = r2;
   for (std::size_t k = 0; k < c_val_.size(); ++k) rhs_(c_row_[k]) -= c_val_[k] * x1(c_col_[k]);
   x2 = schur_.solve(rhs_);
-  for (int k = 0; k < m_; ++k)
-    x1.segment(z_lo_[k], z_hi_[k] - z_lo_[k]) -=
-        x2(k) * Z_.col(k).segment(z_lo_[k], z_hi_[k] - z_lo_[k]);
+  Z_.subtract(x2, x1);
 }
 
 void SplitBorderedSolver::resize(int n, int n_groups, int group_size, int m) {
@@ -181,9 +199,7 @@ void SplitBorderedSolver::resize(int n, int n_groups, int group_size, int m) {
   m_ = m;
   idx_.assign(r_, -1);
   fresh_.assign(n_groups, 0);
-  W_.setZero(n_, r_);
-  w_lo_.assign(r_, 0);
-  w_hi_.assign(r_, 0);
+  W_.resize(n_, r_);
   PW_.setZero(r_, r_);
 }
 
@@ -205,11 +221,10 @@ bool SplitBorderedSolver::factorize(const Eigen::MatrixXd& E, const Eigen::Matri
   for (int g = 0; g < static_cast<int>(fresh_.size()); ++g) {
     if (fresh_[g]) continue;
     for (int k = g * gs_; k < (g + 1) * gs_; ++k) {
-      W_.col(k).setZero();
-      w_lo_[k] = w_hi_[k] = 0;
+      W_.clear(k);
       if (idx_[k] < 0) continue;
-      W_(idx_[k], k) = 1.0;
-      std::tie(w_lo_[k], w_hi_[k]) = A_->solve_local(W_.col(k), idx_[k], idx_[k], kNegligible);
+      W_.col(k)(idx_[k]) = 1.0;
+      W_.solve(*A_, k, idx_[k], idx_[k]);
       ++band_solves_;
     }
     fresh_[g] = 1;
@@ -217,8 +232,7 @@ bool SplitBorderedSolver::factorize(const Eigen::MatrixXd& E, const Eigen::Matri
   }
   if (moved)
     for (int j = 0; j < r_; ++j)
-      for (int i = 0; i < r_; ++i)
-        PW_(i, j) = idx_[i] >= w_lo_[j] && idx_[i] < w_hi_[j] ? W_(idx_[i], j) : 0.0;
+      for (int i = 0; i < r_; ++i) PW_(i, j) = idx_[i] < 0 ? 0.0 : W_.at(idx_[i], j);
   const int k = r_ + m_;
   S_.resize(k, k);
   EF_.resize(r_, k);
@@ -243,9 +257,7 @@ void SplitBorderedSolver::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd
   rhs_.tail(m_) = r2;
   sol_ = lu_.solve(rhs_);
   u_.noalias() = EF_ * sol_;
-  for (int j = 0; j < r_; ++j)
-    x1.segment(w_lo_[j], w_hi_[j] - w_lo_[j]) -=
-        u_(j) * W_.col(j).segment(w_lo_[j], w_hi_[j] - w_lo_[j]);
+  W_.subtract(u_, x1);
   x2 = sol_.tail(m_);
 }
 

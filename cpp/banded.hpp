@@ -49,6 +49,30 @@ class BandMatrix {
   Eigen::MatrixXd data_;  // (2b+1) x n, column-major band storage
 };
 
+// Columns A^-1 b_k of a factorised band matrix for right-hand sides b_k with clustered
+// non-zeros, each kept over the rows [lo_k, hi_k) where it is not negligible
+// (BandMatrix::solve_local: entries below kNegligible of the column's largest left out, a change
+// below round-off), so that products with them cost what the columns' supports do.
+class LocalColumns {
+ public:
+  static constexpr double kNegligible = 1e-17;
+  void resize(int n, int m);  // n x m columns, all zero
+  // Column k := A^-1 b, b = e_first + ... given in place by the caller (col(k)) with its
+  // non-zeros in [first, last].
+  void solve(const BandMatrix& A, int k, int first, int last);
+  void clear(int k);  // column k := 0
+  Eigen::MatrixXd::ColXpr col(int k) { return M_.col(k); }
+  const Eigen::MatrixXd& matrix() const { return M_; }
+  // entry (i, k) of the kept column (0 outside its rows)
+  double at(int i, int k) const { return i >= lo_[k] && i < hi_[k] ? M_(i, k) : 0.0; }
+  // x -= sum_k c_k column_k, column by column over each column's rows
+  void subtract(const Eigen::VectorXd& c, Eigen::VectorXd& x) const;
+
+ private:
+  Eigen::MatrixXd M_;
+  std::vector<int> lo_, hi_;
+};
+
 // Solves [A B; C D] [x1; x2] = [r1; r2] with A banded (n x n), B (n x m), C (m x n), D (m x m).
 class BorderedSolver {
  public:
@@ -63,11 +87,7 @@ class BorderedSolver {
 
  private:
   const BandMatrix* A_ = nullptr;
-  // A^-1 B, each column zero outside [z_lo_, z_hi_) (BandMatrix::solve_local: entries below
-  // kNegligible of the column's largest left out, a change below round-off)
-  static constexpr double kNegligible = 1e-17;
-  Eigen::MatrixXd Z_;
-  std::vector<int> z_lo_, z_hi_;
+  LocalColumns Z_;  // A^-1 B
   // C's non-zeros (a wheel's rows touch the 8 coordinates of its contact element): C x1 in
   // O(non-zeros) rather than O(m n)
   std::vector<int> c_row_, c_col_;
@@ -110,13 +130,9 @@ class SplitBorderedSolver {
   int n_ = 0, gs_ = 0, r_ = 0, m_ = 0;
   std::vector<int> idx_;     // P's indices (r)
   std::vector<char> fresh_;  // per group: W's columns are those of idx_ and A
-  // A^-1 P (n x r), each column zero outside [w_lo_, w_hi_) (BandMatrix::solve_local, entries
-  // below kNegligible of the column's largest left out: a change below round-off)
-  static constexpr double kNegligible = 1e-17;
-  Eigen::MatrixXd W_;
-  std::vector<int> w_lo_, w_hi_;
-  Eigen::MatrixXd PW_;  // P^T W (r x r)
-  Eigen::MatrixXd EF_;  // [E F] (r x (r + m))
+  LocalColumns W_;           // A^-1 P (n x r)
+  Eigen::MatrixXd PW_;       // P^T W (r x r)
+  Eigen::MatrixXd EF_;       // [E F] (r x (r + m))
   Eigen::MatrixXd S_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   long band_solves_ = 0;

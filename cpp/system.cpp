@@ -199,18 +199,25 @@ void System::solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::
   sl_.back_substitute(rs_, x1, rail().full_to_free(), dz);
 }
 
+template <class Solver>
+void System::solve_condensed(const Solver& solver, const BodyCondensation& bodies,
+                             const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
+                             Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
+  auto wheels = [&solver](const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y1,
+                          Eigen::VectorXd& y2) { solver.solve(a, b, y1, y2); };
+  if (nb_ == 0)
+    wheels(r1, r2, x1, x2);
+  else
+    bodies.solve(wheels, r1, r2, x1, x2);
+}
+
 void System::solve_split(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
                          Eigen::VectorXd& x2) const {
   if (!split_solve_) {
     solve_bordered(r1, r2, x1, x2);
     return;
   }
-  auto wheels = [this](const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y1,
-                       Eigen::VectorXd& y2) { split_.solve(a, b, y1, y2); };
-  if (nb_ == 0)
-    wheels(r1, r2, x1, x2);
-  else
-    bodies_split_.solve(wheels, r1, r2, x1, x2);
+  solve_condensed(split_, bodies_split_, r1, r2, x1, x2);
 }
 
 void System::add_entry(int i, int j, double v) {
@@ -423,12 +430,7 @@ bool System::factorize_bordered(BandMatrix& A, bool factor_band) {
 
 void System::solve_bordered(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2,
                             Eigen::VectorXd& x1, Eigen::VectorXd& x2) const {
-  auto wheels = [this](const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y1,
-                       Eigen::VectorXd& y2) { solver_.solve(a, b, y1, y2); };
-  if (nb_ == 0)
-    wheels(r1, r2, x1, x2);
-  else
-    bodies_.solve(wheels, r1, r2, x1, x2);
+  solve_condensed(solver_, bodies_, r1, r2, x1, x2);
 }
 
 Eigen::MatrixXd System::iteration_matrix_dense() const {

@@ -152,6 +152,12 @@ class System {
   bool refresh_rail_matrix(const SimState& st, double cq, double cv, bool refresh_rail);
   void solve_split(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
                    Eigen::VectorXd& x2) const;
+  // The solve of `solver` (a factorisation with the wheels' border), the vehicle's bodies
+  // back-substituted through `bodies` when there are any.
+  template <class Solver>
+  void solve_condensed(const Solver& solver, const BodyCondensation& bodies,
+                       const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd& x1,
+                       Eigen::VectorXd& x2) const;
   void add_entry(int i, int j, double v);
   // Into the split blocks (split_mode_) or through local_ into the assembled matrix.
   void add_local(int li, int lj, double v);
