@@ -249,23 +249,20 @@ def linear_vehicle_line_on(scene: Scene, model, X: np.ndarray) -> np.ndarray:
     return y
 
 
-def rail_axial_load(scene: Scene, horizontal_reaction, normal_force, contact_x):
+def rail_axial_load(profile, horizontal_reaction, normal_force, contact_s):
     """The horizontal load the wheels put on the rail [N], which its axial hold carries: the
     forces holding them at their X (``horizontal_reaction`` [N]) less the part the rail
-    profile takes, -N R'(X) at each contact point X = ``contact_x`` [m] (the contact reads
-    the profile at the place, so a profile's slope tilts the contact force on the wheel
-    without loading the rail axially: its force on the rail, -T^T N n with
-    T = S + e_y R' S_x, has the x part -N (n_x + R' n_y); n_y = 1 to O(slope^2)). Arrays
-    over the wheels, summed over the last axis."""
+    profile takes, -N R'(s) at each contact point s = ``contact_s`` [m] of the kernel rail
+    whose ``profile`` (a ``_core.Profile``) the statics read (the contact reads the profile
+    at the place, so a profile's slope tilts the contact force on the wheel without loading
+    the rail axially: its force on the rail, -T^T N n with T = S + e_y R' S_x, has the x
+    part -N (n_x + R' n_y); n_y = 1 to O(slope^2)). Arrays over the wheels, summed over the
+    last axis."""
     H = np.asarray(horizontal_reaction, dtype=float)
-    table = rail_profile.rail_table(scene)
-    if table is None:
+    if profile.empty:
         return H.sum(axis=-1)
-    x0, h, c = table
-    x = np.asarray(contact_x, dtype=float)
-    i = np.clip(np.floor((x - x0) / h).astype(np.int64), 0, c.shape[1] - 1)
-    u = np.clip(x - (x0 + i * h), 0.0, h)
-    slope = (3.0 * c[0, i] * u + 2.0 * c[1, i]) * u + c[2, i]
+    s = np.asarray(contact_s, dtype=float)
+    slope = np.array([profile(x)[1] for x in s.ravel()]).reshape(s.shape)
     return (H - np.asarray(normal_force) * slope).sum(axis=-1)
 
 
@@ -326,13 +323,14 @@ def piece_scene(scene: Scene, n_elements: int, width: int) -> Scene:
 
 def _piece(scene: Scene, n_elements: int, first: int, width: int):
     """(the scene of the piece of the fixed rail from bay ``first`` over ``width`` bays [-],
-    its kernel rail): its supports, profile and mesh those of the rail there, its ends rigid
-    as the rail's."""
+    its kernel rail, the rail's profile on it): its supports, profile and mesh those of the
+    rail there, its ends rigid as the rail's."""
     origin = first * scene.supports.spacing
     piece = piece_scene(scene, n_elements, width)
+    profile = rail_profile.profile_part(scene, origin, width * piece.supports.spacing)
     model = _core.RailModel(kernel.rail_params(piece), kernel.support_params(piece, origin),
-                            rail_profile.profile_part(scene, origin, width * piece.supports.spacing))
-    return piece, model
+                            profile)
+    return piece, model, profile
 
 
 def piece_line(scene: Scene, n_elements: int, first: int, width: int, x):
@@ -341,12 +339,12 @@ def piece_line(scene: Scene, n_elements: int, first: int, width: int, x):
     coordinates ``x`` [m] (X - first d): its supports, profile and mesh those of the rail
     there, and the rail's axial load [N] (:func:`rail_axial_load`), each (n,). The wheel's
     static solves warm-start one from the next."""
-    piece, model = _piece(scene, n_elements, first, width)
+    piece, model, profile = _piece(scene, n_elements, first, width)
     d = _core.quasi_static(model, kernel.wheel_params(piece), kernel.contact_params(piece),
                            np.asarray(x, dtype=float).tolist())
-    H = rail_axial_load(scene, np.asarray(d["horizontal_reaction"])[:, None],
+    H = rail_axial_load(profile, np.asarray(d["horizontal_reaction"])[:, None],
                         np.asarray(d["normal_force"])[:, None],
-                        first * scene.supports.spacing + np.asarray(d["contact_s"])[:, None])
+                        np.asarray(d["contact_s"])[:, None])
     return np.asarray(d["y_contact"]), H
 
 
@@ -357,9 +355,9 @@ def vehicle_piece_line(scene: Scene, n_elements: int, first: int, width: int,
     at the piece's rail coordinates of each row of ``X`` (n, n_wheels) [m] (X - first d):
     each wheel's y_B [m], (n, n_wheels), and the rail's axial load (n,) [N]
     (:func:`rail_axial_load`)."""
-    piece, model = _piece(scene, n_elements, first, width)
+    piece, model, profile = _piece(scene, n_elements, first, width)
     y, H, N, s = _vehicle_statics_on(piece, model, X)
-    return y, rail_axial_load(scene, H, N, first * scene.supports.spacing + s)
+    return y, rail_axial_load(profile, H, N, s)
 
 
 def vehicle_window_line(scene: Scene, n_elements: int, origin: float, X: np.ndarray,
