@@ -143,14 +143,10 @@ def ancf_rows(lengths, repeats: int, whole_passage_up_to: float) -> list[dict]:
         if measured:  # the whole passage, both routes
             xs = passage_points(scene)
             static_line.qs_series.cache_clear()
-            t0 = time.process_time()
-            static_line.qs_series(scene, ne, 0, ne, False)
-            before = time.process_time() - t0
+            before = timed(lambda: static_line.qs_series(scene, ne, 0, ne, False), 1)[0]
             static_line.qs_series.cache_clear()
             static_line.piece_bay_series.cache_clear()
-            t0 = time.process_time()
-            static_line.quasi_static_line(scene, ne, xs)
-            after = time.process_time() - t0
+            after = timed(lambda: static_line.quasi_static_line(scene, ne, xs), 1)[0]
         rows.append(dict(part="b", length_m=L, n_elements=ne, positions=n_pos, before_s=before,
                          after_s=after, line_s=np.nan, ratio=before / after,
                          max_diff_rel=np.nan, bays=bays, ancf_per_position_ms=per_pos * 1e3))
@@ -235,14 +231,11 @@ def vehicle_rows(lengths, repeats: int, whole_passage_up_to: float) -> list[dict
                 b = static_line.vehicle_breakpoints(scene, ne)
                 xs = b[:-1] + 0.5 * np.diff(b)
                 static_line.vehicle_qs_series.cache_clear()
-                t0 = time.process_time()
-                static_line.vehicle_qs_series(scene, ne, 0, n_seg, False)
-                before = time.process_time() - t0
+                before = timed(lambda: static_line.vehicle_qs_series(scene, ne, 0, n_seg, False),
+                               1)[0]
                 static_line.vehicle_qs_series.cache_clear()
                 static_line.vehicle_group_series.cache_clear()
-                t0 = time.process_time()
-                static_line.vehicle_quasi_static_line(scene, ne, xs, 0)
-                after = time.process_time() - t0
+                after = timed(lambda: static_line.vehicle_quasi_static_line(scene, ne, xs, 0), 1)[0]
             rows.append(dict(vehicle=name, length_m=L, n_elements=ne, segments=n_seg,
                              positions=n_pos, groups=groups, whole_rail_groups=whole_groups,
                              bays=bays, per_position_ms=per_pos * 1e3,
